@@ -1,0 +1,13 @@
+!> Working precision and integer kinds: the only place kinds are chosen.
+module udar_kinds
+  use, intrinsic :: iso_fortran_env, only: real64, int32, int64
+  implicit none
+  private
+  public :: rk, ik, i8, max_name_len, max_path_len
+
+  integer, parameter :: rk = real64     !< working precision (all physics)
+  integer, parameter :: ik = int32      !< local indices
+  integer, parameter :: i8 = int64      !< global counters and file offsets
+  integer, parameter :: max_name_len = 64
+  integer, parameter :: max_path_len = 1024
+end module udar_kinds
