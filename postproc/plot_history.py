@@ -1,0 +1,362 @@
+#!/usr/bin/python3
+"""Plot a udar history CSV (<case>_history.csv): energies, energy error, momentum, wall
+force, and per-part kinetic energy and centre-of-mass displacement, against time in µs.
+
+    /usr/bin/python3 postproc/plot_history.py out/taylor_history.csv -o taylor_history.png
+    /usr/bin/python3 postproc/plot_history.py --self-test
+
+Panels whose columns are missing from the file are left out (a warning names them).
+Library use: ``plot_history(path, out, ...)``.
+"""
+
+import argparse
+import math
+import os
+import sys
+import tempfile
+import warnings
+
+try:
+    import numpy as np
+except ImportError:
+    if __name__ == "__main__":
+        sys.exit("plot_history.py: error: numpy is not installed for %s; run the udar post-processing "
+                 "scripts with /usr/bin/python3" % sys.executable)
+    raise
+
+if __package__:
+    from . import udar_results as ur
+else:
+    import udar_results as ur
+
+
+class HistoryError(Exception):
+    """Bad history file or request; the message names the file and the problem."""
+
+
+def _scale(values, unit, prefixes=((1e9, "G"), (1e6, "M"), (1e3, "k"))):
+    """(factor, unit with SI prefix) so that the largest |value| reads between 1 and 1000."""
+    finite = np.asarray(values, dtype=float)
+    finite = finite[np.isfinite(finite)]
+    m = float(np.max(np.abs(finite))) if finite.size else 0.0
+    for f, p in prefixes:
+        if m >= f:
+            return 1.0 / f, p + unit
+    return 1.0, unit
+
+
+def decimate(x, y, max_points=20000):
+    """Thin a long curve for plotting, keeping each bin's min and max (spikes stay visible)."""
+    n = len(x)
+    if n <= max_points:
+        return x, y
+    k = int(math.ceil(n / (max_points / 2.0)))
+    nb = n // k
+    yb = y[:nb * k].reshape(nb, k)
+    base = np.arange(nb) * k
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        lo = base + np.nanargmin(np.where(np.isnan(yb), np.inf, yb), axis=1)
+        hi = base + np.nanargmax(np.where(np.isnan(yb), -np.inf, yb), axis=1)
+    idx = np.unique(np.concatenate([lo, hi, np.arange(nb * k, n), [0, n - 1]]))
+    return x[idx], y[idx]
+
+
+def case_name(path):
+    """'out/taylor_history.csv' -> 'taylor'."""
+    stem = os.path.splitext(os.path.basename(path))[0]
+    return stem[:-len("_history")] if stem.endswith("_history") and len(stem) > 8 else stem
+
+
+def plot_history(path, out, title=None, error_limit=None, size=None, dpi=150, verbose=True):
+    """Read the history CSV ``path`` and write the figure ``out``. Returns a summary dict."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    h = ur.read_history(path)
+    if "time" not in h:
+        raise HistoryError("%s: no 'time' column (columns: %s)" % (path, ", ".join(h)))
+    n = len(h["time"])
+    if n == 0:
+        raise HistoryError("%s: no data rows after the header" % path)
+    t_us = h["time"] * 1e6
+    parts = ur.history_parts(h)
+    missing = []
+
+    def have(*cols):
+        return all(c in h for c in cols)
+
+    panels = []
+
+    # 1. energies
+    ecols = [("kinetic", "kinetic", "-"), ("internal", "internal", "-"),
+             ("plastic_work", "plastic work", "--"), ("total", "total", "-")]
+    present = [c for c in ecols if c[0] in h]
+    for c, lab in (("external_work", "external work"), ("wall_work", "wall work")):
+        if c in h and np.any(h[c] != 0.0):
+            present.append((c, lab, ":"))
+    if present:
+        def p_energy(ax):
+            f, u = _scale(np.concatenate([h[c] for c, _, _ in present]), "J")
+            for c, lab, ls in present:
+                kw = {"color": "k", "lw": 1.6} if c == "total" else {}
+                ax.plot(*decimate(t_us, h[c] * f), ls=ls, label=lab, **kw)
+            ax.set_ylabel("energy (%s)" % u)
+            ax.set_title("energies")
+            ax.legend(fontsize="small")
+        panels.append(p_energy)
+    missing += [c for c, _, _ in ecols if c not in h]
+
+    # 2. energy error (relative, dimensionless)
+    if "energy_error" in h:
+        def p_error(ax):
+            ax.plot(*decimate(t_us, h["energy_error"] * 100.0), color="C3")
+            if error_limit:
+                for s in (1, -1):
+                    ax.axhline(s * error_limit * 100.0, color="k", ls="--", lw=0.8)
+            ax.axhline(0.0, color="0.5", lw=0.5)
+            ax.set_ylabel("relative energy error (%)")
+            ax.set_title("energy error")
+        panels.append(p_error)
+    else:
+        missing.append("energy_error")
+
+    # 3. momentum
+    mcols = [c for c in ("momentum_x", "momentum_y", "momentum_z") if c in h]
+    if mcols:
+        def p_mom(ax):
+            for c in mcols:
+                ax.plot(*decimate(t_us, h[c]), label=c.split("_")[1])
+            ax.set_ylabel("momentum (kg m/s)")
+            ax.set_title("momentum")
+            ax.legend(fontsize="small")
+        panels.append(p_mom)
+    missing += [c for c in ("momentum_x", "momentum_y", "momentum_z") if c not in h]
+
+    # 4. wall force
+    if "wall_force" in h:
+        def p_wall(ax):
+            f, u = _scale(h["wall_force"], "N")
+            ax.plot(*decimate(t_us, h["wall_force"] * f), color="C4")
+            ax.set_ylabel("wall force (%s)" % u)
+            ax.set_title("rigid wall force")
+        panels.append(p_wall)
+    else:
+        missing.append("wall_force")
+
+    # 5. per-part kinetic energy
+    if parts:
+        def p_ke(ax):
+            f, u = _scale(np.concatenate([h["ke_" + p] for p in parts]), "J")
+            for k, p in enumerate(parts):
+                ax.plot(*decimate(t_us, h["ke_" + p] * f), color="C%d" % (k % 10), label=p)
+            ax.set_ylabel("kinetic energy (%s)" % u)
+            ax.set_title("kinetic energy per part")
+            ax.legend(fontsize="small")
+        panels.append(p_ke)
+
+    # 6. per-part centre-of-mass displacement
+    com = [(p, ax_) for p in parts for ax_ in "xyz" if "com_%s_%s" % (ax_, p) in h]
+    if com:
+        def p_com(ax):
+            disp = {(p, a): (h["com_%s_%s" % (a, p)] - h["com_%s_%s" % (a, p)][0]) * 1e3
+                    for p, a in com}
+            big = max([np.nanmax(np.abs(d)) for d in disp.values()] + [0.0])
+            styles = {"x": "-", "y": "--", "z": ":"}
+            drawn = 0
+            for (p, a), d in disp.items():
+                if big > 0.0 and np.nanmax(np.abs(d)) < 1e-6 * big:
+                    continue  # a component that does not move
+                k = parts.index(p)
+                ax.plot(*decimate(t_us, d), color="C%d" % (k % 10), ls=styles[a], label="%s %s" % (p, a))
+                drawn += 1
+            if drawn == 0:
+                ax.plot(t_us, np.zeros_like(t_us), color="0.5", label="no motion")
+            ax.set_ylabel("centre of mass displacement (mm)")
+            ax.set_title("centre of mass per part")
+            ax.legend(fontsize="small")
+        panels.append(p_com)
+
+    if not panels:
+        raise HistoryError("%s: none of the expected columns (kinetic, internal, energy_error, "
+                           "momentum_x, wall_force, ke_<part>, ...) is present; columns: %s"
+                           % (path, ", ".join(h)))
+    if missing:
+        warnings.warn("%s: missing column(s) %s; their curves are left out" % (path, ", ".join(missing)))
+
+    ncols = 1 if len(panels) == 1 else 2
+    nrows = int(math.ceil(len(panels) / ncols))
+    fig, axes = plt.subplots(nrows, ncols, figsize=size or (6.0 * ncols, 3.2 * nrows + 0.6),
+                             sharex=True, squeeze=False, constrained_layout=True)
+    flat = axes.ravel()
+    for ax, draw in zip(flat, panels):
+        draw(ax)
+        ax.grid(True, lw=0.4, alpha=0.5)
+    for ax in flat[len(panels):]:
+        ax.remove()
+    for c in range(ncols):  # time label on the lowest panel of each column
+        col = [flat[r * ncols + c] for r in range(nrows) if r * ncols + c < len(panels)]
+        if col:
+            col[-1].set_xlabel("time (µs)")
+            col[-1].xaxis.set_tick_params(labelbottom=True)
+    fig.suptitle(title or "%s — history" % case_name(path))
+    try:
+        fig.savefig(out, dpi=dpi)
+    except (OSError, ValueError) as e:
+        plt.close(fig)
+        raise HistoryError("cannot write %s: %s" % (out, e)) from None
+    plt.close(fig)
+
+    summary = {"rows": n, "t_end_s": float(h["time"][-1]), "parts": parts, "panels": len(panels)}
+    if "energy_error" in h and np.any(np.isfinite(h["energy_error"])):
+        k = int(np.nanargmax(np.abs(h["energy_error"])))
+        summary["max_abs_energy_error"] = float(abs(h["energy_error"][k]))
+        summary["max_abs_energy_error_time_s"] = float(h["time"][k])
+        summary["final_energy_error"] = float(h["energy_error"][-1])
+    if verbose:
+        line = "%s: %d rows, t = 0 .. %.4f us, parts: %s" % (
+            path, n, summary["t_end_s"] * 1e6, ", ".join(parts) or "none")
+        if "max_abs_energy_error" in summary:
+            line += "; max |energy error| %.3g %% at %.4f us, final %.3g %%" % (
+                summary["max_abs_energy_error"] * 100, summary["max_abs_energy_error_time_s"] * 1e6,
+                summary["final_energy_error"] * 100)
+        print(line)
+        print("wrote %s" % out)
+    return summary
+
+
+# --------------------------------------------------------------------------------------
+# self-test
+# --------------------------------------------------------------------------------------
+
+def _write_synthetic(path, parts=("rod", "anvil_plate"), n=400, columns=None):
+    t = np.linspace(0.0, 8e-5, n)
+    ke0 = 2000.0
+    ke = ke0 * np.exp(-t / 2e-5)
+    pw = 0.8 * (ke0 - ke)
+    ie = ke0 - ke
+    cols = {
+        "time": t, "cycle": np.arange(n) * 100, "dt": np.full(n, 2e-9),
+        "kinetic": ke, "internal": ie, "plastic_work": pw, "wall_work": -0.01 * (ke0 - ke),
+        "total": ke + ie, "energy_error": 1e-3 * np.sin(t / 1e-5),
+        "momentum_x": np.zeros(n), "momentum_y": np.zeros(n), "momentum_z": -10.0 * np.exp(-t / 2e-5),
+        "wall_force": 2e5 * np.exp(-t / 1e-5),
+    }
+    for k, p in enumerate(parts):
+        cols["ke_" + p] = ke * (0.9 if k == 0 else 0.1)
+        cols["com_x_" + p] = np.zeros(n)
+        cols["com_y_" + p] = np.zeros(n)
+        cols["com_z_" + p] = 0.0127 + k * 0.01 - 1e-3 * (1 - np.exp(-t / 2e-5))
+    names = columns or list(cols)
+    with open(path, "w") as fh:
+        fh.write(",".join(names) + "\n")
+        for i in range(n):
+            fh.write(",".join("%.10E" % cols[c][i] for c in names) + "\n")
+
+
+def _self_test(verbose=True):
+    failures = []
+
+    def check(cond, what):
+        if verbose:
+            print("  %s  %s" % ("ok  " if cond else "FAIL", what))
+        if not cond:
+            failures.append(what)
+
+    with tempfile.TemporaryDirectory(prefix="udar_history_test_") as tmp:
+        csvp = os.path.join(tmp, "impact_history.csv")
+        _write_synthetic(csvp)
+        h = ur.read_history(csvp)
+        check(len(h["time"]) == 400 and ur.history_parts(h) == ["rod", "anvil_plate"],
+              "read synthetic history with 2 parts")
+        out = os.path.join(tmp, "h.png")
+        s = plot_history(csvp, out, error_limit=0.2, verbose=False)
+        check(os.path.getsize(out) > 5000 and s["panels"] == 6, "full figure with 6 panels")
+        check(abs(s["max_abs_energy_error"] - 1e-3) < 1e-5, "energy error summary")
+        check(case_name(csvp) == "impact", "title from the file name")
+        xx = np.arange(100001, dtype=float)
+        yy = np.zeros_like(xx)
+        yy[54321], yy[77] = 5.0, -3.0
+        xd, yd = decimate(xx, yy)
+        check(len(xd) <= 20010 and yd.max() == 5.0 and yd.min() == -3.0 and xd[-1] == 1e5,
+              "decimation of long curves keeps spikes and end points")
+        part = os.path.join(tmp, "partial_history.csv")
+        _write_synthetic(part, columns=["time", "kinetic", "internal"])
+        with warnings.catch_warnings(record=True) as w:
+            warnings.simplefilter("always")
+            s = plot_history(part, out, verbose=False)
+        check(s["panels"] == 1 and any("missing column" in str(x.message) for x in w),
+              "missing columns: remaining panels drawn, warning given")
+        empty = os.path.join(tmp, "empty_history.csv")
+        with open(empty, "w") as fh:
+            fh.write("time,kinetic\n")
+        try:
+            plot_history(empty, out, verbose=False)
+            check(False, "header-only file rejected")
+        except HistoryError as e:
+            check("empty_history.csv" in str(e) and "no data rows" in str(e), "header-only file rejected")
+        rc = main([os.path.join(tmp, "nope.csv"), "-o", out], _quiet_errors=True)
+        check(rc == 1, "missing file: exit code 1")
+    ok = not failures
+    print("plot_history self-test: %s" % ("PASS" if ok else "FAIL (%d)" % len(failures)))
+    return ok
+
+
+# --------------------------------------------------------------------------------------
+# CLI
+# --------------------------------------------------------------------------------------
+
+def build_parser():
+    p = argparse.ArgumentParser(
+        prog="plot_history.py",
+        description="Plot a udar history CSV: energies (kinetic, internal, plastic work, total), "
+                    "relative energy error, momentum components, rigid-wall force, kinetic "
+                    "energy and centre-of-mass displacement per part, against time in µs.",
+        epilog="""examples:
+  /usr/bin/python3 postproc/plot_history.py out/taylor_history.csv -o taylor_history.png
+  /usr/bin/python3 postproc/plot_history.py out/taylor_history.csv --error-limit 0.2 -o h.pdf
+  /usr/bin/python3 postproc/plot_history.py --self-test
+
+The energy_error column is taken as relative (dimensionless) and drawn in percent.""",
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("history", nargs="?", metavar="HISTORY.csv", help="udar history CSV file")
+    p.add_argument("-o", "--output", metavar="OUT.png",
+                   help="output image (png/pdf/svg by extension); default <case>_history.png")
+    p.add_argument("--title", help="figure title (default: case name from the file name)")
+    p.add_argument("--error-limit", type=float, metavar="FRAC",
+                   help="draw +-FRAC lines on the energy error panel (e.g. 0.2, the run's limit)")
+    p.add_argument("--size", type=float, nargs=2, metavar=("W", "H"), help="figure size in inches")
+    p.add_argument("--dpi", type=int, default=150, help="image resolution (default 150)")
+    p.add_argument("--self-test", action="store_true", help="run the built-in checks, print PASS/FAIL")
+    return p
+
+
+def main(argv=None, _quiet_errors=False):
+    p = build_parser()
+    args = p.parse_args(argv)
+    prog = p.prog
+    ur.cli_warnings(prog)
+    if args.self_test:
+        return 0 if _self_test() else 1
+    if not args.history:
+        p.error("the HISTORY.csv argument is required (or --self-test)")
+    out = args.output or os.path.splitext(os.path.basename(args.history))[0] + ".png"
+    if os.path.abspath(out) == os.path.abspath(args.history):
+        p.error("the output file would overwrite the input")
+    try:
+        plot_history(args.history, out, title=args.title, error_limit=args.error_limit,
+                     size=tuple(args.size) if args.size else None, dpi=args.dpi)
+    except (ur.UdarFileError, HistoryError) as e:
+        if not _quiet_errors:
+            print("%s: error: %s" % (prog, e.args[0] if e.args else e), file=sys.stderr)
+        return 1
+    except ImportError as e:  # matplotlib missing
+        print("%s: error: %s (run the udar post-processing scripts with /usr/bin/python3)"
+              % (prog, e), file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

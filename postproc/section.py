@@ -1,0 +1,627 @@
+#!/usr/bin/python3
+"""Plane section of a udar tetrahedral mesh, coloured by part or by an element field.
+
+Every tetrahedron of the chosen step's deformed mesh is intersected with the plane
+(vectorised numpy); each cut is a triangle or a quadrilateral, drawn in the plane's 2-D
+coordinates (mm) with a matplotlib PolyCollection.
+
+    /usr/bin/python3 postproc/section.py out/taylor.h5 --plane y=0 --color von_mises -o vm.png
+    /usr/bin/python3 postproc/section.py out/taylor.h5 --step 0 --color part --mirror -o parts.png
+    /usr/bin/python3 postproc/section.py out/taylor.h5 --normal 1 -1 0 --point 0 0 0 -o oblique.png
+    /usr/bin/python3 postproc/section.py --self-test
+
+Library use: ``plane_from_spec``, ``plane_from_normal``, ``cut_tets``, ``polygon_areas``,
+``render_section``.
+"""
+
+import argparse
+import io
+import os
+import re
+import sys
+import tempfile
+import time as _time
+from contextlib import redirect_stderr, redirect_stdout
+
+try:
+    import numpy as np
+except ImportError:
+    if __name__ == "__main__":
+        sys.exit("section.py: error: numpy is not installed for %s; run the udar post-processing "
+                 "scripts with /usr/bin/python3" % sys.executable)
+    raise
+
+if __package__:
+    from . import udar_results as ur
+else:
+    import udar_results as ur
+
+AXES = "xyz"
+# in-plane (horizontal, vertical) global axes for the axis-aligned planes
+_AXIS_PLANE_UV = {0: (1, 2), 1: (0, 2), 2: (0, 1)}
+
+
+class SectionError(Exception):
+    """Bad section request (plane, field, ...); the message says what is wrong."""
+
+
+# --------------------------------------------------------------------------------------
+# plane
+# --------------------------------------------------------------------------------------
+
+class Plane:
+    """A cutting plane with an orthonormal in-plane basis.
+
+    ``point`` (m) and unit ``normal``; ``u`` (horizontal) and ``v`` (vertical) in-plane unit
+    vectors; 2-D coordinates of a point X are ((X - point).u, (X - point).v) except for
+    axis-aligned planes, whose 2-D coordinates are the two global coordinates themselves.
+    """
+
+    def __init__(self, point, normal, u, v, u_label, v_label, description):
+        self.point = np.asarray(point, dtype=np.float64)
+        self.normal = np.asarray(normal, dtype=np.float64)
+        self.u = np.asarray(u, dtype=np.float64)
+        self.v = np.asarray(v, dtype=np.float64)
+        self.u_label, self.v_label, self.description = u_label, v_label, description
+
+    def signed_distance(self, xyz):
+        return (np.asarray(xyz) - self.point) @ self.normal
+
+    def to2d(self, xyz):
+        d = np.asarray(xyz) - self.point
+        return np.stack([d @ self.u, d @ self.v], axis=-1)
+
+    def __repr__(self):
+        return "Plane(%s)" % self.description
+
+
+def _axis_plane(axis, value):
+    point = np.zeros(3)
+    point[axis] = value
+    normal = np.zeros(3)
+    normal[axis] = 1.0
+    iu, iv = _AXIS_PLANE_UV[axis]
+    u, v = np.zeros(3), np.zeros(3)
+    u[iu], v[iv] = 1.0, 1.0
+    return Plane(point, normal, u, v, AXES[iu], AXES[iv], "%s = %g mm" % (AXES[axis], value * 1e3))
+
+
+_LENGTH = re.compile(r"^\s*([xyzXYZ])\s*=\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(mm|m)?\s*$")
+
+
+def plane_from_spec(spec):
+    """'y=0', 'z=0.012', 'x=-2.5mm' (value in metres unless suffixed 'mm') -> Plane."""
+    m = _LENGTH.match(spec)
+    if not m:
+        raise SectionError("cannot parse --plane %r: expected AXIS=VALUE such as y=0, z=0.012 or "
+                           "x=-2.5mm (value in metres unless suffixed with mm)" % spec)
+    axis = AXES.index(m.group(1).lower())
+    value = float(m.group(2)) * (1e-3 if m.group(3) == "mm" else 1.0)
+    return _axis_plane(axis, value)
+
+
+def plane_from_normal(normal, point=(0.0, 0.0, 0.0)):
+    """Plane through ``point`` (m) with normal ``normal`` (any length)."""
+    n = np.asarray(normal, dtype=np.float64)
+    p = np.asarray(point, dtype=np.float64)
+    if n.shape != (3,) or p.shape != (3,) or not np.all(np.isfinite(n)) or not np.all(np.isfinite(p)):
+        raise SectionError("--normal and --point need 3 finite numbers each")
+    norm = np.linalg.norm(n)
+    if norm == 0.0:
+        raise SectionError("--normal 0 0 0 is not a direction")
+    n = n / norm
+    nz = np.nonzero(np.abs(n) > 1e-14)[0]
+    if len(nz) == 1:  # axis-aligned: keep the global axes and labels
+        axis = int(nz[0])
+        pl = _axis_plane(axis, float(p[axis]))
+        if n[axis] < 0:
+            pl.description += " (normal -%s)" % AXES[axis]
+        return pl
+    up = np.array([0.0, 0.0, 1.0]) if abs(n[2]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    v = up - (up @ n) * n
+    v /= np.linalg.norm(v)
+    u = np.cross(n, v)
+    if u[np.argmax(np.abs(u))] < 0:  # horizontal axis: largest component positive
+        u = -u
+    fmt = lambda a: "(%s)" % ", ".join("%.3g" % (c + 0.0) for c in np.round(a, 12))
+    return Plane(p, n, u, v, "u = %s" % fmt(u), "v = %s" % fmt(v),
+                 "normal %s through %s mm" % (fmt(n), fmt(p * 1e3)))
+
+
+# --------------------------------------------------------------------------------------
+# tetrahedron / plane intersection
+# --------------------------------------------------------------------------------------
+
+def _build_edge_table():
+    """For each of the 16 above/below patterns of the 4 vertices, the 4 cut edges (i, j),
+    ordered around the polygon (triangles repeat their last vertex)."""
+    table = np.zeros((16, 4, 2), dtype=np.int64)
+    nverts = np.zeros(16, dtype=np.int64)
+    for mask in range(16):
+        pos = [k for k in range(4) if mask >> k & 1]
+        neg = [k for k in range(4) if not mask >> k & 1]
+        if len(pos) in (1, 3):
+            lone, others = (pos[0], neg) if len(pos) == 1 else (neg[0], pos)
+            edges = [(lone, o) for o in others]
+            edges.append(edges[-1])
+            nverts[mask] = 3
+        elif len(pos) == 2:
+            (a, b), (c, e) = pos, neg
+            # a-c, a-e share a; a-e, b-e share e; b-e, b-c share b; b-c, a-c share c: a cycle
+            edges = [(a, c), (a, e), (b, e), (b, c)]
+            nverts[mask] = 4
+        else:
+            continue
+        table[mask] = edges
+    return table, nverts
+
+
+_EDGE_TABLE, _EDGE_NVERTS = _build_edge_table()
+
+
+def cut_tets(coords, connectivity, point, normal):
+    """Intersect tetrahedra with the plane through ``point`` with unit ``normal``.
+
+    A vertex with signed distance > 0 is 'above', otherwise 'below' (so a face lying in the
+    plane is produced exactly once and the cut area is exact for conforming meshes).
+
+    Returns (elem (k,) indices of the cut tets, poly (k, 4, 3) polygon vertices in 3-D,
+    nverts (k,) 3 or 4). Triangles repeat their third vertex as the fourth.
+    """
+    coords = np.asarray(coords, dtype=np.float64)
+    conn = np.asarray(connectivity)
+    d = (coords - np.asarray(point, dtype=np.float64)) @ np.asarray(normal, dtype=np.float64)
+    above = d[conn] > 0.0                                     # (m, 4)
+    mask = above @ np.array([1, 2, 4, 8])                     # 0..15
+    elem = np.nonzero((mask != 0) & (mask != 15))[0]
+    edges = _EDGE_TABLE[mask[elem]]                           # (k, 4, 2) local vertex numbers
+    nodes = conn[elem]                                        # (k, 4)
+    ia = np.take_along_axis(nodes, edges[:, :, 0], axis=1)    # (k, 4) global node numbers
+    ib = np.take_along_axis(nodes, edges[:, :, 1], axis=1)
+    da, db = d[ia], d[ib]
+    t = da / (da - db)        # one of da, db is > 0 and the other <= 0: never 0/0
+    xa = coords[ia]
+    poly = xa + t[:, :, None] * (coords[ib] - xa)
+    return elem, poly, _EDGE_NVERTS[mask[elem]]
+
+
+def polygon_areas(poly2d):
+    """Areas of (k, n, 2) polygons (shoelace, absolute value)."""
+    x, y = poly2d[:, :, 0], poly2d[:, :, 1]
+    return 0.5 * np.abs(np.sum(x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y, axis=1))
+
+
+def section_polygons(coords, connectivity, plane):
+    """Cut with a ``Plane`` -> (elem (k,), poly2d (k, 4, 2) in m).
+
+    If the plane only touches the mesh from one side (e.g. it is the boundary face of a
+    half model lying on the plane's negative side), the cut is retried with the opposite
+    vertex classification so that the faces lying in the plane are returned.
+    """
+    elem, poly, _ = cut_tets(coords, connectivity, plane.point, plane.normal)
+    poly2 = plane.to2d(poly)
+    if not np.any(polygon_areas(poly2) > 0.0):
+        elem_b, poly_b, _ = cut_tets(coords, connectivity, plane.point, -plane.normal)
+        poly2_b = plane.to2d(poly_b)
+        if np.any(polygon_areas(poly2_b) > 0.0):
+            return elem_b, poly2_b
+    return elem, poly2
+
+
+# --------------------------------------------------------------------------------------
+# colouring
+# --------------------------------------------------------------------------------------
+
+def _pretty_unit(unit, values):
+    """(scale factor, display unit) for stresses in Pa -> kPa/MPa/GPa."""
+    if unit != "Pa":
+        return 1.0, unit
+    finite = values[np.isfinite(values)]
+    m = float(np.max(np.abs(finite))) if finite.size else 0.0
+    for f, u in ((1e9, "GPa"), (1e6, "MPa"), (1e3, "kPa")):
+        if m >= f:
+            return 1.0 / f, u
+    return 1.0, "Pa"
+
+
+def element_values(step, name, connectivity):
+    """Per-element values of field ``name``: element scalars as is, element vectors as their
+    magnitude, node fields averaged over the 4 nodes. Returns (values (n_elems,), label)."""
+    fields = step.fields
+    if name not in fields:
+        elem = fields.elem_fields
+        raise SectionError("%s: step %d has no field %r; element fields: %s; node fields: %s "
+                           "(or use --color part)" % (step._file.path, step.index, name,
+                                                     ", ".join(elem) or "none",
+                                                     ", ".join(fields.node_fields) or "none"))
+    loc = fields.location(name)
+    a = np.asarray(fields[name], dtype=np.float64)
+    label = name
+    if a.ndim > 1:
+        a = np.linalg.norm(a.reshape(a.shape[0], -1), axis=1)
+        label = "|%s|" % name
+    if loc == "elem":
+        return a, label
+    if loc == "node":
+        return a[connectivity].mean(axis=1), label + " (node average)"
+    raise SectionError("%s: field %r has %d entries, neither n_nodes=%d nor n_elems=%d"
+                       % (step._file.path, name, a.shape[0], step._file.n_nodes, step._file.n_elems))
+
+
+# --------------------------------------------------------------------------------------
+# drawing
+# --------------------------------------------------------------------------------------
+
+def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cmap=None,
+                   vmin=None, vmax=None, part_names=None, edges=False, undeformed=False,
+                   xlim=None, ylim=None, title=None, size=None, dpi=150, time_us=None,
+                   verbose=True):
+    """Draw the section of field file ``path`` into image ``out``. Returns a dict with the
+    numbers of cut tets, total cut area (m²), step index and time."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import PolyCollection
+    from matplotlib.patches import Patch
+
+    plane = plane or plane_from_spec("y=0")
+    t0 = _time.perf_counter()
+    with ur.open_fields(path) as f:
+        idx = f.nearest_step(time_us * 1e-6) if time_us is not None else f.resolve_index(step)
+        st = f.step(idx)
+        coords = f.x0 if undeformed else st.coordinates
+        conn = f.connectivity
+        elem, poly = section_polygons(coords, conn, plane)
+        if elem.size == 0:
+            dist = plane.signed_distance(coords)
+            raise SectionError("%s: the plane %s does not cut the mesh at step %d (node distances "
+                               "from the plane span %.6g .. %.6g mm)" % (
+                                   path, plane.description, idx, dist.min() * 1e3, dist.max() * 1e3))
+        keep = polygon_areas(poly) > 0.0  # tets touching the plane at an edge or a vertex
+        elem, poly = elem[keep], poly[keep]
+        if elem.size == 0:
+            raise SectionError("%s: the plane %s only touches the mesh at step %d (section area "
+                               "0; e.g. an edge of a half or quarter model)" % (path, plane.description, idx))
+        file_pids = list(f.part_ids)
+        deck_names = f.part_names
+        if color == "part":
+            values = f.part_id[elem]
+        else:
+            allvals, label = element_values(st, color, conn)
+            values = allvals[elem]
+        fname = os.path.basename(path)
+        ftitle = f.title
+        step_time, step_cycle = st.time, st.cycle
+    area = float(polygon_areas(poly).sum())
+    t_cut = _time.perf_counter() - t0
+
+    poly_mm = poly * 1e3
+    mirror_lines = []
+    if mirror not in (None, "h", "v", "hv"):
+        raise SectionError("mirror must be None, 'h', 'v' or 'hv', not %r" % (mirror,))
+    if mirror:
+        copies = [poly_mm]
+        flips = {"h": [(-1, 1)], "v": [(1, -1)], "hv": [(-1, 1), (1, -1), (-1, -1)]}[mirror]
+        for sx, sy in flips:
+            copies.append(poly_mm * np.array([sx, sy]))
+        poly_mm = np.concatenate(copies)
+        values = np.concatenate([values] * len(copies))
+        mirror_lines = list(mirror)
+
+    lo2, hi2 = poly_mm.reshape(-1, 2).min(axis=0), poly_mm.reshape(-1, 2).max(axis=0)
+    if xlim:
+        lo2[0], hi2[0] = min(xlim), max(xlim)
+    if ylim:
+        lo2[1], hi2[1] = min(ylim), max(ylim)
+    if size is None:  # fit the figure to the section's aspect ratio
+        dx, dy = max(hi2[0] - lo2[0], 1e-12), max(hi2[1] - lo2[1], 1e-12)
+        aspect = dy / dx
+        if aspect >= 1.0:
+            h_ax = 7.0
+            w_ax = max(2.5, h_ax / aspect)
+        else:
+            w_ax = 9.0
+            h_ax = max(2.5, w_ax * aspect)
+        size = (w_ax + 2.6, h_ax + 1.4)
+    fig, ax = plt.subplots(figsize=size, constrained_layout=True)
+    lw = 0.3 if edges else 0.6
+    if color == "part":
+        pids = np.unique(values)
+        cmap_name = "tab10" if len(pids) <= 10 else "tab20"
+        palette = plt.get_cmap(cmap_name).colors
+        lookup = {p: palette[i % len(palette)] for i, p in enumerate(pids)}
+        facecolors = np.array([lookup[p] for p in pids])[np.searchsorted(pids, values)]
+        pc = PolyCollection(poly_mm, facecolors=facecolors,
+                            edgecolors="0.2" if edges else facecolors, linewidths=lw)
+        ax.add_collection(pc)
+        names = {p: "%s (part %d)" % (nm, p) for p, nm in deck_names.items()}
+        if part_names:
+            for i, p in enumerate(file_pids):
+                if i < len(part_names):
+                    names[p] = part_names[i]
+        handles = [Patch(facecolor=lookup[p], edgecolor="0.2",
+                         label=names.get(p, "part %d" % p)) for p in pids]
+        ax.legend(handles=handles, loc="best", fontsize="small", framealpha=0.8)
+    else:
+        import matplotlib.colors as mcolors
+        unit = ur.field_unit(color)
+        lo = np.nanmin(values) if vmin is None else vmin
+        hi = np.nanmax(values) if vmax is None else vmax
+        scale, dunit = _pretty_unit(unit, np.array([lo, hi], dtype=float))
+        cm = plt.get_cmap(cmap or "viridis").copy()
+        cm.set_bad("0.6")
+        norm = mcolors.Normalize(vmin=lo * scale, vmax=hi * scale)
+        pc = PolyCollection(poly_mm, cmap=cm, norm=norm, linewidths=lw,
+                            edgecolors="0.2" if edges else "face")
+        pc.set_array(np.ma.masked_invalid(values * scale))
+        ax.add_collection(pc)
+        cb = fig.colorbar(pc, ax=ax, shrink=0.9)
+        cb.set_label("%s (%s)" % (label, dunit) if dunit else label)
+
+    for m in mirror_lines:
+        if m == "h":
+            ax.axvline(0.0, color="k", lw=0.6, ls="--", alpha=0.5)
+        else:
+            ax.axhline(0.0, color="k", lw=0.6, ls="--", alpha=0.5)
+    ax.set_aspect("equal")
+    pad = 0.03 * max(hi2 - lo2) if np.any(hi2 > lo2) else 1.0
+    ax.set_xlim(xlim if xlim else (lo2[0] - pad, hi2[0] + pad))
+    ax.set_ylim(ylim if ylim else (lo2[1] - pad, hi2[1] + pad))
+    ax.set_xlabel("%s (mm)" % plane.u_label)
+    ax.set_ylabel("%s (mm)" % plane.v_label)
+    if title is None:
+        title = "%s%s\nsection %s\nstep %d (cycle %d), t = %.3f µs%s" % (
+            fname, " (%s)" % ftitle if ftitle else "", plane.description, idx, step_cycle,
+            step_time * 1e6, ", undeformed" if undeformed else "")
+    ax.set_title(title, fontsize="medium")
+    try:
+        fig.savefig(out, dpi=dpi)
+    except (OSError, ValueError) as e:
+        plt.close(fig)
+        raise SectionError("cannot write %s: %s" % (out, e)) from None
+    plt.close(fig)
+    info = {"file": path, "out": out, "step": idx, "cycle": step_cycle, "time_s": step_time,
+            "cut_tets": int(elem.size), "area_m2": area, "seconds_cut": t_cut,
+            "seconds_total": _time.perf_counter() - t0}
+    if verbose:
+        print("%s: step %d (t = %.4f us), plane %s: %d tets cut, section area %.6g mm^2, "
+              "wrote %s (%.2f s)" % (path, idx, step_time * 1e6, plane.description, elem.size,
+                                     area * 1e6, out, info["seconds_total"]))
+    return info
+
+
+# --------------------------------------------------------------------------------------
+# self-test
+# --------------------------------------------------------------------------------------
+
+def _self_test(verbose=True):
+    """Known cut areas of a unit cube of tets, plus an end-to-end render. Returns True if OK."""
+    failures = []
+
+    def check(cond, what):
+        if verbose:
+            print("  %s  %s" % ("ok  " if cond else "FAIL", what))
+        if not cond:
+            failures.append(what)
+
+    def area_of(nodes, conn, point, normal):
+        pl = plane_from_normal(normal, point)
+        elem, poly2 = section_polygons(nodes, conn, pl)
+        dist = np.abs(pl.signed_distance(cut_tets(nodes, conn, pl.point, pl.normal)[1]))
+        return polygon_areas(poly2).sum(), len(elem), dist.max() if dist.size else 0.0
+
+    # quads must be ordered around the polygon: a bow-tie ordering would give a smaller area
+    cases = [
+        ("unit cube 5^3, mid-plane z=0.5 (cuts tet interiors)", (5, 5, 5), (0.5, 0.5, 0.5), (0, 0, 1), 1.0),
+        ("unit cube 4^3, mid-plane z=0.5 (through tet faces)", (4, 4, 4), (0.5, 0.5, 0.5), (0, 0, 1), 1.0),
+        ("unit cube 4^3, plane x=0.3", (4, 4, 4), (0.3, 0.0, 0.0), (1, 0, 0), 1.0),
+        ("unit cube 3x4x5, plane y=0.5 normal -y", (3, 4, 5), (0.0, 0.5, 0.0), (0, -1, 0), 1.0),
+        ("unit cube 6^3, diagonal plane x+y=1 (area sqrt 2)", (6, 6, 6), (0.5, 0.5, 0.5), (1, 1, 0), np.sqrt(2.0)),
+        ("unit cube 5^3, plane x+y+z=1.5 (hexagon 3*sqrt(3)/4)", (5, 5, 5), (0.5, 0.5, 0.5), (1, 1, 1), 3.0 * np.sqrt(3.0) / 4.0),
+        ("unit cube 7^3, oblique plane through the centre", (7, 7, 7), (0.5, 0.5, 0.5), (0.3, -0.2, 1.0), None),
+    ]
+    for what, n, point, normal, expected in cases:
+        nodes, conn = ur.box_tets(*n)
+        a, k, dmax = area_of(nodes, conn, point, normal)
+        if expected is None:
+            nn = np.asarray(normal, float) / np.linalg.norm(normal)
+            # plane z = 0.5 - (0.3 x - 0.2 y)/1: stays inside the cube, area = 1/|n_z|
+            expected = 1.0 / abs(nn[2])
+        check(abs(a - expected) < 1e-12 and dmax < 1e-12,
+              "%s: area %.15f (expected %.15f, %d tets cut)" % (what, a, expected, k))
+
+    # random rigid motion of the mesh and plane: area still 1
+    rng = np.random.default_rng(12345)
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    shift = rng.normal(size=3)
+    nodes, conn = ur.box_tets(6, 5, 4)
+    moved = nodes @ q.T + shift
+    a, k, _ = area_of(moved, conn, np.array([0.5, 0.5, 0.37]) @ q.T + shift, np.array([0, 0, 1.0]) @ q.T)
+    check(abs(a - 1.0) < 1e-12, "rotated and translated cube, plane z=0.37: area %.15f" % a)
+
+    # planes on the boundary faces of the cube: the faces in the plane are the section
+    nodes, conn = ur.box_tets(3, 4, 5)
+    for spec in ("y=0", "y=1", "x=1", "z=0"):
+        pl = plane_from_spec(spec)
+        a = polygon_areas(section_polygons(nodes, conn, pl)[1]).sum()
+        check(abs(a - 1.0) < 1e-12, "plane %s on a boundary face of the cube: area %.15f" % (spec, a))
+
+    # a plane missing the mesh
+    nodes, conn = ur.box_tets(3, 3, 3)
+    elem, _, _ = cut_tets(nodes, conn, (0, 0, 2.0), (0, 0, 1))
+    check(elem.size == 0, "plane outside the mesh cuts nothing")
+
+    # plane spec parsing
+    pl = plane_from_spec("x=-2.5mm")
+    check(np.allclose(pl.point, [-2.5e-3, 0, 0]) and pl.u_label == "y" and pl.v_label == "z",
+          "plane spec 'x=-2.5mm'")
+    try:
+        plane_from_spec("q=1")
+        check(False, "bad plane spec rejected")
+    except SectionError:
+        check(True, "bad plane spec rejected")
+
+    # end-to-end: synthetic field file with two parts, pressure, rendering with mirror
+    with tempfile.TemporaryDirectory(prefix="udar_section_test_") as tmp:
+        R, L = 3.8e-3, 25.4e-3
+        nodes, conn = ur.cylinder_tets(R, L, 6, 20, "quarter")
+        cen = nodes[conn].mean(axis=1)
+        pid = np.where(cen[:, 2] < 0.2 * L, 2, 1).astype(np.int32)
+        h5 = os.path.join(tmp, "cyl.h5")
+        steps = [{"time": 0.0, "cycle": 0, "coordinates": nodes,
+                  "fields": {"pressure": 1e9 * cen[:, 2] / L, "velocity": np.zeros_like(nodes)}},
+                 {"time": 2e-5, "cycle": 500, "coordinates": nodes * [1.1, 1.1, 0.8],
+                  "fields": {"pressure": 2e9 * cen[:, 0] / R, "velocity": np.ones_like(nodes)}}]
+        ur.write_fields(h5, nodes, conn, steps, part_id=pid, title="quarter cylinder")
+        out1, out2 = os.path.join(tmp, "a.png"), os.path.join(tmp, "b.png")
+        info = render_section(h5, out1, step=0, plane=plane_from_spec("y=0"), color="part",
+                              mirror="h", verbose=False)
+        check(os.path.getsize(out1) > 1000, "render by part with --mirror")
+        check(abs(info["area_m2"] - R * L) < 1e-12 * R * L * 1e3,
+              "quarter cylinder section y=0 area R*L: %.9g mm^2 (expected %.9g)"
+              % (info["area_m2"] * 1e6, R * L * 1e6))
+        info = render_section(h5, out2, step=-1, plane=plane_from_spec("z=10mm"), color="pressure",
+                              verbose=False)
+        check(os.path.getsize(out2) > 1000 and info["step"] == 1, "render by pressure, step -1")
+        render_section(h5, out2, step=-1, plane=plane_from_spec("y=0"), color="velocity", verbose=False)
+        check(True, "render by node field (averaged)")
+        buf = io.StringIO()
+        with redirect_stdout(buf):
+            rc = main([h5, "--step", "-1", "--plane", "z=5mm", "--color", "pressure", "--mirror-axis", "hv", "--edges", "-o", out2])
+        check(rc == 0 and "tets cut" in buf.getvalue(), "CLI: --plane z=5mm --mirror-axis hv")
+        err = io.StringIO()
+        with redirect_stderr(err):
+            rc = main([h5, "--color", "temperature", "-o", out2])
+        check(rc == 1 and "no field 'temperature'" in err.getvalue(), "CLI: unknown field -> exit 1")
+        try:
+            render_section(h5, out2, color="nosuchfield", verbose=False)
+            check(False, "unknown field rejected")
+        except SectionError as e:
+            check("pressure" in str(e), "unknown field rejected, message lists the fields")
+        try:
+            render_section(h5, out2, plane=plane_from_spec("z=1"), verbose=False)
+            check(False, "plane missing the mesh rejected")
+        except SectionError as e:
+            check("does not cut" in str(e), "plane missing the mesh rejected")
+
+    ok = not failures
+    print("section self-test: %s" % ("PASS" if ok else "FAIL (%d)" % len(failures)))
+    return ok
+
+
+# --------------------------------------------------------------------------------------
+# CLI
+# --------------------------------------------------------------------------------------
+
+def build_parser():
+    p = argparse.ArgumentParser(
+        prog="section.py",
+        description="Cut the deformed tetrahedral mesh of a udar field file (<case>.h5) with a "
+                    "plane and draw the section (axes in mm), coloured by part or by a field.",
+        epilog="""examples:
+  /usr/bin/python3 postproc/section.py out/taylor.h5 -o taylor_parts.png
+  /usr/bin/python3 postproc/section.py out/taylor.h5 --step -1 --plane y=0 --color plastic_strain --mirror -o eps.png
+  /usr/bin/python3 postproc/section.py out/taylor.h5 --plane z=1.5mm --color pressure --mirror-axis hv -o p.png
+  /usr/bin/python3 postproc/section.py out/taylor.h5 --normal 1 -1 0 --point 0 0 0 --color von_mises -o vm.png
+  /usr/bin/python3 postproc/section.py out/taylor.h5 --info
+  /usr/bin/python3 postproc/section.py --self-test
+
+Plane values are in metres (suffix 'mm' for millimetres). For an axis plane the picture
+axes are the global coordinates: x=c -> (y, z), y=c -> (x, z), z=c -> (x, y).
+Element fields are drawn as stored; vector fields as their magnitude; node fields
+(e.g. velocity) as the average of the tet's 4 nodes.""",
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("fields", nargs="?", metavar="FIELDS.h5", help="udar HDF5 field file")
+    p.add_argument("-o", "--output", metavar="OUT.png",
+                   help="output image (png/pdf/svg by extension); default <case>_section.png")
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--step", type=int, default=-1,
+                   help="output step index, negative from the end (default -1 = last)")
+    g.add_argument("--time", type=float, metavar="T_US",
+                   help="use the step nearest to this time in microseconds instead of --step")
+    p.add_argument("--plane", metavar="AXIS=VALUE",
+                   help="axis-aligned plane, e.g. y=0, z=0.012, x=-2.5mm (default y=0)")
+    p.add_argument("--normal", type=float, nargs=3, metavar=("NX", "NY", "NZ"),
+                   help="general plane: normal direction (with --point)")
+    p.add_argument("--point", type=float, nargs=3, metavar=("PX", "PY", "PZ"),
+                   help="general plane: a point on it in metres (default 0 0 0)")
+    p.add_argument("--color", "--colour", default="part", metavar="part|FIELD",
+                   help="'part' (categorical colours, legend) or a field name such as pressure, "
+                        "von_mises, plastic_strain, temperature, density (default part)")
+    p.add_argument("--mirror", action="store_true",
+                   help="also draw the picture reflected for half/quarter symmetric models, "
+                        "across the vertical axis by default (e.g. the x=0 symmetry plane for "
+                        "--plane y=0); see --mirror-axis")
+    p.add_argument("--mirror-axis", choices=("h", "v", "hv"),
+                   help="which picture coordinate --mirror negates (implies --mirror): 'h' the "
+                        "horizontal one (default), 'v' the vertical one, 'hv' both (quarter "
+                        "model seen in a z=const plane)")
+    p.add_argument("--cmap", help="matplotlib colormap for fields (default viridis)")
+    p.add_argument("--vmin", type=float, help="colour range minimum, SI units of the field")
+    p.add_argument("--vmax", type=float, help="colour range maximum, SI units of the field")
+    p.add_argument("--part-names", nargs="+", metavar="NAME",
+                   help="legend names for the parts, in increasing part_id order (default: the "
+                        "group names of the deck's &part entries, else 'part <id>')")
+    p.add_argument("--edges", action="store_true", help="draw the cut tets' outlines")
+    p.add_argument("--undeformed", action="store_true",
+                   help="cut the initial mesh /mesh/x0 instead of the step's coordinates")
+    p.add_argument("--xlim", type=float, nargs=2, metavar=("MIN", "MAX"), help="horizontal range, mm")
+    p.add_argument("--ylim", type=float, nargs=2, metavar=("MIN", "MAX"), help="vertical range, mm")
+    p.add_argument("--title", help="figure title (default: file, plane, step and time)")
+    p.add_argument("--size", type=float, nargs=2, metavar=("W", "H"),
+                   help="figure size in inches (default: fitted to the section's shape)")
+    p.add_argument("--dpi", type=int, default=150, help="image resolution (default 150)")
+    p.add_argument("--info", action="store_true", help="list the file's steps and fields, then exit")
+    p.add_argument("--self-test", action="store_true",
+                   help="run the built-in checks (known cut areas), print PASS/FAIL")
+    return p
+
+
+def main(argv=None):
+    p = build_parser()
+    args = p.parse_args(argv)
+    prog = p.prog
+    ur.cli_warnings(prog)
+    if args.self_test:
+        return 0 if _self_test() else 1
+    if not args.fields:
+        p.error("the FIELDS.h5 argument is required (or --self-test)")
+    try:
+        if args.info:
+            with ur.open_fields(args.fields) as f:
+                print(f.summary())
+            return 0
+        if args.plane and (args.normal or args.point):
+            p.error("give either --plane or --normal/--point, not both")
+        if args.point and not args.normal:
+            p.error("--point needs --normal")
+        if args.normal:
+            plane = plane_from_normal(args.normal, args.point or (0.0, 0.0, 0.0))
+        else:
+            plane = plane_from_spec(args.plane or "y=0")
+        if args.cmap:
+            import matplotlib
+            matplotlib.use("Agg")
+            if args.cmap not in matplotlib.colormaps:
+                raise SectionError("unknown colormap %r (for example viridis, plasma, inferno, "
+                                   "coolwarm, RdBu_r, jet)" % args.cmap)
+        out = args.output or os.path.splitext(os.path.basename(args.fields))[0] + "_section.png"
+        mirror = args.mirror_axis or ("h" if args.mirror else None)
+        render_section(args.fields, out, step=args.step, plane=plane, color=args.color,
+                       mirror=mirror, cmap=args.cmap, vmin=args.vmin, vmax=args.vmax,
+                       part_names=args.part_names, edges=args.edges, undeformed=args.undeformed,
+                       xlim=args.xlim, ylim=args.ylim, title=args.title,
+                       size=tuple(args.size) if args.size else None,
+                       dpi=args.dpi, time_us=args.time)
+    except (ur.UdarFileError, SectionError, IndexError) as e:
+        print("%s: error: %s" % (prog, e.args[0] if e.args else e), file=sys.stderr)
+        return 1
+    except ImportError as e:  # matplotlib missing
+        print("%s: error: %s (run the udar post-processing scripts with /usr/bin/python3)"
+              % (prog, e), file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

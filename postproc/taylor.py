@@ -1,0 +1,321 @@
+#!/usr/bin/python3
+"""Taylor anvil test measurements from a udar field file: rod length, footprint diameter
+and maximum (bulge) diameter.
+
+* length = max over nodes of the distance from the wall plane along the rod axis
+  (the rod's side of the wall is the side of the mean nodal coordinate);
+* footprint diameter = 2 * max radial distance from the rod axis among the nodes within
+  ``--band`` metres of the wall plane (nodes that penetrate the wall count as well);
+* max diameter = 2 * max radial distance from the axis over all nodes.
+
+The radius is measured from the axis line through ``--center``, so full, half and quarter
+models give the same numbers.
+
+    /usr/bin/python3 postproc/taylor.py out/taylor.h5
+    /usr/bin/python3 postproc/taylor.py out/taylor.h5 --axis z --wall 0.0 --center 0 0 --band 0.0005
+    /usr/bin/python3 postproc/taylor.py out/taylor.h5 --all --json
+    /usr/bin/python3 postproc/taylor.py --self-test
+
+Library use: ``measure(coords, axis, wall, center, band)`` -> dict.
+"""
+
+import argparse
+import io
+import json
+import math
+import os
+import re
+import sys
+import tempfile
+from contextlib import redirect_stderr, redirect_stdout
+
+try:
+    import numpy as np
+except ImportError:
+    if __name__ == "__main__":
+        sys.exit("taylor.py: error: numpy is not installed for %s; run the udar post-processing "
+                 "scripts with /usr/bin/python3" % sys.executable)
+    raise
+
+if __package__:
+    from . import udar_results as ur
+else:
+    import udar_results as ur
+
+AXES = "xyz"
+
+
+class TaylorError(Exception):
+    """Bad measurement request; the message says what is wrong."""
+
+
+def transverse_axes(axis):
+    """The two coordinates perpendicular to ``axis`` (0, 1, 2), in increasing order."""
+    return [k for k in range(3) if k != axis]
+
+
+def measure(coords, axis=2, wall=0.0, center=(0.0, 0.0), band=5e-4):
+    """Measure a rod standing on the wall plane ``coordinate[axis] = wall``.
+
+    ``center``: the axis line's position in the two transverse coordinates (increasing
+    axis order: for axis z it is (x, y), for y it is (x, z), for x it is (y, z)).
+    Returns a dict: length_m, footprint_diameter_m (nan if no node lies within ``band``),
+    max_diameter_m, side (+1 / -1: the rod's side of the wall), gap_m (smallest node distance
+    to the wall; negative = penetration), n_footprint_nodes.
+    """
+    x = np.asarray(coords, dtype=np.float64)
+    if x.ndim != 2 or x.shape[1] != 3 or x.shape[0] == 0:
+        raise TaylorError("coordinates must be a non-empty (n, 3) array, got shape %s" % (x.shape,))
+    if not 0 <= axis <= 2:
+        raise TaylorError("axis must be 0, 1 or 2")
+    if band < 0:
+        raise TaylorError("--band must be >= 0")
+    s = x[:, axis] - wall
+    side = 1.0 if np.mean(s) >= 0.0 else -1.0
+    h = side * s                                   # height above the wall, on the rod's side
+    i, j = transverse_axes(axis)
+    r = np.hypot(x[:, i] - center[0], x[:, j] - center[1])
+    near = h <= band
+    return {
+        "length_m": float(h.max()),
+        "footprint_diameter_m": float(2.0 * r[near].max()) if near.any() else float("nan"),
+        "max_diameter_m": float(2.0 * r.max()),
+        "side": int(side),
+        "gap_m": float(h.min()),
+        "n_footprint_nodes": int(near.sum()),
+    }
+
+
+def _fmt(v):
+    return "nan" if v is None or (isinstance(v, float) and math.isnan(v)) else "%.9g" % v
+
+
+def machine_line(m):
+    """'length_m=... footprint_diameter_m=... max_diameter_m=... time_s=...'"""
+    return "length_m=%s footprint_diameter_m=%s max_diameter_m=%s time_s=%s" % (
+        _fmt(m["length_m"]), _fmt(m["footprint_diameter_m"]), _fmt(m["max_diameter_m"]),
+        _fmt(m["time_s"]))
+
+
+def human_line(m):
+    def mm(v):
+        return "n/a" if v is None or math.isnan(v) else "%.4f mm" % (v * 1e3)
+    ratio = ""
+    if m.get("initial_length_m"):
+        ratio = " (L/L0 = %.4f)" % (m["length_m"] / m["initial_length_m"])
+    dratio = ""
+    if m.get("initial_diameter_m") and not math.isnan(m["footprint_diameter_m"]):
+        dratio = " (D/D0 = %.4f)" % (m["footprint_diameter_m"] / m["initial_diameter_m"])
+    return ("t = %.4f us (step %d, cycle %d): length %s%s, footprint diameter %s%s, "
+            "max diameter %s; initial length %s, initial diameter %s" % (
+                m["time_s"] * 1e6, m["step"], m["cycle"], mm(m["length_m"]), ratio,
+                mm(m["footprint_diameter_m"]), dratio, mm(m["max_diameter_m"]),
+                mm(m.get("initial_length_m", float("nan"))),
+                mm(m.get("initial_diameter_m", float("nan")))))
+
+
+def measure_file(path, steps=(-1,), axis=2, wall=0.0, center=(0.0, 0.0), band=5e-4, warn=True):
+    """Measure the given step indices of a field file -> list of dicts (SI units), each with
+    the ``measure`` keys plus step, cycle, time_s, initial_length_m, initial_diameter_m."""
+    results = []
+    with ur.open_fields(path) as f:
+        if f.n_nodes == 0:
+            raise TaylorError("%s: the mesh has no nodes" % path)
+        i, j = transverse_axes(axis)
+        x0 = f.x0
+        init = {
+            "initial_length_m": float(x0[:, axis].max() - x0[:, axis].min()),
+            "initial_diameter_m": float(2.0 * np.hypot(x0[:, i] - center[0], x0[:, j] - center[1]).max()),
+        }
+        idxs = range(len(f.steps)) if steps == "all" else [f.resolve_index(s) for s in steps]
+        for k in idxs:
+            st = f.step(k)
+            m = measure(st.coordinates, axis, wall, center, band)
+            if warn and m["n_footprint_nodes"] == 0:
+                print("taylor.py: warning: %s step %d: no node within %g m of the wall %s = %g m "
+                      "(closest node %.6g mm away); footprint diameter is nan"
+                      % (path, k, band, AXES[axis], wall, m["gap_m"] * 1e3), file=sys.stderr)
+            m.update({"step": st.index, "cycle": st.cycle, "time_s": st.time})
+            m.update(init)
+            results.append(m)
+    return results
+
+
+# --------------------------------------------------------------------------------------
+# self-test
+# --------------------------------------------------------------------------------------
+
+def _self_test(verbose=True):
+    """Synthetic deformed cylinders (full/half/quarter, each axis, both wall sides)."""
+    failures = []
+
+    def check(cond, what):
+        if verbose:
+            print("  %s  %s" % ("ok  " if cond else "FAIL", what))
+        if not cond:
+            failures.append(what)
+
+    def close(a, b, tol=1e-12):
+        return abs(a - b) <= tol * max(1.0, abs(b))
+
+    R, L = 3.8e-3, 25.4e-3
+    n_len = 20
+    cases = [  # sector, axis, wall, side, center
+        ("full", 2, 0.0, +1, (0.0, 0.0)),
+        ("half", 0, 0.1, -1, (0.01, -0.02)),
+        ("quarter", 1, -0.05, +1, (0.0, 0.0)),
+        ("quarter", 2, 0.3, -1, (-0.004, 0.002)),
+    ]
+    with tempfile.TemporaryDirectory(prefix="udar_taylor_test_") as tmp:
+        for sector, axis, wall, side, center in cases:
+            nodes, conn = ur.cylinder_tets(R, L, 4, n_len, sector, axis=axis)
+            t = nodes[:, axis] / L                            # 0 at the impact end .. 1
+            # deformed shape: shortened to 0.7 L, mushroom at the wall and a bulge at 40 %
+            def g(tt):
+                return 1.0 + 0.45 * np.exp(-tt / 0.05) + 0.9 * np.exp(-((tt - 0.4) / 0.02) ** 2)
+            layers = np.linspace(0.0, 1.0, n_len + 1)
+            exp_len = 0.7 * L
+            exp_foot = 2.0 * R * g(0.0)
+            exp_max = 2.0 * R * g(layers).max()
+            x = nodes.copy()
+            i, j = transverse_axes(axis)
+            x[:, i] = center[0] + nodes[:, i] * g(t)
+            x[:, j] = center[1] + nodes[:, j] * g(t)
+            x[:, axis] = wall + side * 0.7 * nodes[:, axis]
+            x0 = x.copy()
+            x0[:, i] = center[0] + nodes[:, i]
+            x0[:, j] = center[1] + nodes[:, j]
+            x0[:, axis] = wall + side * (nodes[:, axis] + 1e-3)   # 1 mm gap before impact
+            what = "%s model, axis %s, wall %g m, rod on the %s side" % (
+                sector, AXES[axis], wall, "positive" if side > 0 else "negative")
+            m = measure(x, axis, wall, center, band=5e-4)
+            check(close(m["length_m"], exp_len) and close(m["footprint_diameter_m"], exp_foot)
+                  and close(m["max_diameter_m"], exp_max) and m["side"] == side,
+                  "%s: L %.6f mm, foot %.6f mm, max %.6f mm" % (
+                      what, m["length_m"] * 1e3, m["footprint_diameter_m"] * 1e3,
+                      m["max_diameter_m"] * 1e3))
+            # end-to-end through a file and the CLI
+            h5 = os.path.join(tmp, "rod_%s_%d.h5" % (sector, axis))
+            ur.write_fields(h5, x0, conn, [
+                {"time": 0.0, "cycle": 0, "coordinates": x0},
+                {"time": 6e-5, "cycle": 1234, "coordinates": x}])
+            argv = [h5, "--axis", AXES[axis], "--wall", repr(wall), "--center",
+                    repr(center[0]), repr(center[1]), "--band", "0.0005"]
+            buf = io.StringIO()
+            with redirect_stdout(buf):
+                rc = main(argv)
+            out = buf.getvalue()
+            mm = re.search(r"^length_m=(\S+) footprint_diameter_m=(\S+) max_diameter_m=(\S+) "
+                           r"time_s=(\S+)$", out, re.M)
+            ok = rc == 0 and mm is not None
+            if ok:
+                vals = [float(v) for v in mm.groups()]
+                ok = (close(vals[0], exp_len, 1e-8) and close(vals[1], exp_foot, 1e-8)
+                      and close(vals[2], exp_max, 1e-8) and vals[3] == 6e-5)
+            check(ok, "%s: CLI machine-readable line" % what)
+            if axis == 2 and sector == "full":
+                buf, err = io.StringIO(), io.StringIO()
+                with redirect_stdout(buf), redirect_stderr(err):
+                    rc = main(argv + ["--json", "--all"])
+                try:
+                    js = json.loads(buf.getvalue())
+                    ok = (rc == 0 and len(js) == 2 and js[0]["footprint_diameter_m"] is None
+                          and "no node within" in err.getvalue()
+                          and close(js[1]["length_m"], exp_len) and close(js[0]["initial_length_m"], L))
+                except ValueError:
+                    ok = False
+                check(ok, "--json --all (step 0 has no footprint -> null)")
+        err = io.StringIO()
+        with redirect_stderr(err):
+            rc = main([os.path.join(tmp, "missing.h5")])
+        ok = rc == 1 and "missing.h5: no such file" in err.getvalue()
+        check(ok, "missing file: exit code 1 and a message naming the file")
+    ok = not failures
+    print("taylor self-test: %s" % ("PASS" if ok else "FAIL (%d)" % len(failures)))
+    return ok
+
+
+# --------------------------------------------------------------------------------------
+# CLI
+# --------------------------------------------------------------------------------------
+
+def build_parser():
+    p = argparse.ArgumentParser(
+        prog="taylor.py",
+        description="Measure a Taylor anvil rod in a udar field file (<case>.h5): final length "
+                    "from the wall, footprint diameter at the wall and maximum diameter. Prints "
+                    "a machine-readable line 'length_m=... footprint_diameter_m=... "
+                    "max_diameter_m=... time_s=...' and a human-readable line in mm.",
+        epilog="""examples:
+  /usr/bin/python3 postproc/taylor.py out/taylor.h5
+  /usr/bin/python3 postproc/taylor.py out/taylor.h5 --step -1 --axis z --wall 0.0 --center 0 0 --band 0.0005
+  /usr/bin/python3 postproc/taylor.py out/taylor.h5 --all            # one line per output step
+  /usr/bin/python3 postproc/taylor.py out/taylor.h5 --json
+  /usr/bin/python3 postproc/taylor.py --self-test
+
+All lengths in metres. --center gives the rod axis in the two transverse coordinates in
+increasing axis order: (x, y) for --axis z, (x, z) for --axis y, (y, z) for --axis x.
+The rod's side of the wall is the side of the mean nodal coordinate; full, half and quarter
+models give the same result when the axis lies in the symmetry planes.""",
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("fields", nargs="?", metavar="FIELDS.h5", help="udar HDF5 field file")
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--step", type=int, default=-1,
+                   help="output step index, negative from the end (default -1 = last)")
+    g.add_argument("--all", action="store_true", help="measure every output step")
+    p.add_argument("--axis", default="z", choices=("x", "y", "z"), help="rod axis (default z)")
+    p.add_argument("--wall", type=float, default=0.0, metavar="POS",
+                   help="wall plane position along the axis, m (default 0.0)")
+    p.add_argument("--center", type=float, nargs=2, default=(0.0, 0.0), metavar=("C1", "C2"),
+                   help="rod axis position in the two transverse coordinates, m (default 0 0)")
+    p.add_argument("--band", type=float, default=5e-4, metavar="DIST",
+                   help="nodes within DIST m of the wall form the footprint (default 0.0005)")
+    p.add_argument("--json", action="store_true",
+                   help="print JSON instead (an object; a list with --all); nan -> null")
+    p.add_argument("--reference-length", type=float, metavar="L", default=None,
+                   help="measured final length, m: also print the difference from it")
+    p.add_argument("--reference-diameter", type=float, metavar="D", default=None,
+                   help="measured footprint diameter, m: also print the difference from it")
+    p.add_argument("--self-test", action="store_true",
+                   help="run the built-in checks on synthetic cylinders, print PASS/FAIL")
+    return p
+
+
+def main(argv=None):
+    p = build_parser()
+    args = p.parse_args(argv)
+    prog = p.prog
+    ur.cli_warnings(prog)
+    if args.self_test:
+        return 0 if _self_test() else 1
+    if not args.fields:
+        p.error("the FIELDS.h5 argument is required (or --self-test)")
+    if args.band < 0:
+        p.error("--band must be >= 0")
+    if not all(math.isfinite(v) for v in (args.wall, args.band, *args.center)):
+        p.error("--wall, --band and --center must be finite numbers")
+    try:
+        res = measure_file(args.fields, "all" if args.all else [args.step], AXES.index(args.axis),
+                           args.wall, tuple(args.center), args.band)
+    except (ur.UdarFileError, TaylorError, IndexError) as e:
+        print("%s: error: %s" % (prog, e.args[0] if e.args else e), file=sys.stderr)
+        return 1
+    if args.json:
+        def clean(m):
+            return {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in m.items()}
+        payload = [clean(m) for m in res] if args.all else clean(res[0])
+        print(json.dumps(payload, indent=2))
+        return 0
+    for m in res:
+        print(machine_line(m))
+        print(human_line(m))
+        for key, ref, what in (("length_m", args.reference_length, "final length"),
+                               ("footprint_diameter_m", args.reference_diameter, "footprint diameter")):
+            if ref:
+                print("%s: computed %.3f mm, experiment %.3f mm, difference %+.3f mm (%+.1f%%)"
+                      % (what, m[key] * 1e3, ref * 1e3, (m[key] - ref) * 1e3, 100 * (m[key] / ref - 1)))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,91 @@
+!> Kernels of the 4-node constant-strain tetrahedron. Pure, block-wise: each
+!> routine works on the first nb elements of block arrays with leading
+!> dimension ld (element index innermost, so the loops vectorize).
+module udar_tet4
+  use udar_kinds, only: rk
+  implicit none
+  private
+  public :: tet_volume, tet_gradients, tet_velocity_gradient, tet_internal_forces
+
+contains
+
+  !> Signed volume of one tetrahedron: det[x2-x1, x3-x1, x4-x1] / 6.
+  pure real(rk) function tet_volume(x) result(v)
+    real(rk), intent(in) :: x(4,3)
+    real(rk) :: d1(3), d2(3), d3(3)
+    d1 = x(2,:) - x(1,:); d2 = x(3,:) - x(1,:); d3 = x(4,:) - x(1,:)
+    v = (d1(1)*(d2(2)*d3(3) - d2(3)*d3(2)) + d1(2)*(d2(3)*d3(1) - d2(1)*d3(3)) &
+       + d1(3)*(d2(1)*d3(2) - d2(2)*d3(1))) / 6.0_rk
+  end function
+
+  !> Volume, shape-function gradients dN_a/dx_k and smallest altitude
+  !> (1/max|grad N_a|: the altitude over face a is 1/|grad N_a|).
+  pure subroutine tet_gradients(ld, nb, x, vol, grad, h_min)
+    integer, intent(in) :: ld, nb
+    real(rk), intent(in) :: x(ld,4,3)
+    real(rk), intent(inout) :: vol(ld), grad(ld,4,3), h_min(ld)
+    real(rk) :: d1x, d1y, d1z, d2x, d2y, d2z, d3x, d3y, d3z, six_v, r, g2, gmax
+    integer :: i, a
+    do i = 1, nb
+      d1x = x(i,2,1) - x(i,1,1); d1y = x(i,2,2) - x(i,1,2); d1z = x(i,2,3) - x(i,1,3)
+      d2x = x(i,3,1) - x(i,1,1); d2y = x(i,3,2) - x(i,1,2); d2z = x(i,3,3) - x(i,1,3)
+      d3x = x(i,4,1) - x(i,1,1); d3y = x(i,4,2) - x(i,1,2); d3z = x(i,4,3) - x(i,1,3)
+      ! grad N2 = d2 x d3 / 6V, grad N3 = d3 x d1 / 6V, grad N4 = d1 x d2 / 6V
+      grad(i,2,1) = d2y*d3z - d2z*d3y; grad(i,2,2) = d2z*d3x - d2x*d3z; grad(i,2,3) = d2x*d3y - d2y*d3x
+      grad(i,3,1) = d3y*d1z - d3z*d1y; grad(i,3,2) = d3z*d1x - d3x*d1z; grad(i,3,3) = d3x*d1y - d3y*d1x
+      grad(i,4,1) = d1y*d2z - d1z*d2y; grad(i,4,2) = d1z*d2x - d1x*d2z; grad(i,4,3) = d1x*d2y - d1y*d2x
+      six_v = d1x*grad(i,2,1) + d1y*grad(i,2,2) + d1z*grad(i,2,3)
+      vol(i) = six_v / 6.0_rk
+      ! an inverted element keeps finite numbers; the driver stops on vol <= 0
+      r = 1.0_rk / merge(six_v, 1.0_rk, six_v /= 0.0_rk)
+      grad(i,2:4,:) = grad(i,2:4,:) * r
+      grad(i,1,1) = -(grad(i,2,1) + grad(i,3,1) + grad(i,4,1))
+      grad(i,1,2) = -(grad(i,2,2) + grad(i,3,2) + grad(i,4,2))
+      grad(i,1,3) = -(grad(i,2,3) + grad(i,3,3) + grad(i,4,3))
+      gmax = 0.0_rk
+      do a = 1, 4
+        g2 = grad(i,a,1)**2 + grad(i,a,2)**2 + grad(i,a,3)**2
+        gmax = max(gmax, g2)
+      end do
+      h_min(i) = 1.0_rk / sqrt(max(gmax, tiny(1.0_rk)))
+    end do
+  end subroutine
+
+  !> Velocity gradient L_kl = sum_a v_ak dN_a/dx_l, returned as the strain rate
+  !> D (xx,yy,zz,xy,yz,zx) and the spin W (w_xy, w_yz, w_zx), W = (L - L^T)/2.
+  pure subroutine tet_velocity_gradient(ld, nb, v, grad, d, w)
+    integer, intent(in) :: ld, nb
+    real(rk), intent(in) :: v(ld,4,3), grad(ld,4,3)
+    real(rk), intent(inout) :: d(ld,6), w(ld,3)
+    real(rk) :: l(3,3)
+    integer :: i, k, m
+    do i = 1, nb
+      do m = 1, 3
+        do k = 1, 3
+          l(k,m) = v(i,1,k)*grad(i,1,m) + v(i,2,k)*grad(i,2,m) + v(i,3,k)*grad(i,3,m) + v(i,4,k)*grad(i,4,m)
+        end do
+      end do
+      d(i,1) = l(1,1); d(i,2) = l(2,2); d(i,3) = l(3,3)
+      d(i,4) = 0.5_rk*(l(1,2) + l(2,1)); d(i,5) = 0.5_rk*(l(2,3) + l(3,2)); d(i,6) = 0.5_rk*(l(3,1) + l(1,3))
+      w(i,1) = 0.5_rk*(l(1,2) - l(2,1)); w(i,2) = 0.5_rk*(l(2,3) - l(3,2)); w(i,3) = 0.5_rk*(l(3,1) - l(1,3))
+    end do
+  end subroutine
+
+  !> Internal nodal forces f_a = -V sigma . grad N_a for the Cauchy stress
+  !> sigma = s - p I, s deviatoric (xx,yy,zz,xy,yz,zx), p the applied pressure.
+  pure subroutine tet_internal_forces(ld, nb, vol, grad, s, p, f)
+    integer, intent(in) :: ld, nb
+    real(rk), intent(in) :: vol(ld), grad(ld,4,3), s(ld,6), p(ld)
+    real(rk), intent(inout) :: f(ld,4,3)
+    real(rk) :: sxx, syy, szz
+    integer :: i, a
+    do a = 1, 4
+      do i = 1, nb
+        sxx = s(i,1) - p(i); syy = s(i,2) - p(i); szz = s(i,3) - p(i)
+        f(i,a,1) = -vol(i)*(sxx*grad(i,a,1) + s(i,4)*grad(i,a,2) + s(i,6)*grad(i,a,3))
+        f(i,a,2) = -vol(i)*(s(i,4)*grad(i,a,1) + syy*grad(i,a,2) + s(i,5)*grad(i,a,3))
+        f(i,a,3) = -vol(i)*(s(i,6)*grad(i,a,1) + s(i,5)*grad(i,a,2) + szz*grad(i,a,3))
+      end do
+    end do
+  end subroutine
+end module udar_tet4

@@ -1,0 +1,1709 @@
+!> Reader for gmsh meshes: MSH 4.1 (ASCII and binary) and MSH 2.2 (ASCII).
+!>
+!> The whole file is read into memory once and parsed with a byte cursor.
+!> This is much faster than formatted I/O on large meshes and lets the ASCII
+!> and binary variants share the section logic.  Only what the solver needs
+!> is kept: linear tetrahedra in physical volume groups and linear triangles
+!> in physical surface groups.  Errors are returned, never printed.
+module udar_gmsh
+  use, intrinsic :: iso_fortran_env, only: int32, int64
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use udar_kinds, only: rk, i8, max_name_len
+  implicit none
+  private
+
+  public :: gmsh_read
+
+  type, public :: gmsh_group_t
+    integer :: dim = 0, tag = 0
+    character(len=max_name_len) :: name = ''
+  end type gmsh_group_t
+
+  type, public :: gmsh_mesh_t
+    integer :: n_nodes = 0, n_tets = 0, n_tris = 0, n_groups = 0
+    integer, allocatable :: node_tag(:)     !< (n_nodes) gmsh node tags, ascending
+    real(rk), allocatable :: x(:,:)         !< (n_nodes,3) coordinates * scale
+    integer, allocatable :: tet_tag(:)      !< (n_tets) gmsh element tags, ascending
+    integer, allocatable :: tet(:,:)        !< (n_tets,4) node indices, positively oriented
+    integer, allocatable :: tet_group(:)    !< (n_tets) index into groups(:) (dim 3)
+    integer, allocatable :: tri(:,:)        !< (n_tris,3) node indices of physical-surface triangles
+    integer, allocatable :: tri_group(:)    !< (n_tris) index into groups(:) (dim 2)
+    type(gmsh_group_t), allocatable :: groups(:)  !< physical groups of dims 2 and 3
+    integer :: n_inverted = 0               !< tets reoriented at read time
+  end type gmsh_mesh_t
+
+  integer, parameter :: fmt_v22 = 22, fmt_v41 = 41
+  integer, parameter :: type_tri3 = 2, type_tet4 = 4
+  integer, parameter :: max_listed = 20     ! element tags listed in an error message
+  real(rk), parameter :: degenerate_tol = 1.0e-12_rk
+
+  ! Exact powers of ten: a decimal with <= 2**53 mantissa and |exponent| <= 22
+  ! converts with one correctly rounded operation (Clinger's fast path).
+  real(rk), parameter :: p10(0:22) = [ 1.0e0_rk,  1.0e1_rk,  1.0e2_rk,  1.0e3_rk, &
+       1.0e4_rk,  1.0e5_rk,  1.0e6_rk,  1.0e7_rk,  1.0e8_rk,  1.0e9_rk, 1.0e10_rk, &
+      1.0e11_rk, 1.0e12_rk, 1.0e13_rk, 1.0e14_rk, 1.0e15_rk, 1.0e16_rk, 1.0e17_rk, &
+      1.0e18_rk, 1.0e19_rk, 1.0e20_rk, 1.0e21_rk, 1.0e22_rk ]
+  integer(i8), parameter :: two53 = 9007199254740992_i8
+  ! Physical groups are identified by (dim, tag) packed into one sortable key.
+  integer(i8), parameter :: dim_shift = 4294967296_i8
+
+  !> Byte cursor over the file contents.
+  type :: cursor_t
+    character(len=:), allocatable :: buf
+    integer(i8) :: pos = 1, n = 0
+    logical :: binary = .false.
+    logical :: bad = .false.
+    character(len=:), allocatable :: msg
+  end type cursor_t
+
+  !> Surfaces or volumes of a MSH 4.1 $Entities section.
+  type :: entity_list_t
+    integer :: n = 0
+    integer, allocatable :: tag(:)
+    integer, allocatable :: first(:)   ! (n+1) offsets into phys (CSR)
+    integer, allocatable :: phys(:)
+    integer(i8), allocatable :: skey(:) ! sorted tags, for lookup by tag
+    integer, allocatable :: sidx(:)
+  end type entity_list_t
+
+  !> Everything gathered while parsing, before tags are resolved.
+  type :: raw_t
+    integer :: version = 0
+    logical :: have_nodes = .false., have_elements = .false.
+    integer :: n_names = 0
+    integer, allocatable :: name_dim(:), name_tag(:)
+    character(len=max_name_len), allocatable :: name_str(:)
+    type(entity_list_t) :: surf, vol
+    integer :: nn = 0
+    integer, allocatable :: ntag(:)
+    real(rk), allocatable :: nx(:,:)          ! (3,nn) as in the file
+    ! ref: entity tag (4.1) or physical tag (2.2)
+    integer :: nt = 0
+    integer, allocatable :: t_tag(:), t_ref(:), t_node(:,:)   ! t_node(4,nt): node tags
+    integer :: nr = 0
+    integer, allocatable :: r_tag(:), r_ref(:), r_node(:,:)   ! r_node(3,nr)
+    integer(i8) :: n_other3d = 0
+    integer :: other3d_type = 0
+    ! MSH 2.2: groups used by elements of other types, so that the group list
+    ! does not depend on the format (4.1 gets them from $Entities)
+    integer :: n_keys = 0
+    integer(i8), allocatable :: keys(:)
+  end type raw_t
+
+  interface itoa
+    module procedure itoa4, itoa8
+  end interface itoa
+
+contains
+
+  ! ==========================================================================
+  !  Public entry point
+  ! ==========================================================================
+
+  !> Read a gmsh mesh file.  On failure ok is .false., mesh is empty and
+  !> errmsg names the file and the problem.
+  subroutine gmsh_read(path, scale, mesh, ok, errmsg)
+    character(len=*), intent(in) :: path
+    real(rk), intent(in) :: scale
+    type(gmsh_mesh_t), intent(out) :: mesh
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: errmsg
+
+    type(cursor_t) :: c
+    type(raw_t) :: raw
+    character(len=:), allocatable :: msg
+
+    ok = .false.
+    errmsg = ''
+    if (.not. (ieee_is_finite(scale) .and. scale > 0.0_rk)) then
+      errmsg = 'gmsh_read: '//trim(path)//': scale factor must be positive and finite'
+      return
+    end if
+
+    call load_file(path, c)
+    if (.not. c%bad) call parse_file(c, raw)
+    if (c%bad) then
+      errmsg = 'gmsh_read: '//trim(path)//': '//c%msg
+      return
+    end if
+    deallocate(c%buf)    ! the text is no longer needed: free it before building
+
+    call build_mesh(raw, scale, mesh, msg)
+    if (len(msg) > 0) then
+      errmsg = 'gmsh_read: '//trim(path)//': '//msg
+      call clear_mesh(mesh)
+      return
+    end if
+    ok = .true.
+  end subroutine gmsh_read
+
+  ! ==========================================================================
+  !  File loading and section dispatch
+  ! ==========================================================================
+
+  subroutine load_file(path, c)
+    character(len=*), intent(in) :: path
+    type(cursor_t), intent(inout) :: c
+    integer :: u, ios
+    integer(i8) :: fsize
+    logical :: exists
+    character(len=256) :: iomsg
+
+    inquire(file=path, exist=exists)
+    if (.not. exists) then
+      call fail(c, 'file not found')
+      return
+    end if
+    open(newunit=u, file=path, access='stream', form='unformatted', status='old', &
+         action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      call fail(c, 'cannot open file: '//trim(iomsg))
+      return
+    end if
+    inquire(unit=u, size=fsize)
+    if (fsize <= 0) then
+      close(u)
+      call fail(c, 'file is empty (or its size cannot be determined)')
+      return
+    end if
+    allocate(character(len=fsize) :: c%buf)
+    read(u, iostat=ios, iomsg=iomsg) c%buf
+    close(u)
+    if (ios /= 0) then
+      call fail(c, 'read error: '//trim(iomsg))
+      return
+    end if
+    c%n = fsize
+    c%pos = 1
+  end subroutine load_file
+
+  subroutine parse_file(c, raw)
+    type(cursor_t), intent(inout) :: c
+    type(raw_t), intent(inout) :: raw
+    character(len=:), allocatable :: name
+    integer(i8) :: p0, k
+
+    name = ''
+    do
+      call skip_ws(c)
+      if (c%pos > c%n) exit
+      if (c%buf(c%pos:c%pos) /= '$') then
+        if (raw%version == 0) then
+          call fail(c, 'not a gmsh MSH file (it does not start with $MeshFormat)')
+        else
+          call fail(c, 'unexpected data "'//token_at(c, c%pos)//'" outside a section')
+        end if
+        return
+      end if
+      p0 = c%pos + 1
+      do while (c%pos <= c%n)
+        if (iachar(c%buf(c%pos:c%pos)) <= 32) exit
+        c%pos = c%pos + 1
+      end do
+      name = c%buf(p0:c%pos-1)
+      call skip_line(c)
+      if (raw%version == 0 .and. name /= 'MeshFormat') then
+        call fail(c, 'not a gmsh MSH file (it does not start with $MeshFormat)')
+        return
+      end if
+
+      select case (name)
+      case ('MeshFormat')
+        call parse_format(c, raw)
+      case ('PhysicalNames')
+        call parse_names(c, raw)
+      case ('Entities')
+        if (raw%version == fmt_v41) then
+          call parse_entities(c, raw)
+        else
+          call skip_section(c, name)
+        end if
+      case ('Nodes')
+        if (raw%have_nodes) call fail(c, 'more than one $Nodes section')
+        if (raw%version == fmt_v41) then
+          call parse_nodes_41(c, raw)
+        else
+          call parse_nodes_22(c, raw)
+        end if
+        raw%have_nodes = .true.
+      case ('Elements')
+        if (raw%have_elements) call fail(c, 'more than one $Elements section')
+        if (raw%version == fmt_v41) then
+          call parse_elements_41(c, raw)
+        else
+          call parse_elements_22(c, raw)
+        end if
+        raw%have_elements = .true.
+      case default
+        ! $Periodic, $NodeData, $Comments, $PartitionedEntities...: not needed
+        call skip_section(c, name)
+      end select
+      if (c%bad) return
+
+      ! Every section must close where its declared counts say it ends:
+      ! this catches wrong counts and truncated files.
+      call skip_ws(c)
+      k = len('$End'//name, kind=i8)
+      if (c%pos > c%n) then
+        call fail(c, 'unexpected end of file: $End'//name//' missing (file truncated?)')
+        return
+      end if
+      if (c%pos + k - 1 > c%n) then
+        call fail(c, 'expected $End'//name//' (file truncated or counts inconsistent)')
+        return
+      end if
+      if (c%buf(c%pos:c%pos+k-1) /= '$End'//name) then
+        call fail(c, 'expected $End'//name//' but found "'//token_at(c, c%pos)// &
+                  '" (section counts inconsistent with the data?)')
+        return
+      end if
+      c%pos = c%pos + k
+      call skip_line(c)
+    end do
+
+    if (raw%version == 0) then
+      call fail(c, 'not a gmsh MSH file (no $MeshFormat section)')
+    else if (.not. raw%have_nodes) then
+      call fail(c, 'no $Nodes section')
+    else if (.not. raw%have_elements) then
+      call fail(c, 'no $Elements section')
+    end if
+  end subroutine parse_file
+
+  subroutine skip_section(c, name)
+    type(cursor_t), intent(inout) :: c
+    character(len=*), intent(in) :: name
+    integer(i8) :: k
+    k = index(c%buf(c%pos:c%n), '$End'//name, kind=i8)
+    if (k == 0) then
+      call fail(c, 'section $'//name//' is not terminated (file truncated?)')
+    else
+      c%pos = c%pos + k - 1
+    end if
+  end subroutine skip_section
+
+  subroutine parse_format(c, raw)
+    type(cursor_t), intent(inout) :: c
+    type(raw_t), intent(inout) :: raw
+    character(len=:), allocatable :: ver
+    integer(i8) :: ftype, dsize
+    integer :: one
+
+    call skip_ws(c)
+    ver = token_at(c, c%pos)
+    call skip_token(c, 'format version')
+    call get_i8(c, ftype, 'file type')
+    call get_i8(c, dsize, 'data size')
+    if (c%bad) return
+    if (ver == '4.1') then
+      raw%version = fmt_v41
+    else if (ver == '2.2' .or. ver == '2.1' .or. ver == '2' .or. ver == '2.0') then
+      raw%version = fmt_v22
+    else
+      call fail(c, 'unsupported MSH format version '//ver// &
+                ' (supported: 4.1 ASCII/binary, 2.2 ASCII; re-export with gmsh -format msh41)')
+      return
+    end if
+    if (ftype /= 0 .and. ftype /= 1) then
+      call fail(c, 'invalid file type '//itoa(ftype)//' in $MeshFormat')
+      return
+    end if
+    c%binary = ftype == 1
+    if (c%binary .and. raw%version /= fmt_v41) then
+      call fail(c, 'binary MSH '//ver//' is not supported (use ASCII, or binary MSH 4.1)')
+      return
+    end if
+    if (c%binary) then
+      if (dsize /= 8) then
+        call fail(c, 'binary data size '//itoa(dsize)//' is not supported (need 8-byte size_t)')
+        return
+      end if
+      ! The binary marker int 1 follows the header line; anything else means
+      ! the file was written on a machine with the other byte order.
+      call skip_line(c)
+      call bin_int(c, one, 'binary endianness marker')
+      if (c%bad) return
+      if (one /= 1) then
+        call fail(c, 'binary file has foreign byte order (only little-endian files are supported)')
+        return
+      end if
+    end if
+  end subroutine parse_format
+
+  !> $PhysicalNames is ASCII even in binary files.
+  subroutine parse_names(c, raw)
+    type(cursor_t), intent(inout) :: c
+    type(raw_t), intent(inout) :: raw
+    integer(i8) :: n, d, t, k
+    integer :: i
+
+    call get_i8(c, n, 'number of physical names')
+    if (c%bad) return
+    if (n < 0 .or. n > c%n) then
+      call fail(c, 'invalid number of physical names: '//itoa(n))
+      return
+    end if
+    raw%n_names = int(n)
+    allocate(raw%name_dim(n), raw%name_tag(n), raw%name_str(n))
+    do i = 1, raw%n_names
+      call get_i8(c, d, 'physical name dimension')
+      call get_i8(c, t, 'physical name tag')
+      if (c%bad) return
+      if (d < 0 .or. d > 3 .or. abs(t) > huge(1)) then
+        call fail(c, 'invalid physical name entry (dim '//itoa(d)//', tag '//itoa(t)//')')
+        return
+      end if
+      raw%name_dim(i) = int(d)
+      raw%name_tag(i) = int(abs(t))
+      call skip_ws(c)
+      if (c%pos > c%n) then
+        call fail_eof(c, 'physical names')
+        return
+      end if
+      if (c%buf(c%pos:c%pos) /= '"') then
+        call fail(c, 'physical name of group '//itoa(t)//' is not quoted')
+        return
+      end if
+      ! the name ends at the next quote; it may contain blanks
+      k = scan(c%buf(c%pos+1:min(c%n, c%pos+1024)), '"'//achar(10), kind=i8)
+      if (k == 0) then
+        call fail(c, 'unterminated physical name of group '//itoa(t))
+        return
+      end if
+      if (c%buf(c%pos+k:c%pos+k) /= '"') then
+        call fail(c, 'unterminated physical name of group '//itoa(t))
+        return
+      end if
+      if (k - 1 > max_name_len) then
+        call fail(c, 'physical name "'//c%buf(c%pos+1:c%pos+k-1)//'" is longer than '// &
+                  itoa(max_name_len)//' characters')
+        return
+      end if
+      raw%name_str(i) = c%buf(c%pos+1:c%pos+k-1)
+      c%pos = c%pos + k + 1
+    end do
+  end subroutine parse_names
+
+  ! ==========================================================================
+  !  MSH 4.1 sections
+  ! ==========================================================================
+
+  subroutine parse_entities(c, raw)
+    type(cursor_t), intent(inout) :: c
+    type(raw_t), intent(inout) :: raw
+    integer(i8) :: cnt(4), np
+    integer(i8) :: i
+    integer :: k
+    type(entity_list_t) :: curves
+
+    do k = 1, 4
+      call rd_size(c, cnt(k), 'entity counts')
+    end do
+    if (c%bad) return
+    if (any(cnt > c%n - c%pos + 1)) then
+      call fail(c, 'invalid entity counts in $Entities (file corrupt or truncated)')
+      return
+    end if
+    ! points: tag, x, y, z, physical tags (no bounding entities)
+    do i = 1, cnt(1)
+      call skip_ints(c, 1_i8, 'point entity tag')
+      call skip_reals(c, 3_i8, 'point entity coordinates')
+      call rd_size(c, np, 'number of physical tags')
+      if (c%bad) return
+      call skip_ints(c, np, 'point entity physical tags')
+    end do
+    call read_entity_list(c, cnt(2), curves)
+    call read_entity_list(c, cnt(3), raw%surf)
+    call read_entity_list(c, cnt(4), raw%vol)
+  end subroutine parse_entities
+
+  !> Curves, surfaces or volumes: tag, bounding box, physical tags, bounding entities.
+  subroutine read_entity_list(c, cnt, list)
+    type(cursor_t), intent(inout) :: c
+    integer(i8), intent(in) :: cnt
+    type(entity_list_t), intent(inout) :: list
+    integer(i8) :: np, nb, j
+    integer :: i, m, ph
+
+    if (c%bad) return
+    list%n = int(cnt)
+    allocate(list%tag(list%n), list%first(list%n+1), list%phys(max(16, list%n)))
+    m = 0
+    do i = 1, list%n
+      call rd_int(c, list%tag(i), 'entity tag')
+      call skip_reals(c, 6_i8, 'entity bounding box')
+      call rd_size(c, np, 'number of physical tags')
+      if (c%bad) return
+      if (np > c%n - c%pos + 1) then
+        call fail(c, 'invalid number of physical tags in $Entities')
+        return
+      end if
+      list%first(i) = m + 1
+      do j = 1, np
+        call rd_int(c, ph, 'physical tag')
+        if (c%bad) return
+        ! gmsh may store a negative tag for a reversed orientation: the group is the same
+        if (ph /= 0) then
+          if (m == size(list%phys)) call grow_int(list%phys, 2*m)
+          m = m + 1
+          list%phys(m) = abs(ph)
+        end if
+      end do
+      call rd_size(c, nb, 'number of bounding entities')
+      call skip_ints(c, nb, 'bounding entity tags')
+      if (c%bad) return
+    end do
+    list%first(list%n+1) = m + 1
+    allocate(list%skey(list%n), list%sidx(list%n))
+    list%skey = int(list%tag, i8)
+    call sort_perm(list%skey, list%sidx)
+    list%skey = list%skey(list%sidx)
+  end subroutine read_entity_list
+
+  subroutine parse_nodes_41(c, raw)
+    type(cursor_t), intent(inout) :: c
+    type(raw_t), intent(inout) :: raw
+    integer(i8) :: nblocks, nnodes, tmin, tmax, nb, b, k, i
+    integer :: edim, etag, param, extra
+
+    call rd_size(c, nblocks, 'number of node blocks')
+    call rd_size(c, nnodes, 'number of nodes')
+    call rd_size(c, tmin, 'minimum node tag')
+    call rd_size(c, tmax, 'maximum node tag')
+    if (c%bad) return
+    if (nnodes > c%n - c%pos + 1 .or. nnodes > huge(1) .or. nblocks > c%n - c%pos + 1) then
+      call fail(c, 'invalid node count '//itoa(nnodes)//' in $Nodes (file corrupt or truncated)')
+      return
+    end if
+    raw%nn = int(nnodes)
+    allocate(raw%ntag(raw%nn), raw%nx(3, raw%nn))
+    k = 0
+    do b = 1, nblocks
+      call rd_int(c, edim, 'node block entity dimension')
+      call rd_int(c, etag, 'node block entity tag')
+      call rd_int(c, param, 'node block parametric flag')
+      call rd_size(c, nb, 'number of nodes in block')
+      if (c%bad) return
+      if (edim < 0 .or. edim > 3 .or. param < 0 .or. param > 1) then
+        call fail(c, 'invalid node block header (entity dim '//itoa(edim)//', parametric '// &
+                  itoa(param)//')')
+        return
+      end if
+      if (nb > nnodes - k) then
+        call fail(c, 'node blocks hold more nodes than the '//itoa(nnodes)//' declared')
+        return
+      end if
+      ! all tags of the block come first, then all coordinates
+      do i = k + 1, k + nb
+        call rd_tag(c, raw%ntag(i), 'node tag')
+      end do
+      extra = 0
+      if (param == 1) extra = edim   ! parametric coordinates u, v, w follow x y z
+      do i = k + 1, k + nb
+        call rd_real(c, raw%nx(1, i), 'node coordinate')
+        call rd_real(c, raw%nx(2, i), 'node coordinate')
+        call rd_real(c, raw%nx(3, i), 'node coordinate')
+        if (extra > 0) call skip_reals(c, int(extra, i8), 'parametric node coordinate')
+      end do
+      if (c%bad) return
+      k = k + nb
+    end do
+    if (k /= nnodes) then
+      call fail(c, 'node blocks hold '//itoa(k)//' nodes but '//itoa(nnodes)//' were declared')
+    end if
+  end subroutine parse_nodes_41
+
+  subroutine parse_elements_41(c, raw)
+    type(cursor_t), intent(inout) :: c
+    type(raw_t), intent(inout) :: raw
+    integer(i8) :: nblocks, nelem, tmin, tmax, nb, b, i
+    integer :: edim, etag, etype, nn, tdim, j
+
+    call rd_size(c, nblocks, 'number of element blocks')
+    call rd_size(c, nelem, 'number of elements')
+    call rd_size(c, tmin, 'minimum element tag')
+    call rd_size(c, tmax, 'maximum element tag')
+    if (c%bad) return
+    if (nelem > c%n - c%pos + 1 .or. nblocks > c%n - c%pos + 1) then
+      call fail(c, 'invalid element count '//itoa(nelem)//' in $Elements (file corrupt or truncated)')
+      return
+    end if
+    do b = 1, nblocks
+      call rd_int(c, edim, 'element block entity dimension')
+      call rd_int(c, etag, 'element block entity tag')
+      call rd_int(c, etype, 'element type')
+      call rd_size(c, nb, 'number of elements in block')
+      if (c%bad) return
+      if (nb > c%n - c%pos + 1) then
+        call fail(c, 'invalid element block size '//itoa(nb)//' (file corrupt or truncated)')
+        return
+      end if
+      if (etype == type_tet4 .and. edim == 3) then
+        call reserve(raw%t_tag, raw%t_ref, raw%t_node, 4, raw%nt + nb)
+        do i = 1, nb
+          raw%nt = raw%nt + 1
+          call rd_tag(c, raw%t_tag(raw%nt), 'element tag')
+          do j = 1, 4
+            call rd_tag(c, raw%t_node(j, raw%nt), 'element node tag')
+          end do
+          raw%t_ref(raw%nt) = etag
+        end do
+      else if (etype == type_tri3 .and. edim == 2) then
+        call reserve(raw%r_tag, raw%r_ref, raw%r_node, 3, raw%nr + nb)
+        do i = 1, nb
+          raw%nr = raw%nr + 1
+          call rd_tag(c, raw%r_tag(raw%nr), 'element tag')
+          do j = 1, 3
+            call rd_tag(c, raw%r_node(j, raw%nr), 'element node tag')
+          end do
+          raw%r_ref(raw%nr) = etag
+        end do
+      else
+        ! not needed: remember 3D elements for the diagnostic, then skip
+        if (edim == 3) then
+          raw%n_other3d = raw%n_other3d + nb
+          raw%other3d_type = etype
+        end if
+        call element_info(etype, nn, tdim)
+        if (nn > 0) then
+          call skip_sizes(c, nb * (1 + nn), 'element data')
+        else if (.not. c%binary) then
+          ! unknown type in ASCII: one element per line
+          call skip_line(c)
+          do i = 1, nb
+            call skip_line(c)
+          end do
+        else
+          call fail(c, 'unknown element type '//itoa(etype)//' in binary file (cannot skip it)')
+        end if
+      end if
+      if (c%bad) return
+    end do
+  end subroutine parse_elements_41
+
+  ! ==========================================================================
+  !  MSH 2.2 sections (ASCII only)
+  ! ==========================================================================
+
+  subroutine parse_nodes_22(c, raw)
+    type(cursor_t), intent(inout) :: c
+    type(raw_t), intent(inout) :: raw
+    integer(i8) :: nnodes
+    integer :: i
+
+    call get_i8(c, nnodes, 'number of nodes')
+    if (c%bad) return
+    if (nnodes < 0 .or. nnodes > c%n - c%pos + 1 .or. nnodes > huge(1)) then
+      call fail(c, 'invalid node count '//itoa(nnodes)//' in $Nodes (file corrupt or truncated)')
+      return
+    end if
+    raw%nn = int(nnodes)
+    allocate(raw%ntag(raw%nn), raw%nx(3, raw%nn))
+    do i = 1, raw%nn
+      call rd_tag(c, raw%ntag(i), 'node tag')
+      call get_real(c, raw%nx(1, i), 'node coordinate')
+      call get_real(c, raw%nx(2, i), 'node coordinate')
+      call get_real(c, raw%nx(3, i), 'node coordinate')
+      if (c%bad) return
+    end do
+  end subroutine parse_nodes_22
+
+  !> Each line: tag type ntags tag1..tagN node1..nodeM.  The first tag is the
+  !> physical group; an element in several groups is written once per group.
+  subroutine parse_elements_22(c, raw)
+    type(cursor_t), intent(inout) :: c
+    type(raw_t), intent(inout) :: raw
+    integer(i8) :: nelem, i
+    integer :: etag, etype, ntags, phys, v, j, nn, tdim
+
+    call get_i8(c, nelem, 'number of elements')
+    if (c%bad) return
+    if (nelem < 0 .or. nelem > c%n - c%pos + 1) then
+      call fail(c, 'invalid element count '//itoa(nelem)//' in $Elements (file corrupt or truncated)')
+      return
+    end if
+    do i = 1, nelem
+      call rd_tag(c, etag, 'element tag')
+      call rd_int(c, etype, 'element type')
+      call rd_int(c, ntags, 'number of element tags')
+      if (c%bad) return
+      if (ntags < 0 .or. ntags > 1000) then
+        call fail(c, 'element '//itoa(etag)//': invalid number of tags '//itoa(ntags))
+        return
+      end if
+      phys = 0
+      do j = 1, ntags
+        call rd_int(c, v, 'element tag list')
+        if (j == 1) phys = abs(v)
+      end do
+      if (c%bad) return
+      if (etype == type_tet4) then
+        if (raw%nt == size_or_zero(raw%t_tag)) &
+          call reserve(raw%t_tag, raw%t_ref, raw%t_node, 4, max(1024_i8, 2_i8 * raw%nt))
+        raw%nt = raw%nt + 1
+        raw%t_tag(raw%nt) = etag
+        raw%t_ref(raw%nt) = phys
+        do j = 1, 4
+          call rd_tag(c, raw%t_node(j, raw%nt), 'element node tag')
+        end do
+        if (phys == 0) raw%nt = raw%nt - 1    ! not in a physical group: drop
+      else if (etype == type_tri3) then
+        if (raw%nr == size_or_zero(raw%r_tag)) &
+          call reserve(raw%r_tag, raw%r_ref, raw%r_node, 3, max(1024_i8, 2_i8 * raw%nr))
+        raw%nr = raw%nr + 1
+        raw%r_tag(raw%nr) = etag
+        raw%r_ref(raw%nr) = phys
+        do j = 1, 3
+          call rd_tag(c, raw%r_node(j, raw%nr), 'element node tag')
+        end do
+        if (phys == 0) raw%nr = raw%nr - 1
+      else
+        call element_info(etype, nn, tdim)
+        if (tdim == 3) then
+          raw%n_other3d = raw%n_other3d + 1
+          raw%other3d_type = etype
+        end if
+        if (phys /= 0 .and. tdim >= 2) then
+          if (.not. allocated(raw%keys)) allocate(raw%keys(16))
+          if (raw%n_keys == 0) then
+            call push_key(raw%keys, raw%n_keys, tdim, phys)
+          else if (raw%keys(raw%n_keys) /= tdim * dim_shift + phys) then
+            call push_key(raw%keys, raw%n_keys, tdim, phys)
+          end if
+        end if
+        call skip_line(c)      ! one element per line
+      end if
+      if (c%bad) return
+    end do
+  end subroutine parse_elements_22
+
+  ! ==========================================================================
+  !  Building the mesh from the raw data
+  ! ==========================================================================
+
+  subroutine build_mesh(raw, scale, mesh, msg)
+    type(raw_t), intent(inout) :: raw
+    real(rk), intent(in) :: scale
+    type(gmsh_mesh_t), intent(inout) :: mesh
+    character(len=:), allocatable, intent(out) :: msg
+
+    integer(i8), allocatable :: gkey(:), key(:)
+    integer, allocatable :: perm(:), keep(:), kgrp(:), rows(:), rgrp(:), map(:), ttag(:)
+    integer, allocatable :: hkey(:), hval(:)
+    integer :: hbits
+    integer :: i, j, m, ng, e, phys, g, nkeep, nbad, nrows
+    integer :: last_ref, last_g
+    integer(i8) :: tmin, tmax
+    logical :: dense
+    character(len=:), allocatable :: tags
+
+    msg = ''
+    ! a MSH 4.1 file without $Entities simply has no physical groups
+    call init_entities(raw%surf)
+    call init_entities(raw%vol)
+
+    ! ---- physical groups: named ones plus every referenced tag (dims 2, 3)
+    allocate(key(raw%n_names + 16))
+    m = 0
+    do i = 1, raw%n_names
+      if (raw%name_dim(i) >= 2) call push_key(key, m, raw%name_dim(i), raw%name_tag(i))
+    end do
+    if (raw%version == fmt_v41) then
+      do i = 1, raw%surf%first(raw%surf%n+1) - 1
+        call push_key(key, m, 2, raw%surf%phys(i))
+      end do
+      do i = 1, raw%vol%first(raw%vol%n+1) - 1
+        call push_key(key, m, 3, raw%vol%phys(i))
+      end do
+    else
+      last_ref = -1
+      do i = 1, raw%nt
+        if (raw%t_ref(i) /= last_ref) call push_key(key, m, 3, raw%t_ref(i))
+        last_ref = raw%t_ref(i)
+      end do
+      last_ref = -1
+      do i = 1, raw%nr
+        if (raw%r_ref(i) /= last_ref) call push_key(key, m, 2, raw%r_ref(i))
+        last_ref = raw%r_ref(i)
+      end do
+      do i = 1, raw%n_keys
+        call push_key(key, m, int(raw%keys(i) / dim_shift), int(mod(raw%keys(i), dim_shift)))
+      end do
+    end if
+    allocate(perm(m))
+    call sort_perm(key(1:m), perm)
+    allocate(gkey(m))
+    ng = 0
+    do i = 1, m
+      if (ng > 0) then
+        if (key(perm(i)) == gkey(ng)) cycle
+      end if
+      ng = ng + 1
+      gkey(ng) = key(perm(i))
+    end do
+    deallocate(key, perm)
+    mesh%n_groups = ng
+    allocate(mesh%groups(ng))
+    do g = 1, ng
+      mesh%groups(g)%dim = int(gkey(g) / dim_shift)
+      mesh%groups(g)%tag = int(mod(gkey(g), dim_shift))
+      mesh%groups(g)%name = 'group_'//itoa(mesh%groups(g)%tag)
+      do i = 1, raw%n_names    ! first matching name wins
+        if (raw%name_dim(i) == mesh%groups(g)%dim .and. raw%name_tag(i) == mesh%groups(g)%tag) then
+          mesh%groups(g)%name = raw%name_str(i)
+          exit
+        end if
+      end do
+    end do
+    if (count(mesh%groups(:)%dim == 3) == 0) then
+      msg = 'no physical volume group: define one ("Physical Volume") so the solver knows '// &
+            'which tetrahedra form the body'
+      return
+    end if
+
+    ! ---- tetrahedra in a physical volume: first dim-3 physical tag wins
+    allocate(keep(raw%nt), kgrp(raw%nt))
+    nkeep = 0
+    last_ref = -1
+    last_g = 0
+    do i = 1, raw%nt
+      if (raw%t_ref(i) /= last_ref) then    ! blocks share a ref: look up once per run
+        last_ref = raw%t_ref(i)
+        phys = 0
+        if (raw%version == fmt_v41) then
+          e = find_entity(raw%vol, raw%t_ref(i))
+          if (e > 0) then
+            if (raw%vol%first(e+1) > raw%vol%first(e)) phys = raw%vol%phys(raw%vol%first(e))
+          end if
+        else
+          phys = raw%t_ref(i)
+        end if
+        last_g = 0
+        if (phys > 0) last_g = find_sorted(gkey(1:ng), 3 * dim_shift + phys)
+      end if
+      if (last_g > 0) then
+        nkeep = nkeep + 1
+        keep(nkeep) = i
+        kgrp(nkeep) = last_g
+      end if
+    end do
+    if (nkeep == 0) then
+      if (raw%n_other3d > 0) then
+        msg = 'only linear tetrahedra (4-node, gmsh type 4) are supported, but the volume '// &
+              'elements are of gmsh type '//itoa(raw%other3d_type)// &
+              ' (e.g. 11 = 10-node tet, 5 = hex); mesh with Mesh.ElementOrder = 1 and tetrahedra only'
+      else
+        msg = 'no 4-node tetrahedra belong to a physical volume group (note: MSH 2.2 '// &
+              'written with Mesh.SaveAll = 1 carries no physical tags)'
+      end if
+      return
+    end if
+    ! stable sort by element tag; duplicates (MSH 2.2 lists an element once
+    ! per physical group) keep their first occurrence
+    allocate(key(nkeep), perm(nkeep))
+    key = int(raw%t_tag(keep(1:nkeep)), i8)
+    call sort_perm(key, perm)
+    m = 0
+    do i = 1, nkeep
+      if (m > 0) then
+        if (key(perm(i)) == key(perm(m))) cycle
+      end if
+      m = m + 1
+      perm(m) = perm(i)
+    end do
+    mesh%n_tets = m
+    allocate(mesh%tet_tag(m), mesh%tet(m, 4), mesh%tet_group(m))
+    do i = 1, m
+      mesh%tet_tag(i) = raw%t_tag(keep(perm(i)))
+      mesh%tet_group(i) = kgrp(perm(i))
+      mesh%tet(i, :) = raw%t_node(:, keep(perm(i)))   ! node tags for now
+    end do
+    deallocate(key, perm, keep, kgrp, raw%t_tag, raw%t_ref, raw%t_node)
+
+    ! ---- triangles: one row per (triangle, physical surface group)
+    nrows = 0
+    call tri_rows(.false.)      ! count
+    allocate(rows(nrows), rgrp(nrows))
+    nrows = 0
+    call tri_rows(.true.)       ! fill
+    ! order by (element tag, group); drop exact duplicates
+    allocate(key(nrows), perm(nrows))
+    do i = 1, nrows
+      key(i) = int(raw%r_tag(rows(i)), i8) * int(ng + 1, i8) + rgrp(i)
+    end do
+    call sort_perm(key, perm)
+    m = 0
+    do i = 1, nrows
+      if (m > 0) then
+        if (key(perm(i)) == key(perm(m))) cycle
+      end if
+      m = m + 1
+      perm(m) = perm(i)
+    end do
+    mesh%n_tris = m
+    allocate(mesh%tri(m, 3), mesh%tri_group(m), ttag(m))
+    do i = 1, m
+      ttag(i) = raw%r_tag(rows(perm(i)))     ! kept only for error messages
+      mesh%tri(i, :) = raw%r_node(:, rows(perm(i)))
+      mesh%tri_group(i) = rgrp(perm(i))
+    end do
+    deallocate(key, perm, rows, rgrp)
+
+    ! ---- nodes sorted by tag
+    if (raw%nn == 0) then
+      msg = 'the mesh has no nodes'
+      return
+    end if
+    mesh%n_nodes = raw%nn
+    allocate(key(raw%nn), perm(raw%nn))
+    key = int(raw%ntag, i8)
+    call sort_perm(key, perm)
+    allocate(mesh%node_tag(raw%nn), mesh%x(raw%nn, 3))
+    do i = 1, raw%nn
+      mesh%node_tag(i) = raw%ntag(perm(i))
+      if (i > 1) then
+        if (mesh%node_tag(i) == mesh%node_tag(i-1)) then
+          msg = 'duplicate node tag '//itoa(mesh%node_tag(i))
+          return
+        end if
+      end if
+      do j = 1, 3
+        mesh%x(i, j) = raw%nx(j, perm(i)) * scale
+      end do
+      if (.not. all(ieee_is_finite(mesh%x(i, :)))) then
+        msg = 'node '//itoa(mesh%node_tag(i))//' has a non-finite coordinate'
+        return
+      end if
+    end do
+    deallocate(key, perm, raw%ntag, raw%nx)
+
+    ! ---- node tag -> index: direct table when tags are dense enough,
+    ! hash table otherwise (O(1) per lookup either way)
+    tmin = mesh%node_tag(1)
+    tmax = mesh%node_tag(raw%nn)
+    dense = tmax - tmin + 1 <= 4_i8 * raw%nn + 1024_i8
+    if (dense) then
+      allocate(map(tmin:tmax))
+      map = 0
+      do i = 1, raw%nn
+        map(mesh%node_tag(i)) = i
+      end do
+    else
+      call hash_build(mesh%node_tag, hkey, hval, hbits)
+    end if
+    nbad = 0
+    do i = 1, mesh%n_tets
+      do j = 1, 4
+        call translate(mesh%tet(i, j), mesh%tet_tag(i))
+      end do
+    end do
+    do i = 1, mesh%n_tris
+      do j = 1, 3
+        call translate(mesh%tri(i, j), ttag(i))
+      end do
+    end do
+    if (nbad > 0) return
+
+    ! ---- orientation and degeneracy
+    call orient_tets(mesh, nbad, tags)
+    if (nbad > 0) then
+      msg = itoa(nbad)//' degenerate (zero-volume) tetrahedra'//achar(10)// &
+            '  element tags: '//tags
+      return
+    end if
+
+  contains
+
+    subroutine tri_rows(fill)
+      logical, intent(in) :: fill
+      integer :: ir, jp, ie
+      do ir = 1, raw%nr
+        if (raw%version == fmt_v41) then
+          ie = find_entity(raw%surf, raw%r_ref(ir))
+          if (ie == 0) cycle
+          do jp = raw%surf%first(ie), raw%surf%first(ie+1) - 1
+            nrows = nrows + 1
+            if (fill) then
+              rows(nrows) = ir
+              rgrp(nrows) = find_sorted(gkey(1:ng), 2 * dim_shift + raw%surf%phys(jp))
+            end if
+          end do
+        else
+          nrows = nrows + 1
+          if (fill) then
+            rows(nrows) = ir
+            rgrp(nrows) = find_sorted(gkey(1:ng), 2 * dim_shift + raw%r_ref(ir))
+          end if
+        end if
+      end do
+    end subroutine tri_rows
+
+    !> Replace a node tag by its index; record the first failure.
+    subroutine translate(v, etag)
+      integer, intent(inout) :: v
+      integer, intent(in) :: etag
+      integer :: idx
+      idx = 0
+      if (dense) then
+        if (v >= tmin .and. v <= tmax) idx = map(v)
+      else
+        idx = hash_find(hkey, hval, hbits, v)
+      end if
+      if (idx == 0) then
+        nbad = nbad + 1
+        if (nbad == 1) msg = 'element '//itoa(etag)//' references unknown node tag '//itoa(v)
+      end if
+      v = idx
+    end subroutine translate
+
+  end subroutine build_mesh
+
+  !> Make every tet positively oriented (swap nodes 2 and 3) and collect
+  !> degenerate ones: |6V| <= tol * L**3 with L the longest edge, which is
+  !> independent of the length unit.
+  subroutine orient_tets(mesh, nbad, tags)
+    type(gmsh_mesh_t), intent(inout) :: mesh
+    integer, intent(out) :: nbad
+    character(len=:), allocatable, intent(out) :: tags
+    real(rk) :: p(3, 4), a(3), b(3), d(3), v6, l2
+    integer :: i, j, k, t
+
+    nbad = 0
+    tags = ''
+    do i = 1, mesh%n_tets
+      do k = 1, 4
+        p(:, k) = mesh%x(mesh%tet(i, k), :)
+      end do
+      a = p(:, 2) - p(:, 1)
+      b = p(:, 3) - p(:, 1)
+      d = p(:, 4) - p(:, 1)
+      v6 = a(1) * (b(2) * d(3) - b(3) * d(2)) - a(2) * (b(1) * d(3) - b(3) * d(1)) &
+         + a(3) * (b(1) * d(2) - b(2) * d(1))
+      l2 = 0.0_rk
+      do k = 1, 3
+        do j = k + 1, 4
+          l2 = max(l2, sum((p(:, j) - p(:, k))**2))
+        end do
+      end do
+      if (abs(v6) <= degenerate_tol * l2 * sqrt(l2)) then
+        nbad = nbad + 1
+        if (nbad <= max_listed) tags = tags//' '//itoa(mesh%tet_tag(i))
+      else if (v6 < 0.0_rk) then
+        t = mesh%tet(i, 2)
+        mesh%tet(i, 2) = mesh%tet(i, 3)
+        mesh%tet(i, 3) = t
+        mesh%n_inverted = mesh%n_inverted + 1
+      end if
+    end do
+    if (nbad > max_listed) tags = tags//' and '//itoa(nbad - max_listed)//' more'
+    if (nbad > 0) tags = tags(2:)     ! drop the leading blank
+  end subroutine orient_tets
+
+  ! ==========================================================================
+  !  Cursor primitives
+  ! ==========================================================================
+
+  !> Keep the first error only: later ones are consequences of it.
+  subroutine fail(c, msg)
+    type(cursor_t), intent(inout) :: c
+    character(len=*), intent(in) :: msg
+    if (c%bad) return
+    c%bad = .true.
+    c%msg = msg
+  end subroutine fail
+
+  subroutine fail_eof(c, what)
+    type(cursor_t), intent(inout) :: c
+    character(len=*), intent(in) :: what
+    call fail(c, 'unexpected end of file while reading '//what//' (file truncated?)')
+  end subroutine fail_eof
+
+  subroutine skip_ws(c)
+    type(cursor_t), intent(inout) :: c
+    do while (c%pos <= c%n)
+      if (iachar(c%buf(c%pos:c%pos)) > 32) exit
+      c%pos = c%pos + 1
+    end do
+  end subroutine skip_ws
+
+  !> Move past the next line feed.
+  subroutine skip_line(c)
+    type(cursor_t), intent(inout) :: c
+    integer(i8) :: k
+    if (c%pos > c%n) return
+    k = index(c%buf(c%pos:c%n), achar(10), kind=i8)
+    if (k == 0) then
+      c%pos = c%n + 1
+    else
+      c%pos = c%pos + k
+    end if
+  end subroutine skip_line
+
+  subroutine skip_token(c, what)
+    type(cursor_t), intent(inout) :: c
+    character(len=*), intent(in) :: what
+    if (c%bad) return
+    call skip_ws(c)
+    if (c%pos > c%n) then
+      call fail_eof(c, what)
+      return
+    end if
+    do while (c%pos <= c%n)
+      if (iachar(c%buf(c%pos:c%pos)) <= 32) exit
+      c%pos = c%pos + 1
+    end do
+  end subroutine skip_token
+
+  !> The whitespace-delimited text at p (at most 40 characters), for messages.
+  function token_at(c, p) result(s)
+    type(cursor_t), intent(in) :: c
+    integer(i8), intent(in) :: p
+    character(len=:), allocatable :: s
+    integer(i8) :: q
+    q = p
+    do while (q <= c%n .and. q < p + 40)
+      if (iachar(c%buf(q:q)) <= 32) exit
+      q = q + 1
+    end do
+    s = c%buf(p:q-1)
+    if (len(s) == 0) s = '<blank>'
+  end function token_at
+
+  !> ASCII integer token.
+  subroutine get_i8(c, v, what)
+    type(cursor_t), intent(inout) :: c
+    integer(i8), intent(out) :: v
+    character(len=*), intent(in) :: what
+    integer(i8) :: p
+    integer :: ch, nd
+    logical :: neg
+
+    v = 0
+    if (c%bad) return
+    call skip_ws(c)
+    if (c%pos > c%n) then
+      call fail_eof(c, what)
+      return
+    end if
+    p = c%pos
+    ch = iachar(c%buf(p:p))
+    neg = ch == 45
+    if (ch == 45 .or. ch == 43) p = p + 1
+    nd = 0
+    do while (p <= c%n)
+      ch = iachar(c%buf(p:p))
+      if (ch < 48 .or. ch > 57) exit
+      nd = nd + 1
+      if (nd > 18) exit
+      v = 10 * v + (ch - 48)
+      p = p + 1
+    end do
+    if (nd == 0 .or. nd > 18) then
+      call fail(c, 'expected an integer ('//what//') but found "'//token_at(c, c%pos)//'"')
+      return
+    end if
+    if (p <= c%n) then
+      if (iachar(c%buf(p:p)) > 32) then
+        call fail(c, 'expected an integer ('//what//') but found "'//token_at(c, c%pos)//'"')
+        return
+      end if
+    end if
+    if (neg) v = -v
+    c%pos = p
+  end subroutine get_i8
+
+  !> ASCII real token: exact fast path for typical gmsh output (%.16g),
+  !> Fortran's own conversion for everything else.
+  subroutine get_real(c, x, what)
+    type(cursor_t), intent(inout) :: c
+    real(rk), intent(out) :: x
+    character(len=*), intent(in) :: what
+    integer(i8) :: p, s, m
+    integer :: ch, nd, e10, ex, nex, ios
+    logical :: neg, eneg, fast, any_digit
+
+    x = 0.0_rk
+    if (c%bad) return
+    call skip_ws(c)
+    if (c%pos > c%n) then
+      call fail_eof(c, what)
+      return
+    end if
+    s = c%pos
+    p = s
+    fast = .true.
+    any_digit = .false.
+    m = 0
+    nd = 0
+    e10 = 0
+    ch = iachar(c%buf(p:p))
+    neg = ch == 45
+    if (ch == 45 .or. ch == 43) p = p + 1
+    ! integer part
+    do while (p <= c%n)
+      ch = iachar(c%buf(p:p))
+      if (ch < 48 .or. ch > 57) exit
+      any_digit = .true.
+      call add_digit(ch - 48, .false.)
+      p = p + 1
+    end do
+    ! fraction
+    if (p <= c%n) then
+      if (c%buf(p:p) == '.') then
+        p = p + 1
+        do while (p <= c%n)
+          ch = iachar(c%buf(p:p))
+          if (ch < 48 .or. ch > 57) exit
+          any_digit = .true.
+          call add_digit(ch - 48, .true.)
+          p = p + 1
+        end do
+      end if
+    end if
+    ! exponent
+    if (p <= c%n .and. any_digit) then
+      if (scan(c%buf(p:p), 'eEdD') > 0) then
+        p = p + 1
+        eneg = .false.
+        if (p <= c%n) then
+          eneg = c%buf(p:p) == '-'
+          if (c%buf(p:p) == '-' .or. c%buf(p:p) == '+') p = p + 1
+        end if
+        ex = 0
+        nex = 0
+        do while (p <= c%n)
+          ch = iachar(c%buf(p:p))
+          if (ch < 48 .or. ch > 57) exit
+          nex = nex + 1
+          if (ex < 100000) ex = 10 * ex + (ch - 48)
+          p = p + 1
+        end do
+        if (nex == 0) fast = .false.
+        if (eneg) ex = -ex
+        e10 = e10 + ex
+      end if
+    end if
+    if (p <= c%n) then
+      if (iachar(c%buf(p:p)) > 32) fast = .false.   ! something unusual: nan, inf...
+    end if
+    if (.not. any_digit) fast = .false.
+
+    if (fast .and. m == 0) then
+      x = 0.0_rk
+    else if (fast .and. m <= two53 .and. abs(e10) <= 22) then
+      x = real(m, rk)
+      if (e10 >= 0) then
+        x = x * p10(e10)
+      else
+        x = x / p10(-e10)
+      end if
+    else
+      ! slow but exact general conversion
+      p = s
+      do while (p <= c%n)
+        if (iachar(c%buf(p:p)) <= 32) exit
+        p = p + 1
+      end do
+      read(c%buf(s:p-1), *, iostat=ios) x
+      if (ios /= 0) then
+        call fail(c, 'expected a real number ('//what//') but found "'//token_at(c, s)//'"')
+        return
+      end if
+      c%pos = p
+      return
+    end if
+    if (neg) x = -x
+    c%pos = p
+
+  contains
+
+    subroutine add_digit(dgt, frac)
+      integer, intent(in) :: dgt
+      logical, intent(in) :: frac
+      if (m == 0 .and. dgt == 0) then
+        if (frac) e10 = e10 - 1       ! leading zeros are not significant
+        return
+      end if
+      if (nd >= 18) then             ! more digits than fit exactly: slow path
+        fast = .false.
+        if (.not. frac) e10 = e10 + 1
+        return
+      end if
+      m = 10 * m + dgt
+      nd = nd + 1
+      if (frac) e10 = e10 - 1
+    end subroutine add_digit
+
+  end subroutine get_real
+
+  ! ---- binary primitives (little-endian, checked against the marker)
+
+  subroutine bin_int(c, v, what)
+    type(cursor_t), intent(inout) :: c
+    integer, intent(out) :: v
+    character(len=*), intent(in) :: what
+    v = 0
+    if (c%bad) return
+    if (c%pos + 3 > c%n) then
+      call fail_eof(c, what)
+      return
+    end if
+    v = transfer(c%buf(c%pos:c%pos+3), 0_int32)
+    c%pos = c%pos + 4
+  end subroutine bin_int
+
+  subroutine bin_i8(c, v, what)
+    type(cursor_t), intent(inout) :: c
+    integer(i8), intent(out) :: v
+    character(len=*), intent(in) :: what
+    v = 0
+    if (c%bad) return
+    if (c%pos + 7 > c%n) then
+      call fail_eof(c, what)
+      return
+    end if
+    v = transfer(c%buf(c%pos:c%pos+7), 0_int64)
+    c%pos = c%pos + 8
+  end subroutine bin_i8
+
+  subroutine bin_skip(c, nbytes, what)
+    type(cursor_t), intent(inout) :: c
+    integer(i8), intent(in) :: nbytes
+    character(len=*), intent(in) :: what
+    if (c%bad) return
+    if (nbytes < 0 .or. nbytes > c%n - c%pos + 1) then
+      call fail_eof(c, what)
+      return
+    end if
+    c%pos = c%pos + nbytes
+  end subroutine bin_skip
+
+  ! ---- MSH 4.1 typed reads: ASCII token or binary value by file type
+
+  !> size_t count (must be >= 0).
+  subroutine rd_size(c, v, what)
+    type(cursor_t), intent(inout) :: c
+    integer(i8), intent(out) :: v
+    character(len=*), intent(in) :: what
+    if (c%binary) then
+      call bin_i8(c, v, what)
+    else
+      call get_i8(c, v, what)
+    end if
+    if (v < 0 .and. .not. c%bad) call fail(c, 'negative '//what//': '//itoa(v))
+  end subroutine rd_size
+
+  !> int field (entity tags, element types...).
+  subroutine rd_int(c, v, what)
+    type(cursor_t), intent(inout) :: c
+    integer, intent(out) :: v
+    character(len=*), intent(in) :: what
+    integer(i8) :: w
+    if (c%binary) then
+      call bin_int(c, v, what)
+      return
+    end if
+    call get_i8(c, w, what)
+    v = 0
+    if (c%bad) return
+    if (abs(w) > huge(1)) then
+      call fail(c, what//' out of range: '//itoa(w))
+      return
+    end if
+    v = int(w)
+  end subroutine rd_int
+
+  !> Node or element tag: size_t in the file, positive default integer here.
+  subroutine rd_tag(c, v, what)
+    type(cursor_t), intent(inout) :: c
+    integer, intent(out) :: v
+    character(len=*), intent(in) :: what
+    integer(i8) :: w
+    if (c%binary) then
+      call bin_i8(c, w, what)
+    else
+      call get_i8(c, w, what)
+    end if
+    v = 0
+    if (c%bad) return
+    if (w < 1 .or. w > huge(1)) then
+      call fail(c, 'invalid '//what//' '//itoa(w)//' (must be in 1..'//itoa(huge(1))//')')
+      return
+    end if
+    v = int(w)
+  end subroutine rd_tag
+
+  subroutine rd_real(c, x, what)
+    type(cursor_t), intent(inout) :: c
+    real(rk), intent(out) :: x
+    character(len=*), intent(in) :: what
+    if (c%binary) then
+      x = 0.0_rk
+      if (c%bad) return
+      if (c%pos + 7 > c%n) then
+        call fail_eof(c, what)
+        return
+      end if
+      x = transfer(c%buf(c%pos:c%pos+7), 0.0_rk)
+      c%pos = c%pos + 8
+    else
+      call get_real(c, x, what)
+    end if
+  end subroutine rd_real
+
+  subroutine skip_reals(c, k, what)
+    type(cursor_t), intent(inout) :: c
+    integer(i8), intent(in) :: k
+    character(len=*), intent(in) :: what
+    call skip_values(c, k, 8_i8, what)
+  end subroutine skip_reals
+
+  subroutine skip_ints(c, k, what)
+    type(cursor_t), intent(inout) :: c
+    integer(i8), intent(in) :: k
+    character(len=*), intent(in) :: what
+    call skip_values(c, k, 4_i8, what)
+  end subroutine skip_ints
+
+  subroutine skip_sizes(c, k, what)
+    type(cursor_t), intent(inout) :: c
+    integer(i8), intent(in) :: k
+    character(len=*), intent(in) :: what
+    call skip_values(c, k, 8_i8, what)
+  end subroutine skip_sizes
+
+  subroutine skip_values(c, k, nbytes, what)
+    type(cursor_t), intent(inout) :: c
+    integer(i8), intent(in) :: k, nbytes
+    character(len=*), intent(in) :: what
+    integer(i8) :: i
+    if (c%bad) return
+    if (k < 0 .or. k > c%n) then
+      call fail(c, 'invalid count while skipping '//what)
+      return
+    end if
+    if (c%binary) then
+      call bin_skip(c, k * nbytes, what)
+    else
+      do i = 1, k
+        call skip_token(c, what)
+        if (c%bad) return
+      end do
+    end if
+  end subroutine skip_values
+
+  ! ==========================================================================
+  !  Small utilities
+  ! ==========================================================================
+
+  !> Number of nodes and dimension of a gmsh element type (nn = 0: unknown).
+  !> Covers the fixed-size types whose numbering is stable across gmsh versions.
+  pure subroutine element_info(etype, nn, dim)
+    integer, intent(in) :: etype
+    integer, intent(out) :: nn, dim
+    integer, parameter :: nn_tab(33) = [2, 3, 4, 4, 8, 6, 5, 3, 6, 9, 10, 27, 18, 14, 1, 8, &
+         20, 15, 13, 9, 10, 12, 15, 15, 21, 4, 5, 6, 20, 35, 56, 22, 28]
+    integer, parameter :: dim_tab(33) = [1, 2, 2, 3, 3, 3, 3, 1, 2, 2, 3, 3, 3, 3, 0, 2, &
+         3, 3, 3, 2, 2, 2, 2, 2, 2, 1, 1, 1, 3, 3, 3, 3, 3]
+    integer, parameter :: tet_tab(5) = [84, 120, 165, 220, 286]
+    integer, parameter :: pri_tab(5) = [126, 196, 288, 405, 550]
+    integer, parameter :: pyr_tab(7) = [30, 55, 91, 140, 204, 285, 385]
+    nn = 0
+    dim = -1
+    select case (etype)
+    case (1:33)
+      nn = nn_tab(etype)
+      dim = dim_tab(etype)
+    case (71:75)                     ! complete tets of order 6..10
+      nn = tet_tab(etype - 70)
+      dim = 3
+    case (79:83, 99:105, 111:117, 125:131, 136, 139)   ! other 3D types (sizes vary)
+      dim = 3
+    case (84)
+      nn = 1
+      dim = 1
+    case (85, 86)
+      nn = 1
+      dim = 2
+    case (87:89)
+      nn = 1
+      dim = 3
+    case (90)
+      nn = 40
+      dim = 3
+    case (91)
+      nn = 75
+      dim = 3
+    case (92:98)                     ! complete hexes of order 3..9
+      nn = (etype - 92 + 4)**3
+      dim = 3
+    case (106:110)                   ! complete prisms of order 5..9
+      nn = pri_tab(etype - 105)
+      dim = 3
+    case (118:124)                   ! complete pyramids of order 3..9
+      nn = pyr_tab(etype - 117)
+      dim = 3
+    case (132)
+      nn = 1
+      dim = 3
+    case (137)
+      nn = 16
+      dim = 3
+    end select
+  end subroutine element_info
+
+  !> Stable merge sort: perm orders key ascending.  Keys travel with the
+  !> permutation so that merging reads memory sequentially (shuffled tags of
+  !> millions of elements would otherwise make it cache-bound).
+  subroutine sort_perm(key, perm)
+    integer(i8), intent(in) :: key(:)
+    integer, intent(out) :: perm(:)
+    integer, parameter :: run = 32      ! insertion-sorted runs before merging
+    integer(i8), allocatable :: k1(:), k2(:), kt(:)
+    integer, allocatable :: p1(:), p2(:), pt(:)
+    integer(i8) :: kv
+    integer :: n, i, j, pv, width, lo, mid, hi, a, b, k
+
+    n = size(key)
+    do i = 1, n
+      perm(i) = i
+    end do
+    ! gmsh usually writes tags in order: skip the work then
+    do i = 2, n
+      if (key(i) < key(i-1)) exit
+    end do
+    if (i > n) return
+
+    allocate(k1(n), p1(n), k2(n), p2(n))
+    k1 = key
+    p1 = perm
+    do lo = 1, n, run
+      hi = min(lo + run - 1, n)
+      do i = lo + 1, hi
+        kv = k1(i)
+        pv = p1(i)
+        j = i - 1
+        do while (j >= lo)
+          if (k1(j) <= kv) exit
+          k1(j+1) = k1(j)
+          p1(j+1) = p1(j)
+          j = j - 1
+        end do
+        k1(j+1) = kv
+        p1(j+1) = pv
+      end do
+    end do
+    width = run
+    do while (width < n)
+      do lo = 1, n, 2 * width
+        mid = min(lo + width - 1, n)
+        hi = min(lo + 2 * width - 1, n)
+        a = lo
+        b = mid + 1
+        do k = lo, hi
+          if (a > mid) then
+            k2(k) = k1(b)
+            p2(k) = p1(b)
+            b = b + 1
+          else if (b > hi) then
+            k2(k) = k1(a)
+            p2(k) = p1(a)
+            a = a + 1
+          else if (k1(b) < k1(a)) then
+            k2(k) = k1(b)
+            p2(k) = p1(b)
+            b = b + 1
+          else
+            k2(k) = k1(a)
+            p2(k) = p1(a)
+            a = a + 1
+          end if
+        end do
+      end do
+      ! the merged arrays become the input of the next pass
+      call move_alloc(k1, kt)
+      call move_alloc(k2, k1)
+      call move_alloc(kt, k2)
+      call move_alloc(p1, pt)
+      call move_alloc(p2, p1)
+      call move_alloc(pt, p2)
+      width = 2 * width
+    end do
+    perm = p1
+  end subroutine sort_perm
+
+  !> Open-addressing hash table of positive, distinct tags -> position.
+  !> Size is a power of two >= 2n, so probe chains stay short.
+  subroutine hash_build(tags, hkey, hval, bits)
+    integer, intent(in) :: tags(:)
+    integer, allocatable, intent(out) :: hkey(:), hval(:)
+    integer, intent(out) :: bits
+    integer :: i, h, mask
+    bits = 4
+    do while (2_i8**bits < 2_i8 * size(tags) .and. bits < 31)
+      bits = bits + 1
+    end do
+    mask = int(2_i8**bits - 1)
+    allocate(hkey(0:mask), hval(0:mask))
+    hkey = 0           ! tags are >= 1, so 0 marks an empty slot
+    hval = 0
+    do i = 1, size(tags)
+      h = hash_slot(tags(i), bits)
+      do while (hkey(h) /= 0)
+        h = iand(h + 1, mask)
+      end do
+      hkey(h) = tags(i)
+      hval(h) = i
+    end do
+  end subroutine hash_build
+
+  pure integer function hash_find(hkey, hval, bits, tag) result(idx)
+    integer, intent(in) :: hkey(0:), hval(0:)
+    integer, intent(in) :: bits, tag
+    integer :: h, mask
+    mask = ubound(hkey, 1)
+    idx = 0
+    h = hash_slot(tag, bits)
+    do while (hkey(h) /= 0)
+      if (hkey(h) == tag) then
+        idx = hval(h)
+        return
+      end if
+      h = iand(h + 1, mask)
+    end do
+  end function hash_find
+
+  !> Knuth multiplicative hash: top bits of the low 32 bits of tag * 2654435761
+  !> (the product of a 31-bit tag and this constant fits in 64 bits).
+  pure integer function hash_slot(tag, bits) result(h)
+    integer, intent(in) :: tag, bits
+    integer(i8) :: p
+    p = iand(int(tag, i8) * 2654435761_i8, 4294967295_i8)
+    h = int(ishft(p, -(32 - bits)))
+  end function hash_slot
+
+  !> Position of v in the ascending array a, or 0.
+  pure integer function find_sorted(a, v) result(idx)
+    integer(i8), intent(in) :: a(:)
+    integer(i8), intent(in) :: v
+    integer :: lo, hi, mid
+    idx = 0
+    lo = 1
+    hi = size(a)
+    do while (lo <= hi)
+      mid = lo + (hi - lo) / 2
+      if (a(mid) == v) then
+        idx = mid
+        return
+      else if (a(mid) < v) then
+        lo = mid + 1
+      else
+        hi = mid - 1
+      end if
+    end do
+  end function find_sorted
+
+  !> Index of the entity with this tag in list, or 0.
+  pure integer function find_entity(list, tag) result(e)
+    type(entity_list_t), intent(in) :: list
+    integer, intent(in) :: tag
+    integer :: k
+    e = 0
+    if (list%n == 0) return
+    k = find_sorted(list%skey, int(tag, i8))
+    if (k > 0) e = list%sidx(k)
+  end function find_entity
+
+  !> Leave nothing half-built behind on failure.
+  subroutine clear_mesh(mesh)
+    type(gmsh_mesh_t), intent(inout) :: mesh
+    if (allocated(mesh%node_tag)) deallocate(mesh%node_tag)
+    if (allocated(mesh%x)) deallocate(mesh%x)
+    if (allocated(mesh%tet_tag)) deallocate(mesh%tet_tag)
+    if (allocated(mesh%tet)) deallocate(mesh%tet)
+    if (allocated(mesh%tet_group)) deallocate(mesh%tet_group)
+    if (allocated(mesh%tri)) deallocate(mesh%tri)
+    if (allocated(mesh%tri_group)) deallocate(mesh%tri_group)
+    if (allocated(mesh%groups)) deallocate(mesh%groups)
+    mesh%n_nodes = 0
+    mesh%n_tets = 0
+    mesh%n_tris = 0
+    mesh%n_groups = 0
+    mesh%n_inverted = 0
+  end subroutine clear_mesh
+
+  subroutine init_entities(list)
+    type(entity_list_t), intent(inout) :: list
+    if (allocated(list%first)) return
+    list%n = 0
+    allocate(list%tag(0), list%first(1), list%phys(0), list%skey(0), list%sidx(0))
+    list%first(1) = 1
+  end subroutine init_entities
+
+  subroutine push_key(key, m, dim, tag)
+    integer(i8), allocatable, intent(inout) :: key(:)
+    integer, intent(inout) :: m
+    integer, intent(in) :: dim, tag
+    integer(i8), allocatable :: tmp(:)
+    if (m == size(key)) then
+      allocate(tmp(2 * m + 16))
+      tmp(1:m) = key(1:m)
+      call move_alloc(tmp, key)
+    end if
+    m = m + 1
+    key(m) = int(dim, i8) * dim_shift + tag
+  end subroutine push_key
+
+  subroutine grow_int(a, n)
+    integer, allocatable, intent(inout) :: a(:)
+    integer, intent(in) :: n
+    integer, allocatable :: tmp(:)
+    allocate(tmp(n))
+    tmp(1:size(a)) = a
+    call move_alloc(tmp, a)
+  end subroutine grow_int
+
+  !> Make room for at least cap elements (tag, ref, nodes(nv,:)).
+  subroutine reserve(tag, ref, node, nv, cap)
+    integer, allocatable, intent(inout) :: tag(:), ref(:), node(:,:)
+    integer, intent(in) :: nv
+    integer(i8), intent(in) :: cap
+    integer, allocatable :: t1(:), t2(:), t3(:,:)
+    integer :: n, newcap
+    n = size_or_zero(tag)
+    if (cap <= n) return
+    newcap = int(max(cap, 2_i8 * n))    ! geometric growth keeps appends O(1)
+    allocate(t1(newcap), t2(newcap), t3(nv, newcap))
+    if (n > 0) then
+      t1(1:n) = tag
+      t2(1:n) = ref
+      t3(:, 1:n) = node
+    end if
+    call move_alloc(t1, tag)
+    call move_alloc(t2, ref)
+    call move_alloc(t3, node)
+  end subroutine reserve
+
+  pure integer function size_or_zero(a) result(n)
+    integer, allocatable, intent(in) :: a(:)
+    n = 0
+    if (allocated(a)) n = size(a)
+  end function size_or_zero
+
+  pure function itoa4(i) result(s)
+    integer(int32), intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=12) :: b
+    write(b, '(i0)') i
+    s = trim(b)
+  end function itoa4
+
+  pure function itoa8(i) result(s)
+    integer(int64), intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=21) :: b
+    write(b, '(i0)') i
+    s = trim(b)
+  end function itoa8
+
+end module udar_gmsh

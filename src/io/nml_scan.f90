@@ -1,0 +1,534 @@
+!> Lexical scan of a namelist deck into its groups and assignments.
+!>
+!> gfortran's own namelist errors do not say where a deck is wrong (a bad value,
+!> a misspelled group and a missing '/' all end as "End of file"), so before any
+!> READ the deck text is split here into groups "&name ... /" and assignments
+!> "variable = value", each with its line number. The values are not
+!> interpreted: udar_deck reads them with real namelist READs and uses this
+!> scan to say which line and which variable a failure belongs to.
+!>
+!> Understood: quoted strings ('...' and "...", quotes doubled inside) that may
+!> contain / ! = &; comments from '!' to the end of the line; values spread over
+!> several lines; subscripted names such as velocity(3) or velocity(1:2).
+!> Reported as issues: text outside any group, a group without its closing '/',
+!> a string without its closing quote, text inside a group that is not part of
+!> an assignment.
+module udar_nml_scan
+  implicit none
+  private
+  public :: nml_assign_t, nml_group_t, nml_issue_t, nml_scan_t
+  public :: nml_scan_file, nml_scan_string, nml_lower
+
+  character(len=*), parameter :: lf = achar(10)
+
+  !> One "variable = value" inside a group.
+  type :: nml_assign_t
+    character(len=:), allocatable :: name   !< lower case, blanks removed, with subscript: 'velocity(3)'
+    character(len=:), allocatable :: base   !< lower case, without subscript: 'velocity'
+    character(len=:), allocatable :: value  !< as written; comments dropped, lines joined, blanks collapsed
+    integer :: line = 0                     !< line of the variable name
+    logical :: ok = .true.                  !< false when the scan found a problem in the value
+  end type
+
+  !> One "&name ... /" group instance.
+  type :: nml_group_t
+    character(len=:), allocatable :: name   !< lower case, without '&'
+    integer :: start_line = 0
+    integer :: end_line = 0
+    logical :: terminated = .true.          !< false when the closing '/' is missing
+    logical :: clean = .true.               !< false when an issue was reported inside the group
+    character(len=:), allocatable :: raw    !< the text from '&' to '/' as written (LF between lines)
+    character(len=:), allocatable :: body   !< between the name and '/': comments dropped, on one line
+    integer :: n_assign = 0
+    type(nml_assign_t), allocatable :: assigns(:)
+  end type
+
+  !> A problem found by the scan.
+  type :: nml_issue_t
+    integer :: line = 0
+    integer :: group = 0                    !< index into groups(:), 0 when outside any group
+    character(len=:), allocatable :: text   !< what is wrong (no file/line prefix)
+  end type
+
+  type :: nml_scan_t
+    integer :: n_groups = 0
+    type(nml_group_t), allocatable :: groups(:)
+    integer :: n_issues = 0
+    type(nml_issue_t), allocatable :: issues(:)
+  end type
+
+contains
+
+  !> Read the whole file and scan it. ios /= 0 (with iomsg) if it cannot be read.
+  subroutine nml_scan_file(path, scan, ios, iomsg)
+    character(len=*), intent(in) :: path
+    type(nml_scan_t), intent(out) :: scan
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    character(len=:), allocatable :: buf
+    integer :: u, sz
+
+    ! stream access reads the file byte for byte, whatever its line lengths
+    open(newunit=u, file=path, access='stream', form='unformatted', status='old', &
+         action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) return
+    inquire(unit=u, size=sz)
+    if (sz < 0) sz = 0
+    allocate(character(len=sz) :: buf)
+    if (sz > 0) read(u, iostat=ios, iomsg=iomsg) buf
+    close(u)
+    if (ios /= 0) return
+    call nml_scan_string(buf, scan)
+  end subroutine nml_scan_file
+
+  !> Scan deck text (lines separated by LF; CR and TAB count as blanks).
+  subroutine nml_scan_string(text, scan)
+    character(len=*), intent(in) :: text
+    type(nml_scan_t), intent(out) :: scan
+    character(len=:), allocatable :: cl
+    character(len=:), allocatable :: msg
+    integer :: i, j, e, n, line, last_end_line
+    character :: c
+
+    allocate(scan%groups(4), scan%issues(4))
+    n = len(text)
+    ! cl is the working copy: comments inside groups get blanked in it, so
+    ! that bodies and values can be cut out of it directly
+    cl = text
+    do i = 1, n
+      if (cl(i:i) == achar(9) .or. cl(i:i) == achar(13)) cl(i:i) = ' '
+    end do
+
+    i = 1
+    line = 1
+    last_end_line = 0
+    do while (i <= n)
+      c = cl(i:i)
+      if (c == lf) then
+        line = line + 1
+        i = i + 1
+      else if (c == ' ') then
+        i = i + 1
+      else if (c == '!') then
+        i = eol(cl, i)
+      else if (c == '&') then
+        j = i + 1
+        do while (j <= n)
+          if (.not. is_name_char(cl(j:j))) exit
+          j = j + 1
+        end do
+        if (j == i + 1) then
+          call add_issue(scan, line, 0, "'&' must be followed by a group name, e.g. &run")
+          i = eol(cl, i)
+        else
+          call scan_group(text, cl, i, j, line, scan)
+          last_end_line = line
+        end if
+      else
+        e = eol(cl, i)
+        ! the snippet stops at a comment (a '!' in quotes here is rare enough)
+        j = index(cl(i:e-1), '!')
+        if (j == 0) j = e - i + 1
+        msg = "text outside any group: '"//shorten(trim(cl(i:i+j-2)))//"'"
+        if (last_end_line == line) then
+          ! typical cause: an unquoted value containing '/', which ends the group early
+          msg = msg//" (a '/' ends a group: should a value before it be in quotes?)"
+        end if
+        call add_issue(scan, line, 0, msg)
+        i = e
+      end if
+    end do
+  end subroutine nml_scan_string
+
+  !> Scan one group starting at '&' at position i (name ends before j).
+  !> On return i is after the closing '/', or at the '&' of the next group,
+  !> or past the end of the text; line is the current line.
+  subroutine scan_group(text, cl, i, j, line, scan)
+    character(len=*), intent(in) :: text
+    character(len=*), intent(inout) :: cl
+    integer, intent(inout) :: i
+    integer, intent(in) :: j
+    integer, intent(inout) :: line
+    type(nml_scan_t), intent(inout) :: scan
+    integer :: n, g, start, body_start, vstart, k, m, p, e, last_tok_line, last_unexp_line
+    character :: c
+    character(len=16) :: num
+    character(len=:), allocatable :: gname
+
+    n = len(cl)
+    start = i
+    gname = nml_lower(cl(i+1:j-1))
+    call add_group(scan, gname, line)
+    g = scan%n_groups
+    body_start = j
+    vstart = 0
+    last_tok_line = line
+    last_unexp_line = 0
+    i = j
+    do while (i <= n)
+      c = cl(i:i)
+      if (c == lf) then
+        line = line + 1
+        i = i + 1
+      else if (c == ' ' .or. c == ',') then
+        i = i + 1
+      else if (c == '!') then
+        e = eol(cl, i)
+        cl(i:e-1) = ' '
+        i = e
+      else if (c == '/') then
+        call close_value(i - 1)
+        scan%groups(g)%end_line = line
+        scan%groups(g)%raw = text(start:i)
+        scan%groups(g)%body = collapse(cl(body_start:i-1))
+        i = i + 1
+        return
+      else if (c == '&') then
+        ! a new group begins although this one was never closed
+        call close_value(i - 1)
+        k = i + 1
+        do while (k <= n)
+          if (.not. is_name_char(cl(k:k))) exit
+          k = k + 1
+        end do
+        write(num, '(i0)') scan%groups(g)%start_line
+        call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '//trim(num)// &
+             ") has no closing '/' before &"//nml_lower(cl(i+1:k-1))//' at line '//itoa(line))
+        call finish_open(i - 1)
+        return
+      else if (c == "'" .or. c == '"') then
+        if (vstart == 0) call unexpected(i)
+        k = close_quote(cl, i)
+        last_tok_line = line
+        if (k == 0) then
+          e = eol(cl, i)
+          call add_issue(scan, line, g, 'unterminated string '//shorten(trim(cl(i:e-1)))// &
+               ' (missing closing '//c//')')
+          scan%groups(g)%clean = .false.
+          if (scan%groups(g)%n_assign > 0) scan%groups(g)%assigns(scan%groups(g)%n_assign)%ok = .false.
+          ! drop the rest of the line: it is part of the broken string
+          cl(i:e-1) = ' '
+          i = e
+        else
+          i = k + 1
+        end if
+      else if (is_letter(c)) then
+        ! an identifier followed by an optional (subscript) and '=' starts an
+        ! assignment; otherwise it is part of a value (e.g. T, F, NaN)
+        k = i
+        do while (k <= n)
+          if (.not. is_name_char(cl(k:k))) exit
+          k = k + 1
+        end do
+        e = k
+        m = skip_blanks(cl, k, .false.)
+        if (m <= n) then
+          if (cl(m:m) == '(') then
+            ! subscript: the closing ')' must be on the same line
+            p = index(cl(m:eol(cl, m)-1), ')')
+            if (p > 0) then
+              m = m + p
+            else
+              m = n + 1
+            end if
+          end if
+        end if
+        ! the '=' may be on the next line, as namelist input allows
+        if (m <= n) m = skip_blanks(cl, m, .true.)
+        last_tok_line = line
+        if (m <= n) then
+          if (cl(m:m) == '=') then
+            call close_value(i - 1)
+            call add_assign(scan%groups(g), nml_lower(no_blanks(cl(i:m-1))), &
+                            nml_lower(cl(i:e-1)), line)
+            line = line + count_lf(cl(i:m))
+            vstart = m + 1
+            i = m + 1
+            cycle
+          end if
+        end if
+        if (vstart == 0) call unexpected(i)
+        i = e
+      else
+        if (vstart == 0) call unexpected(i)
+        last_tok_line = line
+        i = i + 1
+      end if
+    end do
+    ! end of text inside the group
+    call close_value(n)
+    write(num, '(i0)') scan%groups(g)%start_line
+    call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '//trim(num)// &
+         ") has no closing '/' (the end of the file was reached)")
+    call finish_open(n)
+
+  contains
+
+    !> The value of the current assignment runs from vstart to last.
+    subroutine close_value(last)
+      integer, intent(in) :: last
+      integer :: na
+      character(len=:), allocatable :: v
+      na = scan%groups(g)%n_assign
+      if (na == 0 .or. vstart == 0) return
+      v = collapse(cl(vstart:last))
+      ! a trailing separator is not part of the value
+      do while (len(v) > 0)
+        if (v(len(v):len(v)) /= ',' .and. v(len(v):len(v)) /= ' ') exit
+        v = v(1:len(v)-1)
+      end do
+      scan%groups(g)%assigns(na)%value = v
+      vstart = 0
+    end subroutine close_value
+
+    !> Close a group that has no '/': it ends at position last.
+    subroutine finish_open(last)
+      integer, intent(in) :: last
+      scan%groups(g)%terminated = .false.
+      scan%groups(g)%clean = .false.
+      scan%groups(g)%end_line = last_tok_line
+      scan%groups(g)%raw = trim_trailing(text(start:last))
+      scan%groups(g)%body = collapse(cl(body_start:last))
+    end subroutine finish_open
+
+    !> Text inside a group that does not belong to an assignment (once per line).
+    subroutine unexpected(at)
+      integer, intent(in) :: at
+      integer :: t
+      character(len=:), allocatable :: tok, msg
+      scan%groups(g)%clean = .false.
+      if (last_unexp_line == line) return
+      last_unexp_line = line
+      t = at
+      do while (t <= n)
+        if (index(' ,/!'//lf, cl(t:t)) > 0) exit
+        t = t + 1
+      end do
+      tok = cl(at:t-1)
+      msg = "unexpected text '"//shorten(tok)//"' in &"//gname//": expected 'variable = value'"
+      if (is_letter(tok(1:1))) msg = msg//" (missing '=' after '"//shorten(tok)//"'?)"
+      call add_issue(scan, line, g, msg)
+    end subroutine unexpected
+
+  end subroutine scan_group
+
+  ! ---------------------------------------------------------------- helpers
+
+  !> Position of the LF ending the line that contains position i (len+1 if none).
+  pure integer function eol(s, i)
+    character(len=*), intent(in) :: s
+    integer, intent(in) :: i
+    eol = index(s(i:), lf)
+    if (eol == 0) then
+      eol = len(s) + 1
+    else
+      eol = i + eol - 1
+    end if
+  end function eol
+
+  !> First position at or after i that is not a blank (nor a line end, if
+  !> cross_lines).
+  pure integer function skip_blanks(s, i, cross_lines)
+    character(len=*), intent(in) :: s
+    integer, intent(in) :: i
+    logical, intent(in) :: cross_lines
+    skip_blanks = i
+    do while (skip_blanks <= len(s))
+      if (s(skip_blanks:skip_blanks) /= ' ' .and. &
+          .not. (cross_lines .and. s(skip_blanks:skip_blanks) == lf)) exit
+      skip_blanks = skip_blanks + 1
+    end do
+  end function skip_blanks
+
+  pure integer function count_lf(s)
+    character(len=*), intent(in) :: s
+    integer :: i
+    count_lf = 0
+    do i = 1, len(s)
+      if (s(i:i) == lf) count_lf = count_lf + 1
+    end do
+  end function count_lf
+
+  !> Position of the quote closing the string opened at i on the same line, 0 if none.
+  !> A doubled quote inside the string stands for one quote character.
+  pure integer function close_quote(s, i)
+    character(len=*), intent(in) :: s
+    integer, intent(in) :: i
+    integer :: k
+    character :: q
+    q = s(i:i)
+    k = i + 1
+    close_quote = 0
+    do while (k <= len(s))
+      if (s(k:k) == lf) return
+      if (s(k:k) == q) then
+        if (k < len(s)) then
+          if (s(k+1:k+1) == q) then
+            k = k + 2
+            cycle
+          end if
+        end if
+        close_quote = k
+        return
+      end if
+      k = k + 1
+    end do
+  end function close_quote
+
+  !> Join lines and squeeze runs of blanks outside quotes; trim both ends.
+  function collapse(s) result(r)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: r
+    character(len=len(s)) :: buf
+    character :: c, q
+    integer :: i, k
+    logical :: prev_blank
+
+    k = 0
+    q = ' '
+    prev_blank = .true.
+    do i = 1, len(s)
+      c = s(i:i)
+      if (c == lf) c = ' '
+      if (q /= ' ') then
+        k = k + 1
+        buf(k:k) = c
+        if (c == q) q = ' '   ! a doubled quote re-opens on the next character
+        prev_blank = .false.
+      else if (c == ' ') then
+        if (.not. prev_blank) then
+          k = k + 1
+          buf(k:k) = ' '
+        end if
+        prev_blank = .true.
+      else
+        if (c == "'" .or. c == '"') q = c
+        k = k + 1
+        buf(k:k) = c
+        prev_blank = .false.
+      end if
+    end do
+    r = trim(buf(1:k))
+  end function collapse
+
+  pure function no_blanks(s) result(r)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: r
+    integer :: i
+    r = ''
+    do i = 1, len(s)
+      if (s(i:i) /= ' ' .and. s(i:i) /= lf) r = r//s(i:i)
+    end do
+  end function no_blanks
+
+  !> Remove trailing blanks and line breaks.
+  pure function trim_trailing(s) result(r)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: r
+    integer :: k
+    k = len(s)
+    do while (k > 0)
+      if (s(k:k) /= ' ' .and. s(k:k) /= lf .and. s(k:k) /= achar(13)) exit
+      k = k - 1
+    end do
+    r = s(1:k)
+  end function trim_trailing
+
+  !> Cut long snippets for messages.
+  pure function shorten(s) result(r)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: r
+    if (len(s) > 40) then
+      r = s(1:37)//'...'
+    else
+      r = s
+    end if
+  end function shorten
+
+  pure function itoa(i) result(r)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: r
+    character(len=16) :: buf
+    write(buf, '(i0)') i
+    r = trim(buf)
+  end function itoa
+
+  pure logical function is_letter(c)
+    character, intent(in) :: c
+    is_letter = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
+  end function is_letter
+
+  pure logical function is_name_char(c)
+    character, intent(in) :: c
+    is_name_char = is_letter(c) .or. (c >= '0' .and. c <= '9') .or. c == '_'
+  end function is_name_char
+
+  !> Lower-case copy (ASCII).
+  pure function nml_lower(s) result(r)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: r
+    integer :: i, ic
+    r = s
+    do i = 1, len(s)
+      ic = iachar(s(i:i))
+      if (ic >= iachar('A') .and. ic <= iachar('Z')) r(i:i) = achar(ic + 32)
+    end do
+  end function nml_lower
+
+  subroutine add_group(scan, name, line)
+    type(nml_scan_t), intent(inout) :: scan
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: line
+    type(nml_group_t), allocatable :: tmp(:)
+    if (scan%n_groups == size(scan%groups)) then
+      allocate(tmp(2*size(scan%groups)))
+      tmp(1:scan%n_groups) = scan%groups(1:scan%n_groups)
+      call move_alloc(tmp, scan%groups)
+    end if
+    scan%n_groups = scan%n_groups + 1
+    associate(gr => scan%groups(scan%n_groups))
+      gr%name = name
+      gr%start_line = line
+      gr%end_line = line
+      gr%raw = ''
+      gr%body = ''
+      gr%n_assign = 0
+      allocate(gr%assigns(8))
+    end associate
+  end subroutine add_group
+
+  subroutine add_assign(gr, name, base, line)
+    type(nml_group_t), intent(inout) :: gr
+    character(len=*), intent(in) :: name, base
+    integer, intent(in) :: line
+    type(nml_assign_t), allocatable :: tmp(:)
+    if (gr%n_assign == size(gr%assigns)) then
+      allocate(tmp(2*size(gr%assigns)))
+      tmp(1:gr%n_assign) = gr%assigns(1:gr%n_assign)
+      call move_alloc(tmp, gr%assigns)
+    end if
+    gr%n_assign = gr%n_assign + 1
+    gr%assigns(gr%n_assign)%name = name
+    gr%assigns(gr%n_assign)%base = base
+    gr%assigns(gr%n_assign)%value = ''
+    gr%assigns(gr%n_assign)%line = line
+    gr%assigns(gr%n_assign)%ok = .true.
+  end subroutine add_assign
+
+  subroutine add_issue(scan, line, group, text)
+    type(nml_scan_t), intent(inout) :: scan
+    integer, intent(in) :: line, group
+    character(len=*), intent(in) :: text
+    type(nml_issue_t), allocatable :: tmp(:)
+    if (scan%n_issues == size(scan%issues)) then
+      allocate(tmp(2*size(scan%issues)))
+      tmp(1:scan%n_issues) = scan%issues(1:scan%n_issues)
+      call move_alloc(tmp, scan%issues)
+    end if
+    scan%n_issues = scan%n_issues + 1
+    scan%issues(scan%n_issues)%line = line
+    scan%issues(scan%n_issues)%group = group
+    scan%issues(scan%n_issues)%text = text
+  end subroutine add_issue
+
+end module udar_nml_scan

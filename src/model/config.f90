@@ -1,0 +1,97 @@
+!> The resolved input deck: plain data, filled by udar_deck, read by the drivers.
+!> Defaults live here (one place); udar_deck reports which were left at default.
+!> All values SI.
+module udar_config
+  use udar_kinds, only: rk, max_name_len, max_path_len
+  implicit none
+  private
+  public :: run_cfg_t, mesh_cfg_t, material_cfg_t, part_cfg_t, boundary_cfg_t, &
+            numerics_cfg_t, output_cfg_t, config_t
+  public :: eos_linear, eos_mie_gruneisen, strength_none, strength_elastic, &
+            strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
+            bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking
+
+  ! integer codes the kernels dispatch on (strings stay in the deck)
+  integer, parameter :: eos_linear = 1, eos_mie_gruneisen = 2
+  integer, parameter :: strength_none = 0, strength_elastic = 1, strength_perfectly_plastic = 2, &
+                        strength_linear_hardening = 3, strength_johnson_cook = 4
+  integer, parameter :: bc_fixed = 1, bc_symmetry = 2, bc_rigid_wall = 3
+  integer, parameter :: wall_frictionless = 1, wall_sticking = 2
+
+  type :: run_cfg_t
+    character(len=256) :: title = 'udar run'
+    real(rk) :: t_end = -1.0_rk            !< s, required
+    real(rk) :: dt_safety = 0.7_rk         !< -, fraction of the stable step
+    real(rk) :: dt_initial = 0.0_rk        !< s, 0 = stable step
+    real(rk) :: dt_max = huge(1.0_rk)      !< s
+    integer  :: max_cycles = huge(1)       !< -
+    integer  :: cycle_print = 100          !< -, stdout progress line every N cycles
+    real(rk) :: energy_error_limit = 0.2_rk !< -, |energy error| above this stops the run
+    real(rk) :: wall_limit = 0.0_rk        !< s of wall time, 0 = none (issue 3)
+  end type
+
+  type :: mesh_cfg_t
+    character(len=max_path_len) :: file = ''   !< gmsh .msh, relative to the deck's folder
+    real(rk) :: scale = 1.0_rk                 !< -, multiplies coordinates (0.001 for mm)
+  end type
+
+  type :: material_cfg_t
+    character(len=max_name_len) :: name = ''
+    real(rk) :: rho0 = -1.0_rk                 !< kg/m3
+    integer  :: eos = eos_linear
+    real(rk) :: bulk_modulus = -1.0_rk         !< Pa (linear EOS)
+    real(rk) :: c0 = -1.0_rk, s = 0.0_rk, gamma0 = 0.0_rk   !< Mie-Grueneisen: m/s, -, -
+    integer  :: strength = strength_elastic
+    real(rk) :: shear_modulus = -1.0_rk        !< Pa
+    real(rk) :: youngs_modulus = -1.0_rk       !< Pa (alternative with poisson_ratio)
+    real(rk) :: poisson_ratio = -1.0_rk        !< -
+    real(rk) :: yield_stress = -1.0_rk         !< Pa
+    real(rk) :: hardening_modulus = 0.0_rk     !< Pa, plastic modulus d(sigma_y)/d(eps_p)
+    real(rk) :: jc_a = -1.0_rk, jc_b = 0.0_rk, jc_n = 1.0_rk, jc_c = 0.0_rk, jc_m = 1.0_rk  !< Pa, Pa, -, -, -
+    real(rk) :: jc_rate0 = 1.0_rk              !< 1/s
+    real(rk) :: t_melt = -1.0_rk               !< K
+    real(rk) :: t_room = 294.0_rk              !< K
+    real(rk) :: specific_heat = -1.0_rk        !< J/(kg K)
+    real(rk) :: taylor_quinney = 0.9_rk        !< -, share of plastic work turned to heat
+    real(rk) :: initial_temperature = 294.0_rk !< K
+  end type
+
+  type :: part_cfg_t
+    character(len=max_name_len) :: group = ''     !< gmsh physical volume group name
+    character(len=max_name_len) :: material = ''  !< a &material name
+    real(rk) :: velocity(3) = 0.0_rk              !< m/s
+  end type
+
+  type :: boundary_cfg_t
+    integer  :: kind = 0
+    character(len=max_name_len) :: surface = ''   !< gmsh physical surface name (fixed, symmetry)
+    real(rk) :: point(3) = 0.0_rk                 !< m, a point on the rigid wall
+    real(rk) :: normal(3) = 0.0_rk                !< -, wall normal pointing towards the bodies
+    integer  :: wall_type = wall_frictionless
+  end type
+
+  type :: numerics_cfg_t
+    logical  :: anti_locking = .true.   !< nodal-averaged volumetric strain (Bonet-Burton)
+    real(rk) :: q_linear = 0.06_rk      !< -, linear artificial viscosity coefficient
+    real(rk) :: q_quadratic = 1.5_rk    !< -, quadratic artificial viscosity coefficient
+  end type
+
+  type :: output_cfg_t
+    character(len=max_path_len) :: directory = '.'   !< relative to the current directory
+    character(len=max_name_len) :: case_name = ''    !< default: deck file name without .nml
+    real(rk) :: dt_field = 0.0_rk      !< s, 0 = first and last state only
+    real(rk) :: dt_history = 0.0_rk    !< s, 0 = every cycle
+  end type
+
+  type :: config_t
+    character(len=max_path_len) :: deck_file = ''
+    character(len=:), allocatable :: resolved_text   !< the fully resolved deck, for output attributes
+    type(run_cfg_t) :: run
+    type(mesh_cfg_t) :: mesh
+    type(numerics_cfg_t) :: numerics
+    type(output_cfg_t) :: output
+    type(material_cfg_t), allocatable :: materials(:)
+    type(part_cfg_t), allocatable :: parts(:)
+    type(boundary_cfg_t), allocatable :: boundaries(:)
+  end type
+end module udar_config

@@ -1,0 +1,57 @@
+!> The mesh and state of one rank, structure of arrays. Arrays are indexed in
+!> global order (mesh-file tags ascending); nd_ = node, el_ = element.
+module udar_domain
+  use udar_kinds, only: rk, max_name_len
+  use udar_config, only: material_cfg_t
+  implicit none
+  private
+  public :: domain_t, wall_t, block_size
+
+  integer, parameter :: block_size = 128   !< elements per vectorized block
+
+  type :: wall_t
+    real(rk) :: point(3) = 0.0_rk, normal(3) = 0.0_rk
+    integer :: wall_type = 1
+    real(rk) :: force = 0.0_rk        !< N, normal force of the last cycle
+  end type
+
+  type :: domain_t
+    ! ---- nodes
+    integer :: n_nodes = 0
+    integer, allocatable :: nd_id(:)            !< mesh-file node tag
+    integer, allocatable :: nd_part(:)          !< part of the lowest-id incident element
+    real(rk), allocatable :: nd_x0(:,:), nd_x(:,:), nd_v(:,:), nd_f(:,:)   !< (n,3): m, m, m/s, N
+    real(rk), allocatable :: nd_mass(:)         !< kg, lumped
+    real(rk), allocatable :: nd_vol0(:), nd_vol(:)   !< m3, nodal volumes (anti-locking)
+    real(rk), allocatable :: nd_p(:)            !< Pa, nodal average pressure (anti-locking)
+    ! node -> incident elements, each list ascending in element id (fixed assembly order)
+    integer, allocatable :: nd_el_ptr(:), nd_el(:), nd_el_corner(:)
+    ! ---- elements
+    integer :: n_elems = 0
+    integer, allocatable :: el_id(:), el_part(:), el_mat(:)
+    integer, allocatable :: el_conn(:,:)        !< (n,4) node indices
+    real(rk), allocatable :: el_vol0(:), el_vol(:), el_mass(:)   !< m3, m3, kg
+    real(rk), allocatable :: el_j(:)            !< -, volume ratio seen by the EOS (nodal-averaged with anti-locking)
+    real(rk), allocatable :: el_e(:)            !< J/kg, specific internal energy
+    real(rk), allocatable :: el_wp(:)           !< J/kg, specific plastic work
+    real(rk), allocatable :: el_p(:), el_q(:)   !< Pa, EOS pressure and artificial viscosity
+    real(rk), allocatable :: el_s(:,:)          !< (n,6) Pa, deviatoric stress xx,yy,zz,xy,yz,zx
+    real(rk), allocatable :: el_eps_p(:), el_temp(:)  !< -, K
+    real(rk), allocatable :: el_grad(:,:,:)     !< (n,4,3) 1/m, kept between passes (anti-locking)
+    real(rk), allocatable :: el_f(:,:,:)        !< (n,4,3) N, element nodal forces
+    ! vectorized blocks: runs of consecutive elements of one material
+    integer :: n_blocks = 0
+    integer, allocatable :: blk_first(:), blk_last(:)
+    ! ---- model
+    type(material_cfg_t), allocatable :: mat(:)
+    integer :: n_parts = 0
+    character(len=max_name_len), allocatable :: part_name(:)
+    ! ---- conditions: velocity constraints and rigid walls
+    integer, allocatable :: fixed_nodes(:)
+    integer, allocatable :: sym_nodes(:)        !< one entry per (node, plane)
+    real(rk), allocatable :: sym_normal(:,:)    !< (n_sym,3)
+    type(wall_t), allocatable :: walls(:)
+    logical :: anti_locking = .true.
+    real(rk) :: q_linear = 0.06_rk, q_quadratic = 1.5_rk
+  end type
+end module udar_domain

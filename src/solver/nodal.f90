@@ -1,0 +1,84 @@
+!> Nodal half of the cycle: explicit central-difference update of velocities
+!> and positions, velocity conditions (fixed, symmetry planes) and planar
+!> rigid walls.
+module udar_nodal
+  use udar_kinds, only: rk
+  use udar_domain, only: domain_t
+  use udar_config, only: wall_sticking
+  implicit none
+  private
+  public :: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions
+
+contains
+
+  !> v(n+1/2) = v(n-1/2) + dt_v F(n)/m, dt_v the mean of the two half steps.
+  subroutine update_velocities(dom, dt_v)
+    type(domain_t), intent(inout) :: dom
+    real(rk), intent(in) :: dt_v
+    integer :: k, n
+    do k = 1, 3
+      do n = 1, dom%n_nodes
+        dom%nd_v(n,k) = dom%nd_v(n,k) + dt_v*dom%nd_f(n,k)/dom%nd_mass(n)
+      end do
+    end do
+  end subroutine
+
+  subroutine apply_velocity_conditions(dom)
+    type(domain_t), intent(inout) :: dom
+    integer :: k, n
+    real(rk) :: vn
+    do k = 1, size(dom%sym_nodes)
+      n = dom%sym_nodes(k)
+      vn = dot_product(dom%nd_v(n,:), dom%sym_normal(k,:))
+      dom%nd_v(n,:) = dom%nd_v(n,:) - vn*dom%sym_normal(k,:)
+    end do
+    do k = 1, size(dom%fixed_nodes)
+      dom%nd_v(dom%fixed_nodes(k),:) = 0.0_rk
+    end do
+  end subroutine
+
+  !> A node that would end the step behind a wall gets the normal velocity
+  !> that lands it exactly on the wall (and, sticking, no tangential one).
+  !> The impulse gives the wall force; the wall's work is the impulse times
+  !> the velocity the node moves with over the step (zero for a node resting
+  !> on a fixed wall), so the kinetic energy a node loses when it is stopped
+  !> dead stays visible in the energy balance as the discrete impact loss.
+  subroutine apply_rigid_walls(dom, dt, wall_work)
+    type(domain_t), intent(inout) :: dom
+    real(rk), intent(in) :: dt
+    real(rk), intent(out) :: wall_work
+    integer :: iw, n
+    real(rk) :: gap, vn, vn_new, impulse
+    wall_work = 0.0_rk
+    do iw = 1, size(dom%walls)
+      associate (wall => dom%walls(iw))
+        impulse = 0.0_rk
+        do n = 1, dom%n_nodes
+          gap = dot_product(dom%nd_x(n,:) - wall%point, wall%normal)
+          vn = dot_product(dom%nd_v(n,:), wall%normal)
+          if (gap + dt*vn >= 0.0_rk) cycle
+          vn_new = -max(gap, 0.0_rk)/dt
+          if (wall%wall_type == wall_sticking) then
+            dom%nd_v(n,:) = vn_new*wall%normal
+          else
+            dom%nd_v(n,:) = dom%nd_v(n,:) + (vn_new - vn)*wall%normal
+          end if
+          impulse = impulse + dom%nd_mass(n)*(vn_new - vn)
+          wall_work = wall_work + dom%nd_mass(n)*(vn_new - vn)*vn_new
+        end do
+        wall%force = impulse/dt
+      end associate
+    end do
+  end subroutine
+
+  subroutine update_positions(dom, dt)
+    type(domain_t), intent(inout) :: dom
+    real(rk), intent(in) :: dt
+    integer :: k, n
+    do k = 1, 3
+      do n = 1, dom%n_nodes
+        dom%nd_x(n,k) = dom%nd_x(n,k) + dt*dom%nd_v(n,k)
+      end do
+    end do
+  end subroutine
+end module udar_nodal

@@ -1,0 +1,367 @@
+!> Builds the domain from the mesh and the deck: parts and materials, lumped
+!> masses, node->element lists, velocity conditions, walls, initial state.
+!> Mesh-dependent deck mistakes (unknown group names, a curved symmetry
+!> surface) are added to the same error list as the deck's own.
+module udar_setup
+  use udar_kinds, only: rk, max_name_len
+  use udar_config, only: config_t, bc_fixed, bc_symmetry, bc_rigid_wall
+  use udar_gmsh, only: gmsh_mesh_t
+  use udar_domain, only: domain_t, block_size
+  use udar_input_errors, only: input_errors_t
+  use udar_tet4, only: tet_volume
+  implicit none
+  private
+  public :: build_domain
+
+contains
+
+  subroutine build_domain(cfg, mesh, dom, errs)
+    type(config_t), intent(in) :: cfg
+    type(gmsh_mesh_t), intent(in) :: mesh
+    type(domain_t), intent(out) :: dom
+    type(input_errors_t), intent(inout) :: errs
+    integer, allocatable :: group_part(:), node_new(:)
+    integer :: ip, ig, e, n, a, k, n_err0
+    character(len=:), allocatable :: where
+    real(rk) :: xe(4,3)
+
+    n_err0 = errs%count()
+    ! parts <- physical volume groups, by name
+    allocate(group_part(mesh%n_groups), source=0)
+    do ip = 1, size(cfg%parts)
+      where = trim(cfg%deck_file)//': &part #'//itoa(ip)
+      ig = find_group(mesh, cfg%parts(ip)%group, 3)
+      if (ig == 0) then
+        call errs%add(where//": group = '"//trim(cfg%parts(ip)%group)//"': no physical volume group of that name in " &
+          //trim(cfg%mesh%file)//' (volume groups: '//group_list(mesh, 3)//')')
+      else if (group_part(ig) /= 0) then
+        call errs%add(where//": group = '"//trim(cfg%parts(ip)%group)//"' is already used by &part #"//itoa(group_part(ig)))
+      else
+        group_part(ig) = ip
+      end if
+    end do
+    do ig = 1, mesh%n_groups
+      if (mesh%groups(ig)%dim == 3 .and. group_part(ig) == 0 .and. find_group(mesh, mesh%groups(ig)%name, 3) == ig) then
+        if (any(mesh%tet_group == ig)) call errs%add(trim(cfg%deck_file)//": physical volume group '" &
+          //trim(mesh%groups(ig)%name)//"' of "//trim(cfg%mesh%file)//' has elements but no &part gives it a material')
+      end if
+    end do
+    call boundaries_check(cfg, mesh, errs)
+    if (errs%count() > n_err0) return
+
+    ! nodes: only those used by tetrahedra, ascending tag order kept
+    allocate(node_new(mesh%n_nodes), source=0)
+    do a = 1, 4
+      node_new(mesh%tet(:,a)) = 1
+    end do
+    dom%n_nodes = 0
+    do n = 1, mesh%n_nodes
+      if (node_new(n) /= 0) then
+        dom%n_nodes = dom%n_nodes + 1
+        node_new(n) = dom%n_nodes
+      end if
+    end do
+    dom%n_elems = mesh%n_tets
+    call allocate_state(dom)
+    do n = 1, mesh%n_nodes
+      if (node_new(n) /= 0) then
+        dom%nd_id(node_new(n)) = mesh%node_tag(n)
+        dom%nd_x0(node_new(n),:) = mesh%x(n,:)
+      end if
+    end do
+    dom%nd_x = dom%nd_x0
+    dom%el_id = mesh%tet_tag
+    do a = 1, 4
+      dom%el_conn(:,a) = node_new(mesh%tet(:,a))
+    end do
+
+    ! materials and parts
+    dom%mat = cfg%materials
+    dom%n_parts = size(cfg%parts)
+    allocate(dom%part_name(dom%n_parts))
+    do ip = 1, dom%n_parts
+      dom%part_name(ip) = cfg%parts(ip)%group
+    end do
+    do e = 1, dom%n_elems
+      dom%el_part(e) = group_part(mesh%tet_group(e))
+      dom%el_mat(e) = material_index(cfg, cfg%parts(dom%el_part(e))%material)
+      do a = 1, 4
+        xe(a,:) = dom%nd_x(dom%el_conn(e,a),:)
+      end do
+      dom%el_vol0(e) = tet_volume(xe)
+      dom%el_mass(e) = dom%mat(dom%el_mat(e))%rho0*dom%el_vol0(e)
+      dom%el_temp(e) = dom%mat(dom%el_mat(e))%initial_temperature
+    end do
+    dom%el_vol = dom%el_vol0
+    dom%el_j = 1.0_rk
+
+    call build_incidence(dom)
+    ! lumped masses, nodal reference volumes, node parts, initial velocities
+    do n = 1, dom%n_nodes
+      dom%nd_mass(n) = 0.0_rk
+      dom%nd_vol0(n) = 0.0_rk
+      do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
+        dom%nd_mass(n) = dom%nd_mass(n) + 0.25_rk*dom%el_mass(dom%nd_el(k))
+        dom%nd_vol0(n) = dom%nd_vol0(n) + 0.25_rk*dom%el_vol0(dom%nd_el(k))
+      end do
+      dom%nd_part(n) = dom%el_part(dom%nd_el(dom%nd_el_ptr(n)))
+      dom%nd_v(n,:) = cfg%parts(dom%nd_part(n))%velocity
+    end do
+    dom%nd_vol = dom%nd_vol0
+    call build_blocks(dom)
+    call build_conditions(cfg, mesh, node_new, dom)
+    dom%anti_locking = cfg%numerics%anti_locking
+    dom%q_linear = cfg%numerics%q_linear
+    dom%q_quadratic = cfg%numerics%q_quadratic
+  end subroutine
+
+  subroutine allocate_state(dom)
+    type(domain_t), intent(inout) :: dom
+    integer :: nn, ne
+    nn = dom%n_nodes; ne = dom%n_elems
+    allocate(dom%nd_id(nn), dom%nd_part(nn), dom%nd_x0(nn,3), dom%nd_x(nn,3), dom%nd_v(nn,3), &
+             dom%nd_f(nn,3), dom%nd_mass(nn), dom%nd_vol0(nn), dom%nd_vol(nn), dom%nd_p(nn))
+    allocate(dom%el_id(ne), dom%el_part(ne), dom%el_mat(ne), dom%el_conn(ne,4), dom%el_vol0(ne), &
+             dom%el_vol(ne), dom%el_mass(ne), dom%el_j(ne), dom%el_e(ne), dom%el_wp(ne), dom%el_p(ne), &
+             dom%el_q(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_grad(ne,4,3), &
+             dom%el_f(ne,4,3))
+    dom%nd_f = 0.0_rk; dom%nd_p = 0.0_rk
+    dom%el_e = 0.0_rk; dom%el_wp = 0.0_rk; dom%el_p = 0.0_rk; dom%el_q = 0.0_rk; dom%el_s = 0.0_rk
+    dom%el_eps_p = 0.0_rk; dom%el_grad = 0.0_rk; dom%el_f = 0.0_rk
+  end subroutine
+
+  !> Node -> element lists by counting sort; elements are visited in
+  !> ascending id, so each node's list is ascending: the assembly order.
+  subroutine build_incidence(dom)
+    type(domain_t), intent(inout) :: dom
+    integer, allocatable :: fill(:)
+    integer :: e, a, n, k
+    allocate(dom%nd_el_ptr(dom%n_nodes+1), source=0)
+    do a = 1, 4
+      do e = 1, dom%n_elems
+        n = dom%el_conn(e,a)
+        dom%nd_el_ptr(n+1) = dom%nd_el_ptr(n+1) + 1
+      end do
+    end do
+    dom%nd_el_ptr(1) = 1
+    do n = 1, dom%n_nodes
+      dom%nd_el_ptr(n+1) = dom%nd_el_ptr(n+1) + dom%nd_el_ptr(n)
+    end do
+    allocate(dom%nd_el(dom%nd_el_ptr(dom%n_nodes+1)-1), dom%nd_el_corner(dom%nd_el_ptr(dom%n_nodes+1)-1))
+    allocate(fill(dom%n_nodes), source=dom%nd_el_ptr(1:dom%n_nodes))
+    do e = 1, dom%n_elems
+      do a = 1, 4
+        n = dom%el_conn(e,a)
+        k = fill(n)
+        dom%nd_el(k) = e
+        dom%nd_el_corner(k) = a
+        fill(n) = k + 1
+      end do
+    end do
+  end subroutine
+
+  !> Blocks of at most block_size consecutive elements of one material.
+  subroutine build_blocks(dom)
+    type(domain_t), intent(inout) :: dom
+    integer :: e, nb, first
+    integer, allocatable :: f(:), l(:)
+    allocate(f(dom%n_elems), l(dom%n_elems))
+    nb = 0; first = 1
+    do e = 1, dom%n_elems
+      if (e == dom%n_elems) then
+        nb = nb + 1; f(nb) = first; l(nb) = e
+      else if (dom%el_mat(e+1) /= dom%el_mat(first) .or. e - first + 1 == block_size) then
+        nb = nb + 1; f(nb) = first; l(nb) = e
+        first = e + 1
+      end if
+    end do
+    dom%n_blocks = nb
+    dom%blk_first = f(1:nb)
+    dom%blk_last = l(1:nb)
+  end subroutine
+
+  subroutine boundaries_check(cfg, mesh, errs)
+    type(config_t), intent(in) :: cfg
+    type(gmsh_mesh_t), intent(in) :: mesh
+    type(input_errors_t), intent(inout) :: errs
+    integer :: ib, ig
+    real(rk) :: normal(3), dev
+    character(len=:), allocatable :: where
+    if (.not. allocated(cfg%boundaries)) return
+    do ib = 1, size(cfg%boundaries)
+      where = trim(cfg%deck_file)//': &boundary #'//itoa(ib)
+      if (cfg%boundaries(ib)%kind == bc_rigid_wall) cycle
+      ig = find_group(mesh, cfg%boundaries(ib)%surface, 2)
+      if (ig == 0) then
+        call errs%add(where//": surface = '"//trim(cfg%boundaries(ib)%surface)// &
+          "': no physical surface group of that name in "//trim(cfg%mesh%file)// &
+          ' (surface groups: '//group_list(mesh, 2)//')')
+      else if (cfg%boundaries(ib)%kind == bc_symmetry) then
+        call plane_of_group(mesh, ig, normal, dev)
+        if (dev > 1.0e-6_rk) call errs%add(where//": surface = '"//trim(cfg%boundaries(ib)%surface)// &
+          "' is not planar (relative deviation "//rtoa(dev)//'): a symmetry surface must be a plane')
+      end if
+    end do
+  end subroutine
+
+  subroutine build_conditions(cfg, mesh, node_new, dom)
+    type(config_t), intent(in) :: cfg
+    type(gmsh_mesh_t), intent(in) :: mesh
+    integer, intent(in) :: node_new(:)
+    type(domain_t), intent(inout) :: dom
+    integer :: ib, ig, n_walls, iw
+    integer, allocatable :: nodes(:), sym(:), fix(:)
+    real(rk), allocatable :: symn(:,:)
+    real(rk) :: normal(3), dev
+    allocate(sym(0), fix(0), symn(0,3))
+    n_walls = 0
+    if (allocated(cfg%boundaries)) n_walls = count(cfg%boundaries%kind == bc_rigid_wall)
+    allocate(dom%walls(n_walls))
+    iw = 0
+    if (allocated(cfg%boundaries)) then
+      do ib = 1, size(cfg%boundaries)
+        select case (cfg%boundaries(ib)%kind)
+        case (bc_rigid_wall)
+          iw = iw + 1
+          dom%walls(iw)%point = cfg%boundaries(ib)%point
+          dom%walls(iw)%normal = cfg%boundaries(ib)%normal/norm2(cfg%boundaries(ib)%normal)
+          dom%walls(iw)%wall_type = cfg%boundaries(ib)%wall_type
+        case (bc_fixed)
+          ig = find_group(mesh, cfg%boundaries(ib)%surface, 2)
+          call group_nodes(mesh, ig, node_new, nodes)
+          fix = [fix, nodes]
+        case (bc_symmetry)
+          ig = find_group(mesh, cfg%boundaries(ib)%surface, 2)
+          call group_nodes(mesh, ig, node_new, nodes)
+          call plane_of_group(mesh, ig, normal, dev)
+          sym = [sym, nodes]
+          symn = append_rows(symn, normal, size(nodes))
+        end select
+      end do
+    end if
+    dom%sym_nodes = sym
+    dom%sym_normal = symn
+    dom%fixed_nodes = fix
+  end subroutine
+
+  !> Nodes (new numbering, ascending, unique) of a surface group's triangles.
+  subroutine group_nodes(mesh, ig, node_new, nodes)
+    type(gmsh_mesh_t), intent(in) :: mesh
+    integer, intent(in) :: ig, node_new(:)
+    integer, allocatable, intent(out) :: nodes(:)
+    logical, allocatable :: mark(:)
+    integer :: t, a
+    allocate(mark(mesh%n_nodes), source=.false.)
+    do t = 1, mesh%n_tris
+      if (mesh%tri_group(t) /= ig) cycle
+      do a = 1, 3
+        mark(mesh%tri(t,a)) = .true.
+      end do
+    end do
+    ! a surface node that no tetrahedron uses has no mass: drop it
+    where (node_new == 0) mark = .false.
+    nodes = pack(node_new, mark)
+  end subroutine
+
+  !> Area-weighted unit normal of a surface group and the largest distance of
+  !> its nodes from the mean plane relative to the group's extent.
+  subroutine plane_of_group(mesh, ig, normal, dev)
+    type(gmsh_mesh_t), intent(in) :: mesh
+    integer, intent(in) :: ig
+    real(rk), intent(out) :: normal(3), dev
+    real(rk) :: c(3), a(3), b(3), x0(3), ext, lo(3), hi(3)
+    integer :: t, k, cnt
+    normal = 0.0_rk; x0 = 0.0_rk; cnt = 0
+    lo = huge(1.0_rk); hi = -huge(1.0_rk)
+    do t = 1, mesh%n_tris
+      if (mesh%tri_group(t) /= ig) cycle
+      a = mesh%x(mesh%tri(t,2),:) - mesh%x(mesh%tri(t,1),:)
+      b = mesh%x(mesh%tri(t,3),:) - mesh%x(mesh%tri(t,1),:)
+      c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
+      ! orient consistently with the first triangle before summing
+      if (dot_product(c, normal) < 0.0_rk) c = -c
+      normal = normal + c
+      do k = 1, 3
+        x0 = x0 + mesh%x(mesh%tri(t,k),:)
+        lo = min(lo, mesh%x(mesh%tri(t,k),:)); hi = max(hi, mesh%x(mesh%tri(t,k),:))
+      end do
+      cnt = cnt + 3
+    end do
+    dev = 0.0_rk
+    if (cnt == 0 .or. norm2(normal) == 0.0_rk) then
+      normal = [0.0_rk, 0.0_rk, 1.0_rk]; dev = huge(1.0_rk)
+      return
+    end if
+    normal = normal/norm2(normal)
+    x0 = x0/cnt
+    ext = max(norm2(hi - lo), tiny(1.0_rk))
+    do t = 1, mesh%n_tris
+      if (mesh%tri_group(t) /= ig) cycle
+      do k = 1, 3
+        dev = max(dev, abs(dot_product(mesh%x(mesh%tri(t,k),:) - x0, normal))/ext)
+      end do
+    end do
+  end subroutine
+
+  !> rows of a (n,3) table with n_new copies of row r appended
+  function append_rows(table, r, n_new) result(out)
+    real(rk), intent(in) :: table(:,:), r(3)
+    integer, intent(in) :: n_new
+    real(rk), allocatable :: out(:,:)
+    integer :: k
+    allocate(out(size(table,1) + n_new, 3))
+    out(1:size(table,1),:) = table
+    do k = 1, n_new
+      out(size(table,1) + k,:) = r
+    end do
+  end function
+
+  integer function find_group(mesh, name, dim) result(ig)
+    type(gmsh_mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: dim
+    do ig = 1, mesh%n_groups
+      if (mesh%groups(ig)%dim == dim .and. trim(mesh%groups(ig)%name) == trim(name)) return
+    end do
+    ig = 0
+  end function
+
+  function group_list(mesh, dim) result(s)
+    type(gmsh_mesh_t), intent(in) :: mesh
+    integer, intent(in) :: dim
+    character(len=:), allocatable :: s
+    integer :: ig
+    s = ''
+    do ig = 1, mesh%n_groups
+      if (mesh%groups(ig)%dim /= dim) cycle
+      if (len(s) > 0) s = s//', '
+      s = s//"'"//trim(mesh%groups(ig)%name)//"'"
+    end do
+    if (len(s) == 0) s = 'none'
+  end function
+
+  integer function material_index(cfg, name) result(im)
+    type(config_t), intent(in) :: cfg
+    character(len=*), intent(in) :: name
+    do im = 1, size(cfg%materials)
+      if (trim(cfg%materials(im)%name) == trim(name)) return
+    end do
+    im = 0
+  end function
+
+  function itoa(i) result(s)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=16) :: buf
+    write(buf, '(i0)') i
+    s = trim(buf)
+  end function
+
+  function rtoa(r) result(s)
+    real(rk), intent(in) :: r
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write(buf, '(es10.3)') r
+    s = trim(adjustl(buf))
+  end function
+end module udar_setup

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# The program's own handling of bad input: exit code 1, a message naming the
+# file, group and variable, nothing written or destroyed; --check, --help.
+set -u
+EXE=$(realpath "$1")
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+W=$(mktemp -d)
+trap 'rm -rf "$W"' EXIT
+fails=0
+ok()   { echo "PASS $1"; }
+bad()  { echo "FAIL $1"; fails=$((fails+1)); }
+expect() {  # name, expected exit code, pattern in stderr, deck
+  local name=$1 code=$2 pat=$3 deck=$4 rc
+  (cd "$W" && "$EXE" "$deck") > "$W/out.txt" 2> "$W/err.txt"; rc=$?
+  if [ $rc -eq "$code" ] && grep -qiE -- "$pat" "$W/err.txt"; then ok "$name (exit $rc)"
+  else bad "$name: exit $rc, stderr:"; sed 's/^/      /' "$W/err.txt"; fi
+}
+
+cp "$ROOT/tests/regression/elastic_bar/elastic_bar.msh" "$W/bar.msh"
+good='&run t_end = 1e-6 /
+&mesh file = "bar.msh" /
+&material name = "steel", rho0 = 7850, youngs_modulus = 200e9, poisson_ratio = 0.3 /
+&part group = "bar", material = "steel" /
+&output directory = "out" /'
+printf '%s\n' "$good" > "$W/good.nml"
+mkdir -p "$W/out"; echo precious > "$W/out/bad_value.h5"
+
+sed 's/rho0 = 7850/rho0 = 78x50/' "$W/good.nml" > "$W/bad_value.nml"
+expect bad_value 1 'bad_value.nml.*rho0' bad_value.nml
+if [ "$(cat "$W/out/bad_value.h5")" = precious ]; then ok "nothing_destroyed"; else bad "nothing_destroyed"; fi
+sed 's/group = "bar"/group = "rod"/' "$W/good.nml" > "$W/bad_group.nml"
+expect unknown_part_group 1 "group = 'rod'.*no physical volume group.*'bar'" bad_group.nml
+sed 's/&material name = "steel"/&material name = "steel", yield_stres = 1e8/' "$W/good.nml" > "$W/misspelled.nml"
+expect misspelled_variable 1 'yield_stres.*yield_stress' misspelled.nml
+printf '%s\n&boundary kind = "symmetry", surface = "nowhere" /\n' "$good" > "$W/bad_surface.nml"
+expect unknown_surface 1 "surface = 'nowhere'.*impact_face" bad_surface.nml
+expect missing_deck 1 'missing.nml' missing.nml
+
+(cd "$W" && "$EXE" --check good.nml) > "$W/check.txt" 2>&1; rc=$?
+if [ $rc -eq 0 ] && grep -q 'rho0' "$W/check.txt" && grep -q 'default' "$W/check.txt" && [ ! -e "$W/out/good.h5" ]
+then ok "check_prints_resolved_deck"; else bad "check_prints_resolved_deck (exit $rc)"; cat "$W/check.txt"; fi
+"$EXE" --help > "$W/help.txt" 2>&1 && grep -q usage "$W/help.txt" && ok help || bad help
+"$EXE" --version 2>&1 | grep -qE '^udar [0-9]' && ok version || bad version
+[ $fails -eq 0 ]

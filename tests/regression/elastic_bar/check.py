@@ -1,0 +1,26 @@
+"""Elastic bar (nu = 0) on a rigid wall against 1D elastic wave theory:
+contact stress rho c v, contact duration 2L/c, rebound speed v, energy."""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', 'tools'))
+import checks  # noqa: E402
+import udar_results  # noqa: E402
+
+E, RHO, V, L, A = 200e9, 7850.0, 10.0, 0.1, 0.01 * 0.01
+c = math.sqrt(E / RHO)
+h = udar_results.read_history(os.path.join(sys.argv[1], 'out', 'elastic_bar_history.csv'))
+t, f = h['time'], h['wall_force']
+contact = f > 0.0
+t_first, t_last = t[contact][0], t[contact][-1]
+duration = t_last  # the bar touches the wall at t = 0
+checks.compare('contact_duration_2L_over_c', duration, 2 * L / c, 0.02, 's')
+plateau = (t > 0.2 * duration) & (t < 0.8 * duration)
+stress = f[plateau].mean() / A
+checks.compare('contact_stress_rho_c_v', stress, RHO * c * V, 0.02, 'Pa')
+mass = RHO * L * A
+after = t > duration + 5e-6
+checks.compare('rebound_velocity', h['momentum_z'][after].mean() / mass, V, 0.02, 'm/s')
+checks.below('energy_error_max', abs(h['energy_error']).max(), 0.01)
+checks.finish()

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Runs every test of `make check`; each test is one command whose exit status
+# decides it. Output of each test goes to tests/work/<name>.log; the summary
+# line (last line) is exactly "N passed, N failed".
+set -u
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+export PYTHON=${PYTHON:-/usr/bin/python3}
+WORK=$ROOT/tests/work
+rm -rf "$WORK"; mkdir -p "$WORK"
+passed=0; failed=0; failed_names=()
+
+run_test() {   # name, command...
+  local name=$1; shift
+  local log=$WORK/${name//\//_}.log t0=$SECONDS
+  if ( "$@" ) > "$log" 2>&1; then
+    passed=$((passed+1)); printf 'PASS %-36s %4ds\n' "$name" $((SECONDS-t0))
+  else
+    failed=$((failed+1)); failed_names+=("$name"); printf 'FAIL %-36s %4ds  (log: %s)\n' "$name" $((SECONDS-t0)) "${log#$ROOT/}"
+    tail -n 15 "$log" | sed 's/^/    | /'
+  fi
+  grep -E '^(PASS|FAIL|MEASURED)' "$log" | sed 's/^/    /'
+}
+
+# a regression case: copy the deck and its mesh to tests/work/<case>, run it
+# with the given binary, then its check.py judges the output
+regression() {   # case, binary
+  local case=$1 exe=$2 dir=$WORK/$1
+  mkdir -p "$dir"
+  cp tests/regression/$case/*.nml tests/regression/$case/*.msh "$dir"/
+  ( cd "$dir" && "$ROOT/$exe" $case.nml ) && $PYTHON tests/regression/$case/check.py "$dir"
+}
+
+# ---- unit tests (debug build: bounds checks and floating-point traps on)
+for t in build/debug/tests/test_*; do
+  [ -x "$t" ] || continue
+  name=$(basename "$t")
+  mkdir -p "$WORK/$name"
+  run_test "unit/$name" "$t" "$ROOT/tests/unit" "$WORK/$name"
+done
+# ---- deck errors through the real program
+run_test "cli/deck_errors" tests/cli/deck_errors.sh bin/udar-debug
+# ---- regressions against analytic and experimental references
+run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
+run_test "regression/plate_impact" regression plate_impact bin/udar-debug
+run_test "regression/taylor_wg" regression taylor_wg bin/udar
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

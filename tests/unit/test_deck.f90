@@ -1,0 +1,430 @@
+!> Unit test of the input deck reader (udar_deck, udar_nml_scan, udar_input_errors).
+!>
+!> Usage: test_deck [DECK_DIR [WORK]]
+!>   DECK_DIR  folder with the test decks, or its parent (tests/unit, as
+!>             tests/run_tests.sh passes it); default tests/unit/decks
+!>   WORK      scratch place for the resolved deck of the round trip: a folder
+!>             if it exists, else a file name prefix; default: current folder
+!>
+!> One valid deck: values, derived values and the round trip of its resolved
+!> text. One bad deck per class of mistake: the expected message (file, line,
+!> group, variable) and, where the deck has a single mistake, no more than one
+!> message (no follow-on noise).
+module test_deck_support
+  use udar_kinds, only: rk
+  use udar_config
+  use udar_deck, only: deck_read, deck_write_resolved, deck_where
+  use udar_input_errors, only: input_errors_t, input_errors_report
+  implicit none
+  private
+  public :: run_all
+
+  character(len=:), allocatable :: dir, scratch
+  integer :: nfail = 0
+
+contains
+
+  !> Run every test; returns the number of failures.
+  subroutine run_all(deck_dir, scratch_file, failures)
+    character(len=*), intent(in) :: deck_dir, scratch_file
+    integer, intent(out) :: failures
+
+    dir = deck_dir
+    if (dir(len(dir):len(dir)) /= '/') dir = dir//'/'
+    scratch = scratch_file
+    nfail = 0
+
+    call test_valid()
+    call test_report_format()
+    call test_missing_deck()
+  call expect_one('unknown_variable', 'bad_unknown_variable.nml', 1, &
+       ':7:', "unknown variable 'youngs_modulos' in &material", "did you mean 'youngs_modulus'?")
+  call expect_one('bad_value', 'bad_value.nml', 1, &
+       ':6:', "&material #1 'copper': rho0 = 8.9x3", 'not a valid real number')
+  call expect_one('misspelled_group', 'bad_group_name.nml', 2, &
+       ':4:', 'unknown group &materail', '(did you mean &material?)')
+  call expect_one('missing_slash', 'bad_missing_slash.nml', 1, &
+       ':2:', '&run (line 2)', "no closing '/'")
+  call expect_one('missing_required_group', 'bad_missing_group.nml', 1, &
+       ': missing required group &part', '', '')
+  call expect_one('missing_mesh_file', 'bad_mesh_file.nml', 1, &
+       ':4:', "&mesh: file = 'no_such_mesh.msh'", 'not found')
+  call expect_one('unknown_part_material', 'bad_part_material.nml', 1, &
+       ':8:', "&part #1 'sphere': material = 'brass'", "(defined: 'copper', 'steel')")
+  call expect_one('negative_density', 'bad_negative_density.nml', 1, &
+       ':5:', "&material #1 'copper': rho0 = -8930", 'must be > 0')
+  call expect_one('poisson_out_of_range', 'bad_poisson.nml', 1, &
+       ':7:', 'poisson_ratio = 0.5', 'must be in (-1, 0.5)')
+  call expect_one('t_end_not_positive', 'bad_t_end.nml', 1, &
+       ':4:', '&run: t_end = 0', 'must be > 0')
+  call expect_one('bad_string_choice', 'bad_eos_choice.nml', 1, &
+       ':6:', "eos = 'mie'", "valid: 'linear', 'mie_gruneisen'")
+  call test_several()
+
+    failures = nfail
+  end subroutine run_all
+
+  subroutine pass(name)
+    character(len=*), intent(in) :: name
+    write(*, '(a)') 'PASS '//name
+  end subroutine pass
+
+  subroutine fail(name, detail)
+    character(len=*), intent(in) :: name, detail
+    write(*, '(a)') 'FAIL '//name//': '//detail
+    nfail = nfail + 1
+  end subroutine fail
+
+  subroutine dump(errs)
+    type(input_errors_t), intent(in) :: errs
+    integer :: i
+    do i = 1, errs%count()
+      write(*, '(a)') '    | '//errs%message(i)
+    end do
+  end subroutine dump
+
+  !> A deck with one mistake: exactly n_expected messages, one of which holds
+  !> the file name with the line (frag_line, e.g. ':7:') and the other fragments.
+  subroutine expect_one(name, file, n_expected, frag_line, frag2, frag3)
+    character(len=*), intent(in) :: name, file, frag_line, frag2, frag3
+    integer, intent(in) :: n_expected
+    type(config_t) :: cfg
+    type(input_errors_t) :: errs
+
+    call deck_read(dir//file, cfg, errs)
+    if (.not. errs%contains_text(file//frag_line, frag2, frag3)) then
+      call fail(name, 'no message containing "'//file//frag_line//'" "'//frag2//'" "'//frag3//'"')
+      call dump(errs)
+    else if (errs%count() /= n_expected) then
+      call fail(name, 'expected '//itoa(n_expected)//' message(s), got '//itoa(errs%count()))
+      call dump(errs)
+    else if (allocated(cfg%resolved_text)) then
+      call fail(name, 'resolved_text set although the deck has errors')
+    else
+      call pass(name)
+    end if
+  end subroutine expect_one
+
+  !> All mistakes of one deck are reported in one call, each at its line.
+  subroutine test_several()
+    character(len=*), parameter :: f = 'bad_several.nml'
+    type(config_t) :: cfg
+    type(input_errors_t) :: errs
+    integer :: before
+
+    call deck_read(dir//f, cfg, errs)
+    before = nfail
+    call has(f//':3:', '&run: t_end = -1e-5', 'must be > 0')
+    call has(f//':4:', 'dt_safety = 1.5', 'in (0, 1]')
+    call has(f//':5:', 'cycle_print = 10.5', 'not a valid integer')
+    call has(f//':7:', "file = 'no_such_mesh.msh'", 'not found')
+    call has(f//':8:', 'yield_stress', "strength = 'perfectly_plastic'")
+    call has(f//':10:', 'rho0 = 8.9e3.x', 'not a valid real number')
+    call has(f//':11:', "eos = 'mie'", 'unknown choice')
+    call has(f//':12:', "'youngs_modulos'", "'youngs_modulus'")
+    call has(f//':16:', 'unknown group &materail', '&material')
+    call has(f//':17:', "material = 'brass'", "(defined: 'copper')")
+    call has(f//':18:', "&boundary #1 'fixed'", 'surface')
+    call has(f//':19:', "&boundary #2 'rigid_wall'", 'normal = 0, 0, 0')
+    call has(f//':20:', '&output: dt_field = -1', 'must be >= 0')
+    call has(f//':21:', '&output appears again', 'first at line 20')
+    call has(f//':22:', '&run appears again', 'first at line 2')
+    call has(f//':23:', "text outside any group: 'stray text'", '')
+    call has(f//':24:', 'unterminated string', '')
+    call has(f//':24:', '&numerics (line 24)', "no closing '/'")
+    if (nfail == before .and. errs%count() /= 18) &
+         call fail('several_errors', 'expected 18 messages, got '//itoa(errs%count()))
+    if (nfail == before) then
+      call pass('several_errors')
+    else
+      call dump(errs)
+    end if
+
+  contains
+
+    subroutine has(a, b, c)
+      character(len=*), intent(in) :: a, b, c
+      if (.not. errs%contains_text(a, b, c)) &
+           call fail('several_errors', 'no message containing "'//a//'" "'//b//'" "'//c//'"')
+    end subroutine has
+
+  end subroutine test_several
+
+  subroutine test_missing_deck()
+    type(config_t) :: cfg
+    type(input_errors_t) :: errs
+    call deck_read(dir//'no_such_deck.nml', cfg, errs)
+    if (errs%count() == 1 .and. errs%contains_text('no_such_deck.nml', 'cannot read')) then
+      call pass('missing_deck_file')
+    else
+      call fail('missing_deck_file', 'expected one "cannot read" message')
+      call dump(errs)
+    end if
+  end subroutine test_missing_deck
+
+  !> input_errors_report: every message, then one count line.
+  subroutine test_report_format()
+    type(input_errors_t) :: errs
+    character(len=200) :: line
+    integer :: u, n, ios
+    call errs%add('a.nml:1: first')
+    call errs%add('  a.nml:2: second  ')
+    open(newunit=u, status='scratch', action='readwrite')
+    call input_errors_report(errs, u)
+    rewind(u)
+    n = 0
+    do
+      read(u, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      n = n + 1
+      if (n == 2 .and. line /= 'a.nml:2: second') n = -100
+      if (n == 3 .and. line /= '2 input errors.') n = -100
+    end do
+    close(u)
+    if (n == 3 .and. errs%message(2) == 'a.nml:2: second') then
+      call pass('error_report_format')
+    else
+      call fail('error_report_format', 'unexpected report text')
+    end if
+  end subroutine test_report_format
+
+  !> The valid deck: no errors, the values as written, the derived ones filled
+  !> in, and the resolved deck reading back to the same configuration.
+  subroutine test_valid()
+    type(config_t) :: cfg, cfg2, cfg3
+    type(input_errors_t) :: errs
+    character(len=:), allocatable :: why, text, where
+    integer :: before
+
+    call deck_read(dir//'valid.nml', cfg, errs)
+    if (errs%count() /= 0) then
+      call fail('valid_deck', 'unexpected errors')
+      call dump(errs)
+      return
+    end if
+    before = nfail
+    call check(cfg%run%title == 'Cu sphere / "steel" plate & co, t = 20 us ! not a comment', 'title')
+    call check(cfg%run%t_end == 20e-6_rk, 't_end')
+    call check(cfg%run%dt_safety == 0.6_rk .and. cfg%run%cycle_print == 50, 'run values')
+    call check(cfg%mesh%file(1:1) == '/' .and. &
+               index(cfg%mesh%file, '/tiny.msh', back=.true.) == len_trim(cfg%mesh%file) - 8, &
+               'mesh file made absolute')
+    call check(cfg%mesh%scale == 0.001_rk, 'scale')
+    call check(size(cfg%materials) == 2 .and. size(cfg%parts) == 2 .and. &
+               size(cfg%boundaries) == 2, 'group counts')
+    associate(cu => cfg%materials(1), st => cfg%materials(2))
+      call check(cu%name == 'copper' .and. cu%eos == eos_mie_gruneisen .and. &
+                 cu%strength == strength_johnson_cook, 'copper models')
+      call check(cu%bulk_modulus == 8930.0_rk * 3940.0_rk**2, 'copper K = rho0 c0^2')
+      call check(cu%shear_modulus == 124e9_rk / (2 * 1.34_rk), 'copper G from E, nu')
+      call check(cu%jc_n == 0.31_rk .and. cu%t_melt == 1356.0_rk, 'copper JC values')
+      call check(st%name == 'Steel' .and. st%eos == eos_linear .and. &
+                 st%strength == strength_perfectly_plastic, 'steel models')
+      call check(st%bulk_modulus == 166.7e9_rk .and. st%shear_modulus == 76.9e9_rk, 'steel K, G')
+    end associate
+    call check(cfg%parts(1)%group == 'sphere' .and. cfg%parts(1)%material == 'copper', 'part 1')
+    call check(all(cfg%parts(1)%velocity == [0.0_rk, 0.0_rk, -227.0_rk]), 'velocity over lines')
+    call check(cfg%parts(2)%material == 'Steel', 'material name in the material''s spelling')
+    call check(cfg%boundaries(1)%kind == bc_rigid_wall .and. &
+               cfg%boundaries(1)%wall_type == wall_sticking, 'rigid wall')
+    call check(all(cfg%boundaries(1)%normal == [0.0_rk, 0.0_rk, 1.0_rk]), 'normal normalised')
+    call check(cfg%boundaries(2)%kind == bc_symmetry .and. cfg%boundaries(2)%surface == 'x0', &
+               'symmetry')
+    call check(.not. cfg%numerics%anti_locking .and. cfg%numerics%q_linear == 0.1_rk, 'numerics')
+    call check(cfg%output%directory == 'out/run 1' .and. cfg%output%case_name == 'valid', &
+               'output, default case_name')
+    call check(allocated(cfg%resolved_text), 'resolved_text set')
+    if (nfail == before) call pass('valid_deck')
+
+    ! the resolved deck marks defaults and derived values
+    before = nfail
+    call check(index(cfg%resolved_text, "dt_max = ") > 0, 'dt_max listed')
+    call check(index(cfg%resolved_text, '(default)') > 0, '(default) markers')
+    call check(index(cfg%resolved_text, '(derived: rho0*c0**2)') > 0, '(derived) marker')
+    if (nfail == before) call pass('resolved_text_markers')
+
+    ! round trip: the resolved deck reads back to the same configuration
+    call write_file(scratch, cfg%resolved_text)
+    call deck_read(scratch, cfg2, errs)
+    if (errs%count() /= 0) then
+      call fail('round_trip', 'the resolved deck does not read back:')
+      call dump(errs)
+      write(*, '(a)') cfg%resolved_text
+    else
+      why = config_difference(cfg, cfg2)
+      if (len(why) == 0) then
+        call pass('round_trip')
+      else
+        call fail('round_trip', 'differs in '//why)
+      end if
+    end if
+
+    ! the same for the public writer (default markers by value)
+    call deck_write_resolved(cfg, text)
+    call write_file(scratch, text)
+    call deck_read(scratch, cfg3, errs)
+    if (errs%count() /= 0) then
+      call fail('round_trip_public_writer', 'does not read back')
+      call dump(errs)
+    else
+      why = config_difference(cfg, cfg3)
+      if (len(why) == 0) then
+        call pass('round_trip_public_writer')
+      else
+        call fail('round_trip_public_writer', 'differs in '//why)
+      end if
+    end if
+    open(newunit=before, file=scratch, status='old')
+    close(before, status='delete')
+
+    ! message prefixes for errors found later (mesh)
+    where = deck_where(cfg, 'part', 2, 'group')
+    if (index(where, "valid.nml:40: &part #2 'plate': group = 'plate'") > 0) then
+      call pass('deck_where')
+    else
+      call fail('deck_where', 'got "'//where//'"')
+    end if
+
+  contains
+
+    subroutine check(ok, what)
+      logical, intent(in) :: ok
+      character(len=*), intent(in) :: what
+      if (.not. ok) call fail('valid_deck', what)
+    end subroutine check
+
+  end subroutine test_valid
+
+  subroutine write_file(path, text)
+    character(len=*), intent(in) :: path, text
+    integer :: u
+    open(newunit=u, file=path, access='stream', form='unformatted', status='replace', action='write')
+    write(u) text
+    close(u)
+  end subroutine write_file
+
+  !> '' if a and b agree in every deck value, else the first difference.
+  function config_difference(a, b) result(why)
+    type(config_t), intent(in) :: a, b
+    character(len=:), allocatable :: why
+    integer :: k
+    why = ''
+    associate(r => a%run, s => b%run)
+      if (r%title /= s%title) why = 'run%title'
+      if (r%t_end /= s%t_end) why = 'run%t_end'
+      if (r%dt_safety /= s%dt_safety) why = 'run%dt_safety'
+      if (r%dt_initial /= s%dt_initial) why = 'run%dt_initial'
+      if (r%dt_max /= s%dt_max) why = 'run%dt_max'
+      if (r%max_cycles /= s%max_cycles) why = 'run%max_cycles'
+      if (r%cycle_print /= s%cycle_print) why = 'run%cycle_print'
+      if (r%energy_error_limit /= s%energy_error_limit) why = 'run%energy_error_limit'
+      if (r%wall_limit /= s%wall_limit) why = 'run%wall_limit'
+    end associate
+    if (a%mesh%file /= b%mesh%file) why = 'mesh%file'
+    if (a%mesh%scale /= b%mesh%scale) why = 'mesh%scale'
+    if (size(a%materials) /= size(b%materials)) then
+      why = 'number of materials'
+      return
+    end if
+    do k = 1, size(a%materials)
+      associate(m => a%materials(k), n => b%materials(k))
+        if (m%name /= n%name) why = 'material%name'
+        if (m%rho0 /= n%rho0) why = 'material%rho0'
+        if (m%eos /= n%eos) why = 'material%eos'
+        if (m%bulk_modulus /= n%bulk_modulus) why = 'material%bulk_modulus'
+        if (m%c0 /= n%c0) why = 'material%c0'
+        if (m%s /= n%s) why = 'material%s'
+        if (m%gamma0 /= n%gamma0) why = 'material%gamma0'
+        if (m%strength /= n%strength) why = 'material%strength'
+        if (m%shear_modulus /= n%shear_modulus) why = 'material%shear_modulus'
+        if (m%youngs_modulus /= n%youngs_modulus) why = 'material%youngs_modulus'
+        if (m%poisson_ratio /= n%poisson_ratio) why = 'material%poisson_ratio'
+        if (m%yield_stress /= n%yield_stress) why = 'material%yield_stress'
+        if (m%hardening_modulus /= n%hardening_modulus) why = 'material%hardening_modulus'
+        if (m%jc_a /= n%jc_a) why = 'material%jc_a'
+        if (m%jc_b /= n%jc_b) why = 'material%jc_b'
+        if (m%jc_n /= n%jc_n) why = 'material%jc_n'
+        if (m%jc_c /= n%jc_c) why = 'material%jc_c'
+        if (m%jc_m /= n%jc_m) why = 'material%jc_m'
+        if (m%jc_rate0 /= n%jc_rate0) why = 'material%jc_rate0'
+        if (m%t_melt /= n%t_melt) why = 'material%t_melt'
+        if (m%t_room /= n%t_room) why = 'material%t_room'
+        if (m%specific_heat /= n%specific_heat) why = 'material%specific_heat'
+        if (m%taylor_quinney /= n%taylor_quinney) why = 'material%taylor_quinney'
+        if (m%initial_temperature /= n%initial_temperature) why = 'material%initial_temperature'
+      end associate
+    end do
+    if (size(a%parts) /= size(b%parts)) then
+      why = 'number of parts'
+      return
+    end if
+    do k = 1, size(a%parts)
+      if (a%parts(k)%group /= b%parts(k)%group) why = 'part%group'
+      if (a%parts(k)%material /= b%parts(k)%material) why = 'part%material'
+      if (any(a%parts(k)%velocity /= b%parts(k)%velocity)) why = 'part%velocity'
+    end do
+    if (size(a%boundaries) /= size(b%boundaries)) then
+      why = 'number of boundaries'
+      return
+    end if
+    do k = 1, size(a%boundaries)
+      associate(p => a%boundaries(k), q => b%boundaries(k))
+        if (p%kind /= q%kind) why = 'boundary%kind'
+        if (p%surface /= q%surface) why = 'boundary%surface'
+        if (any(p%point /= q%point)) why = 'boundary%point'
+        if (any(p%normal /= q%normal)) why = 'boundary%normal'
+        if (p%wall_type /= q%wall_type) why = 'boundary%wall_type'
+      end associate
+    end do
+    if (a%numerics%anti_locking .neqv. b%numerics%anti_locking) why = 'numerics%anti_locking'
+    if (a%numerics%q_linear /= b%numerics%q_linear) why = 'numerics%q_linear'
+    if (a%numerics%q_quadratic /= b%numerics%q_quadratic) why = 'numerics%q_quadratic'
+    if (a%output%directory /= b%output%directory) why = 'output%directory'
+    if (a%output%case_name /= b%output%case_name) why = 'output%case_name'
+    if (a%output%dt_field /= b%output%dt_field) why = 'output%dt_field'
+    if (a%output%dt_history /= b%output%dt_history) why = 'output%dt_history'
+  end function config_difference
+
+  pure function itoa(i) result(s)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=16) :: buf
+    write(buf, '(i0)') i
+    s = trim(buf)
+  end function itoa
+
+end module test_deck_support
+
+program test_deck
+  use test_deck_support, only: run_all
+  implicit none
+  character(len=1024) :: arg
+  character(len=:), allocatable :: deck_dir, scratch
+  logical :: exists
+  integer :: failures
+
+  call get_command_argument(1, arg)
+  if (len_trim(arg) == 0) arg = 'tests/unit/decks'
+  deck_dir = trim(arg)
+  inquire(file=deck_dir//'/decks/valid.nml', exist=exists)
+  if (exists) deck_dir = deck_dir//'/decks'
+
+  call get_command_argument(2, arg)
+  if (len_trim(arg) == 0) then
+    scratch = 'test_deck_resolved.nml'
+  else
+    inquire(file=trim(arg)//'/.', exist=exists)
+    if (exists) then
+      scratch = trim(arg)//'/resolved.nml'
+    else
+      scratch = trim(arg)//'_resolved.nml'
+    end if
+  end if
+
+  call run_all(deck_dir, scratch, failures)
+  if (failures > 0) then
+    write(*, '(i0,a)') failures, ' test(s) FAILED'
+    error stop 1
+  end if
+  write(*, '(a)') 'all deck tests passed'
+end program test_deck

@@ -1,0 +1,393 @@
+!> Unit test of the gmsh reader (udar_gmsh).
+!>
+!> Usage: test_gmsh <mesh_dir> <tmp_dir>
+!>   mesh_dir  tests/unit/meshes (hand-written .msh files and cube.geo)
+!>   tmp_dir   writable scratch folder (gmsh outputs, damaged copies)
+!> Needs the gmsh executable on PATH for the cube checks.
+!> Prints one line per check, "PASS name" or "FAIL name: detail", and ends
+!> with error stop 1 if any check failed.
+program test_gmsh
+  use, intrinsic :: iso_fortran_env, only: error_unit
+  use udar_kinds, only: rk, max_path_len
+  use udar_gmsh, only: gmsh_mesh_t, gmsh_read
+  implicit none
+
+  integer :: n_pass = 0, n_fail = 0
+  character(len=max_path_len) :: mesh_dir, tmp_dir
+
+  if (command_argument_count() < 2) then
+    write(error_unit, '(a)') 'usage: test_gmsh <mesh_dir> <tmp_dir>'
+    error stop 2
+  end if
+  call get_command_argument(1, mesh_dir)
+  mesh_dir = trim(mesh_dir)//'/meshes'   ! the argument is tests/unit
+  call get_command_argument(2, tmp_dir)
+
+  call test_two_tets('v41', trim(mesh_dir)//'/two_tets_v41.msh')
+  call test_two_tets('v22', trim(mesh_dir)//'/two_tets_v22.msh')
+  call test_formats_agree()
+  call test_scale()
+  call test_zero_volume()
+  call test_missing()
+  call test_truncated()
+  call test_unknown_node()
+  call test_quadratic_only()
+  call test_no_physical_volume()
+  call test_cube()
+
+  write(*, '(a,i0,a,i0,a)') 'test_gmsh: ', n_pass, ' passed, ', n_fail, ' failed'
+  if (n_fail > 0) error stop 1
+
+contains
+
+  subroutine check(name, cond, detail)
+    character(len=*), intent(in) :: name
+    logical, intent(in) :: cond
+    character(len=*), intent(in) :: detail
+    if (cond) then
+      n_pass = n_pass + 1
+      write(*, '(a)') 'PASS '//name
+    else
+      n_fail = n_fail + 1
+      write(*, '(a)') 'FAIL '//name//': '//detail
+    end if
+  end subroutine check
+
+  function itoa(i) result(s)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=16) :: b
+    write(b, '(i0)') i
+    s = trim(b)
+  end function itoa
+
+  function ivec(a) result(s)
+    integer, intent(in) :: a(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = '['
+    do i = 1, size(a)
+      s = s//' '//itoa(a(i))
+    end do
+    s = s//' ]'
+  end function ivec
+
+  function rtoa(x) result(s)
+    real(rk), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: b
+    write(b, '(es24.16)') x
+    s = trim(adjustl(b))
+  end function rtoa
+
+  !> Signed volume of tet i.
+  real(rk) function tet_volume(m, i) result(v)
+    type(gmsh_mesh_t), intent(in) :: m
+    integer, intent(in) :: i
+    real(rk) :: a(3), b(3), d(3)
+    a = m%x(m%tet(i, 2), :) - m%x(m%tet(i, 1), :)
+    b = m%x(m%tet(i, 3), :) - m%x(m%tet(i, 1), :)
+    d = m%x(m%tet(i, 4), :) - m%x(m%tet(i, 1), :)
+    v = (a(1) * (b(2) * d(3) - b(3) * d(2)) - a(2) * (b(1) * d(3) - b(3) * d(1)) &
+       + a(3) * (b(1) * d(2) - b(2) * d(1))) / 6.0_rk
+  end function tet_volume
+
+  integer function group_index(m, dim, name) result(g)
+    type(gmsh_mesh_t), intent(in) :: m
+    integer, intent(in) :: dim
+    character(len=*), intent(in) :: name
+    do g = 1, m%n_groups
+      if (m%groups(g)%dim == dim .and. m%groups(g)%name == name) return
+    end do
+    g = 0
+  end function group_index
+
+  logical function contains_text(s, part)
+    character(len=*), intent(in) :: s, part
+    contains_text = index(s, part) > 0
+  end function contains_text
+
+  subroutine write_text(path, text)
+    character(len=*), intent(in) :: path, text
+    integer :: u
+    open(newunit=u, file=path, status='replace', action='write', access='stream', &
+         form='unformatted')
+    write(u) text
+    close(u)
+  end subroutine write_text
+
+  function read_bytes(path) result(s)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: s
+    integer :: u, n
+    open(newunit=u, file=path, status='old', action='read', access='stream', form='unformatted')
+    inquire(unit=u, size=n)
+    allocate(character(len=n) :: s)
+    read(u) s
+    close(u)
+  end function read_bytes
+
+  ! --------------------------------------------------------------------------
+
+  subroutine test_two_tets(label, path)
+    character(len=*), intent(in) :: label, path
+    type(gmsh_mesh_t) :: m
+    logical :: ok
+    character(len=:), allocatable :: err
+    real(rk) :: xr(5, 3), vol
+    integer :: i, gb, g5, gv, g7
+    character(len=:), allocatable :: t
+
+    t = 'two_tets_'//label//'_'
+    call gmsh_read(path, 1.0_rk, m, ok, err)
+    call check(t//'read', ok, err)
+    if (.not. ok) return
+
+    call check(t//'counts', m%n_nodes == 5 .and. m%n_tets == 2 .and. m%n_tris == 4 &
+               .and. m%n_groups == 4, 'nodes '//itoa(m%n_nodes)//' tets '//itoa(m%n_tets)// &
+               ' tris '//itoa(m%n_tris)//' groups '//itoa(m%n_groups))
+    call check(t//'node_order', all(m%node_tag == [5, 7, 10, 20, 99]), ivec(m%node_tag))
+    ! rows follow node_tag: 5, 7, 10, 20, 99
+    xr(1, :) = [0, 1, 0]
+    xr(2, :) = [0, 0, 1]
+    xr(3, :) = [0, 0, 0]
+    xr(4, :) = [1, 0, 0]
+    xr(5, :) = [1, 1, 1]
+    call check(t//'coordinates', all(m%x == xr), 'coordinates do not follow sorted tags')
+    call check(t//'tet_order', all(m%tet_tag == [42, 101]), ivec(m%tet_tag))
+    ! tet 42 was written as 20 7 5 99 (inverted): expect 20 5 7 99
+    call check(t//'tet42_nodes', all(m%tet(1, :) == [4, 1, 2, 5]), ivec(m%tet(1, :)))
+    call check(t//'tet42_coords', all(m%x(m%tet(1, 1), :) == [1.0_rk, 0.0_rk, 0.0_rk]) .and. &
+               all(m%x(m%tet(1, 2), :) == [0.0_rk, 1.0_rk, 0.0_rk]) .and. &
+               all(m%x(m%tet(1, 3), :) == [0.0_rk, 0.0_rk, 1.0_rk]) .and. &
+               all(m%x(m%tet(1, 4), :) == [1.0_rk, 1.0_rk, 1.0_rk]), &
+               'node coordinates of tet 42 wrong')
+    call check(t//'tet101_nodes', all(m%tet(2, :) == [3, 4, 1, 2]), ivec(m%tet(2, :)))
+    call check(t//'n_inverted', m%n_inverted == 1, 'n_inverted = '//itoa(m%n_inverted))
+    vol = 0.0_rk
+    do i = 1, m%n_tets
+      vol = vol + tet_volume(m, i)
+    end do
+    call check(t//'volumes_positive', tet_volume(m, 1) > 0.0_rk .and. tet_volume(m, 2) > 0.0_rk, &
+               'volumes '//rtoa(tet_volume(m, 1))//' '//rtoa(tet_volume(m, 2)))
+    call check(t//'total_volume', abs(vol - 0.5_rk) < 1.0e-14_rk, rtoa(vol))
+
+    gb = group_index(m, 2, 'bottom')
+    g5 = group_index(m, 2, 'group_5')
+    gv = group_index(m, 3, 'block')
+    g7 = group_index(m, 3, 'group_7')
+    call check(t//'groups', gb == 1 .and. g5 == 2 .and. gv == 3 .and. g7 == 4, &
+               'bottom/group_5/block/group_7 at '//ivec([gb, g5, gv, g7]))
+    if (gv > 0 .and. gb > 0 .and. g5 > 0) then
+      call check(t//'group_tags', m%groups(gv)%tag == 1 .and. m%groups(gb)%tag == 2 .and. &
+                 m%groups(g5)%tag == 5, 'physical tags wrong')
+      call check(t//'tet_group', all(m%tet_group == gv), ivec(m%tet_group))
+      call check(t//'tri_groups', count(m%tri_group == gb) == 2 .and. count(m%tri_group == g5) == 2, &
+                 ivec(m%tri_group))
+      ! rows ordered by (element tag, group): tri 3 = nodes 10 20 5 in "bottom"
+      call check(t//'tri_first_row', all(m%tri(1, :) == [3, 4, 1]) .and. m%tri_group(1) == gb, &
+                 ivec(m%tri(1, :))//' group '//itoa(m%tri_group(1)))
+    end if
+  end subroutine test_two_tets
+
+  subroutine test_formats_agree()
+    type(gmsh_mesh_t) :: a, b
+    logical :: oka, okb
+    character(len=:), allocatable :: err
+    call gmsh_read(trim(mesh_dir)//'/two_tets_v41.msh', 1.0_rk, a, oka, err)
+    call gmsh_read(trim(mesh_dir)//'/two_tets_v22.msh', 1.0_rk, b, okb, err)
+    if (.not. (oka .and. okb)) then
+      call check('two_tets_v41_equals_v22', .false., 'a reading failed')
+      return
+    end if
+    call check('two_tets_v41_equals_v22', all(a%node_tag == b%node_tag) .and. all(a%x == b%x) &
+               .and. all(a%tet == b%tet) .and. all(a%tet_tag == b%tet_tag) .and. &
+               all(a%tri == b%tri) .and. all(a%tri_group == b%tri_group) .and. &
+               all(a%groups%tag == b%groups%tag) .and. all(a%groups%name == b%groups%name), &
+               'v41 and v22 readings differ')
+  end subroutine test_formats_agree
+
+  subroutine test_scale()
+    type(gmsh_mesh_t) :: a, b
+    logical :: oka, okb
+    character(len=:), allocatable :: err
+    call gmsh_read(trim(mesh_dir)//'/two_tets_v41.msh', 1.0_rk, a, oka, err)
+    call gmsh_read(trim(mesh_dir)//'/two_tets_v41.msh', 1.0e-3_rk, b, okb, err)
+    call check('scale_read', oka .and. okb, err)
+    if (.not. (oka .and. okb)) return
+    call check('scale_applied', all(b%x == a%x * 1.0e-3_rk) .and. &
+               all(b%x(5, :) == [1.0e-3_rk, 1.0e-3_rk, 1.0e-3_rk]), &
+               'x(99) = '//rtoa(b%x(5, 1)))
+    call check('scale_orientation', b%n_inverted == 1 .and. all(b%tet == a%tet), &
+               'orientation changed with scale')
+  end subroutine test_scale
+
+  subroutine test_zero_volume()
+    type(gmsh_mesh_t) :: m
+    logical :: ok
+    character(len=:), allocatable :: err
+    call gmsh_read(trim(mesh_dir)//'/zero_volume.msh', 1.0_rk, m, ok, err)
+    call check('zero_volume_fails', .not. ok, 'flat tet accepted')
+    call check('zero_volume_message', contains_text(err, 'element tags: 17') .and. &
+               contains_text(err, 'zero_volume.msh') .and. .not. contains_text(err, ' 3 '), &
+               'message: '//err)
+    call check('zero_volume_mesh_empty', m%n_tets == 0 .and. .not. allocated(m%x), &
+               'mesh not cleared on failure')
+  end subroutine test_zero_volume
+
+  subroutine test_missing()
+    type(gmsh_mesh_t) :: m
+    logical :: ok
+    character(len=:), allocatable :: err, path
+    path = trim(tmp_dir)//'/no_such_mesh.msh'
+    call gmsh_read(path, 1.0_rk, m, ok, err)
+    call check('missing_file', .not. ok .and. contains_text(err, path), 'message: '//err)
+  end subroutine test_missing
+
+  !> Damaged copies: cut the ASCII file in the element block, the binary file
+  !> in the node block.
+  subroutine test_truncated()
+    type(gmsh_mesh_t) :: m
+    logical :: ok
+    character(len=:), allocatable :: err, text, path
+    text = read_bytes(trim(mesh_dir)//'/two_tets_v41.msh')
+    path = trim(tmp_dir)//'/truncated_v41.msh'
+    call write_text(path, text(1:index(text, '101 10 20') + 5))
+    call gmsh_read(path, 1.0_rk, m, ok, err)
+    call check('truncated_ascii', .not. ok .and. contains_text(err, path), 'message: '//err)
+
+    path = trim(tmp_dir)//'/bad_end.msh'
+    call write_text(path, text(1:index(text, '$EndElements') - 1))
+    call gmsh_read(path, 1.0_rk, m, ok, err)
+    call check('missing_end_section', .not. ok .and. contains_text(err, path) .and. &
+               contains_text(err, '$EndElements'), 'message: '//err)
+
+    path = trim(tmp_dir)//'/not_a_mesh.msh'
+    call write_text(path, 'hello'//achar(10))
+    call gmsh_read(path, 1.0_rk, m, ok, err)
+    call check('not_a_mesh', .not. ok .and. contains_text(err, 'MeshFormat'), 'message: '//err)
+
+    path = trim(tmp_dir)//'/v40.msh'
+    call write_text(path, '$MeshFormat'//achar(10)//'4 0 8'//achar(10)//'$EndMeshFormat'//achar(10))
+    call gmsh_read(path, 1.0_rk, m, ok, err)
+    call check('unsupported_version', .not. ok .and. contains_text(err, 'unsupported MSH format') &
+               .and. contains_text(err, path), 'message: '//err)
+  end subroutine test_truncated
+
+  subroutine test_unknown_node()
+    type(gmsh_mesh_t) :: m
+    logical :: ok
+    character(len=:), allocatable :: err, text, path
+    integer :: k
+    text = read_bytes(trim(mesh_dir)//'/two_tets_v22.msh')
+    k = index(text, '42 4 2 1 1 20 7 5 99')
+    text = text(1:k-1)//'42 4 2 1 1 20 7 5 1234'//text(k+20:)
+    path = trim(tmp_dir)//'/unknown_node.msh'
+    call write_text(path, text)
+    call gmsh_read(path, 1.0_rk, m, ok, err)
+    call check('unknown_node_tag', .not. ok .and. contains_text(err, '1234') .and. &
+               contains_text(err, path), 'message: '//err)
+  end subroutine test_unknown_node
+
+  subroutine test_quadratic_only()
+    type(gmsh_mesh_t) :: m
+    logical :: ok
+    character(len=:), allocatable :: err, path
+    character(len=*), parameter :: lf = achar(10)
+    path = trim(tmp_dir)//'/tet10.msh'
+    call write_text(path, '$MeshFormat'//lf//'2.2 0 8'//lf//'$EndMeshFormat'//lf// &
+      '$Nodes'//lf//'10'//lf//'1 0 0 0'//lf//'2 1 0 0'//lf//'3 0 1 0'//lf//'4 0 0 1'//lf// &
+      '5 0.5 0 0'//lf//'6 0.5 0.5 0'//lf//'7 0 0.5 0'//lf//'8 0 0 0.5'//lf//'9 0 0.5 0.5'//lf// &
+      '10 0.5 0 0.5'//lf//'$EndNodes'//lf//'$Elements'//lf//'1'//lf// &
+      '1 11 2 1 1 1 2 3 4 5 6 7 8 9 10'//lf//'$EndElements'//lf)
+    call gmsh_read(path, 1.0_rk, m, ok, err)
+    call check('quadratic_tets_rejected', .not. ok .and. &
+               contains_text(err, 'only linear tetrahedra'), 'message: '//err)
+  end subroutine test_quadratic_only
+
+  subroutine test_no_physical_volume()
+    type(gmsh_mesh_t) :: m
+    logical :: ok
+    character(len=:), allocatable :: err, path
+    character(len=*), parameter :: lf = achar(10)
+    path = trim(tmp_dir)//'/no_physical.msh'
+    call write_text(path, '$MeshFormat'//lf//'2.2 0 8'//lf//'$EndMeshFormat'//lf// &
+      '$Nodes'//lf//'4'//lf//'1 0 0 0'//lf//'2 1 0 0'//lf//'3 0 1 0'//lf//'4 0 0 1'//lf// &
+      '$EndNodes'//lf//'$Elements'//lf//'1'//lf//'1 4 2 0 1 1 2 3 4'//lf//'$EndElements'//lf)
+    call gmsh_read(path, 1.0_rk, m, ok, err)
+    call check('no_physical_volume', .not. ok .and. contains_text(err, 'physical volume'), &
+               'message: '//err)
+  end subroutine test_no_physical_volume
+
+  !> The same gmsh mesh written as MSH 4.1 binary, 4.1 ASCII and 2.2 ASCII
+  !> must read identically.
+  subroutine test_cube()
+    character(len=*), parameter :: fmts(3) = [character(len=24) :: &
+         '-format msh41 -bin', '-format msh41', '-format msh22']
+    character(len=*), parameter :: names(3) = [character(len=16) :: &
+         'cube_bin.msh', 'cube_v41.msh', 'cube_v22.msh']
+    type(gmsh_mesh_t) :: m(3)
+    logical :: ok(3), same
+    character(len=:), allocatable :: err, cmd, out, text
+    integer :: k, i, stat, cstat, gz0, gz1, nz0(3), nz1(3)
+    real(rk) :: vol(3), zerr
+    integer :: nn(3), nt(3)
+
+    cmd = ''
+    do k = 1, 3
+      out = trim(tmp_dir)//'/'//trim(names(k))
+      cmd = 'gmsh -3 '//trim(fmts(k))//' "'//trim(mesh_dir)//'/cube.geo" -o "'//out// &
+            '" > "'//out//'.log" 2>&1'
+      call execute_command_line(cmd, exitstat=stat, cmdstat=cstat)
+      call check('cube_gmsh_'//trim(names(k)), stat == 0 .and. cstat == 0, &
+                 'command failed: '//cmd)
+      call gmsh_read(out, 1.0_rk, m(k), ok(k), err)
+      call check('cube_read_'//trim(names(k)), ok(k), err)
+      if (.not. ok(k)) return
+      vol(k) = 0.0_rk
+      do i = 1, m(k)%n_tets
+        vol(k) = vol(k) + tet_volume(m(k), i)
+      end do
+      call check('cube_volume_'//trim(names(k)), abs(vol(k) - 1.0_rk) < 1.0e-12_rk, rtoa(vol(k)))
+      gz0 = group_index(m(k), 2, 'zmin')
+      gz1 = group_index(m(k), 2, 'zmax')
+      call check('cube_groups_'//trim(names(k)), gz0 > 0 .and. gz1 > 0 .and. &
+                 group_index(m(k), 3, 'cube') > 0, 'zmin/zmax/cube not all found')
+      if (gz0 == 0 .or. gz1 == 0) return
+      nz0(k) = count(m(k)%tri_group == gz0)
+      nz1(k) = count(m(k)%tri_group == gz1)
+      ! every zmin triangle lies on z = 0 and every zmax one on z = 1
+      zerr = 0.0_rk
+      do i = 1, m(k)%n_tris
+        if (m(k)%tri_group(i) == gz0) zerr = max(zerr, maxval(abs(m(k)%x(m(k)%tri(i, :), 3))))
+        if (m(k)%tri_group(i) == gz1) &
+          zerr = max(zerr, maxval(abs(m(k)%x(m(k)%tri(i, :), 3) - 1.0_rk)))
+      end do
+      call check('cube_surface_nodes_'//trim(names(k)), nz0(k) > 0 .and. nz1(k) > 0 .and. &
+                 zerr < 1.0e-12_rk, 'zmin '//itoa(nz0(k))//' zmax '//itoa(nz1(k))// &
+                 ' max |z error| '//rtoa(zerr))
+    end do
+    same = .true.
+    nn = [(m(k)%n_nodes, k = 1, 3)]
+    nt = [(m(k)%n_tets, k = 1, 3)]
+    do k = 2, 3
+      same = same .and. m(k)%n_nodes == m(1)%n_nodes .and. m(k)%n_tets == m(1)%n_tets .and. &
+             nz0(k) == nz0(1) .and. nz1(k) == nz1(1) .and. abs(vol(k) - vol(1)) < 1.0e-12_rk
+    end do
+    call check('cube_formats_agree', same, 'nodes '//ivec(nn)//' tets '//ivec(nt)// &
+               ' zmin '//ivec(nz0)//' zmax '//ivec(nz1))
+    if (same) then
+      call check('cube_connectivity_agree', all(m(1)%tet == m(2)%tet) .and. &
+                 all(m(1)%tet == m(3)%tet) .and. all(m(1)%node_tag == m(3)%node_tag) .and. &
+                 maxval(abs(m(1)%x - m(2)%x)) < 1.0e-15_rk, 'connectivity or coordinates differ')
+    end if
+
+    ! a binary file cut in the middle must be rejected, not misread
+    text = read_bytes(trim(tmp_dir)//'/cube_bin.msh')
+    out = trim(tmp_dir)//'/cube_bin_truncated.msh'
+    call write_text(out, text(1:len(text) / 2))
+    call gmsh_read(out, 1.0_rk, m(1), ok(1), err)
+    call check('truncated_binary', .not. ok(1) .and. contains_text(err, out), 'message: '//err)
+  end subroutine test_cube
+
+end program test_gmsh

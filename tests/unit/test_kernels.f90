@@ -1,0 +1,183 @@
+!> Unit tests of the pure kernels: tet4 geometry, objectivity of the stress
+!> update, radial return, equations of state against hand-computed values.
+program test_kernels
+  use udar_kinds, only: rk
+  use udar_config, only: material_cfg_t, strength_perfectly_plastic, strength_linear_hardening, &
+      strength_johnson_cook, strength_elastic
+  use udar_tet4, only: tet_volume, tet_gradients, tet_velocity_gradient
+  use udar_strength, only: rotate_deviator, deviatoric_update, von_mises, yield_stress
+  use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
+  implicit none
+  integer :: n_fail = 0
+
+  call test_tet_geometry()
+  call test_rigid_rotation()
+  call test_radial_return()
+  call test_eos()
+  if (n_fail > 0) error stop 1
+
+contains
+
+  subroutine check(name, cond, detail)
+    character(len=*), intent(in) :: name, detail
+    logical, intent(in) :: cond
+    if (cond) then
+      print '(a)', 'PASS '//name//': '//detail
+    else
+      print '(a)', 'FAIL '//name//': '//detail
+      n_fail = n_fail + 1
+    end if
+  end subroutine
+
+  function r2s(x) result(s)
+    real(rk), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: b
+    write(b, '(es14.6)') x
+    s = trim(adjustl(b))
+  end function
+
+  subroutine test_tet_geometry()
+    real(rk) :: x(1,4,3), vol(1), grad(1,4,3), h(1), xr(4,3), id(3,3), err
+    integer :: a, k, m
+    ! unit right tetrahedron
+    x(1,1,:) = [0, 0, 0]; x(1,2,:) = [1, 0, 0]; x(1,3,:) = [0, 1, 0]; x(1,4,:) = [0, 0, 1]
+    call tet_gradients(1, 1, x, vol, grad, h)
+    call check('tet_volume_unit', abs(vol(1) - 1.0_rk/6) < 1e-15_rk, 'V = '//r2s(vol(1))//' (1/6)')
+    call check('tet_gradient_unit', maxval(abs(grad(1,1,:) + 1)) < 1e-15_rk .and. &
+               abs(grad(1,2,1) - 1) < 1e-15_rk .and. abs(grad(1,4,3) - 1) < 1e-15_rk, 'grad N1 = (-1,-1,-1), grad N2 = e_x')
+    call check('tet_min_altitude', abs(h(1) - 1.0_rk/sqrt(3.0_rk)) < 1e-14_rk, 'h = '//r2s(h(1))//' (1/sqrt 3)')
+    ! a skewed tetrahedron: partition of unity and linear completeness sum_a x_a (x) grad N_a = I
+    x(1,1,:) = [0.1_rk, -0.2_rk, 0.3_rk]; x(1,2,:) = [1.3_rk, 0.1_rk, -0.2_rk]
+    x(1,3,:) = [0.2_rk, 0.9_rk, 0.4_rk]; x(1,4,:) = [0.3_rk, 0.2_rk, 1.7_rk]
+    call tet_gradients(1, 1, x, vol, grad, h)
+    xr = x(1,:,:)
+    call check('tet_volume_skew', abs(vol(1) - tet_volume(xr)) < 1e-15_rk .and. vol(1) > 0, 'block and scalar volume agree')
+    err = 0
+    do k = 1, 3
+      do m = 1, 3
+        id(k,m) = sum([(x(1,a,k)*grad(1,a,m), a = 1, 4)])
+        err = max(err, abs(id(k,m) - merge(1.0_rk, 0.0_rk, k == m)))
+      end do
+      err = max(err, abs(sum(grad(1,:,k))))
+    end do
+    call check('tet_gradient_completeness', err < 1e-14_rk, 'max error '//r2s(err))
+  end subroutine
+
+  !> Rigid rotation v = omega x x: zero strain rate, and the stress rotated
+  !> by the Jaumann update keeps its invariants.
+  subroutine test_rigid_rotation()
+    real(rk) :: x(1,4,3), v(1,4,3), vol(1), grad(1,4,3), h(1), d(1,6), w(1,3), omega(3), s(6), s0(6)
+    real(rk) :: i2_0, i3_0, dt, xa(3)
+    integer :: a, step
+    omega = [300.0_rk, -200.0_rk, 500.0_rk]
+    x(1,1,:) = [0.1_rk, -0.2_rk, 0.3_rk]; x(1,2,:) = [1.3_rk, 0.1_rk, -0.2_rk]
+    x(1,3,:) = [0.2_rk, 0.9_rk, 0.4_rk]; x(1,4,:) = [0.3_rk, 0.2_rk, 1.7_rk]
+    do a = 1, 4
+      xa = x(1,a,:)
+      v(1,a,:) = cross(omega, xa)
+    end do
+    call tet_gradients(1, 1, x, vol, grad, h)
+    call tet_velocity_gradient(1, 1, v, grad, d, w)
+    call check('rigid_rotation_strain_rate', maxval(abs(d(1,:))) < 1e-10_rk*norm2(omega), &
+               'max |D| = '//r2s(maxval(abs(d(1,:))))//' 1/s for |omega| = '//r2s(norm2(omega)))
+    s0 = [100.0e6_rk, -30.0e6_rk, -70.0e6_rk, 40.0e6_rk, -25.0e6_rk, 10.0e6_rk]
+    s = s0
+    i2_0 = j2(s); i3_0 = j3(s)
+    dt = 1.0e-6_rk
+    do step = 1, 10000   ! 10 ms of rotation: several full turns
+      call rotate_deviator(dt, w(1,:), s)
+    end do
+    call check('objectivity_invariants', abs(j2(s)/i2_0 - 1) < 1e-12_rk .and. abs(j3(s)/i3_0 - 1) < 1e-11_rk, &
+      'J2 drift '//r2s(j2(s)/i2_0 - 1)//', J3 drift '//r2s(j3(s)/i3_0 - 1)//' after 10^4 steps')
+    call check('objectivity_rotates', maxval(abs(s - s0)) > 1e6_rk, 'the stress components did rotate')
+  end subroutine
+
+  subroutine test_radial_return()
+    type(material_cfg_t) :: mat
+    real(rk) :: d(6), s(6), eps, de, wd, wp, dt
+    integer :: k
+    mat%shear_modulus = 40.0e9_rk; mat%yield_stress = 300.0e6_rk
+    mat%strength = strength_perfectly_plastic
+    s = 0; eps = 0; dt = 1.0e-7_rk
+    d = [1.0e4_rk, -0.5e4_rk, -0.5e4_rk, 0.3e4_rk, 0.0_rk, -0.2e4_rk]
+    do k = 1, 50
+      call deviatoric_update(mat, dt, d, 294.0_rk, s, eps, de, wd, wp)
+    end do
+    call check('radial_return_perfect', abs(von_mises(s)/300.0e6_rk - 1) < 1e-12_rk .and. eps > 0, &
+               'q = '//r2s(von_mises(s))//' Pa on sigma_y = 3e8, eps_p = '//r2s(eps))
+    mat%strength = strength_linear_hardening; mat%hardening_modulus = 1.0e9_rk
+    s = 0; eps = 0
+    do k = 1, 50
+      call deviatoric_update(mat, dt, d, 294.0_rk, s, eps, de, wd, wp)
+    end do
+    call check('radial_return_hardening', abs(von_mises(s)/(300.0e6_rk + 1.0e9_rk*eps) - 1) < 1e-12_rk, &
+               'q = '//r2s(von_mises(s))//' = sigma_y(eps_p) = '//r2s(300.0e6_rk + 1.0e9_rk*eps))
+    ! Johnson-Cook (OFHC copper): on the surface at the updated state
+    mat%strength = strength_johnson_cook
+    mat%jc_a = 90e6_rk; mat%jc_b = 292e6_rk; mat%jc_n = 0.31_rk; mat%jc_c = 0.025_rk; mat%jc_m = 1.09_rk
+    mat%t_melt = 1356; mat%t_room = 294; mat%jc_rate0 = 1
+    s = 0; eps = 0
+    do k = 1, 50
+      call deviatoric_update(mat, dt, d, 400.0_rk, s, eps, de, wd, wp)
+    end do
+    call check('radial_return_johnson_cook', abs(von_mises(s)/yield_stress(mat, eps, rate_of(d), 400.0_rk) - 1) &
+               < 1e-9_rk, 'q = '//r2s(von_mises(s))//' Pa, eps_p = '//r2s(eps))
+    ! hand value of the JC flow stress: eps_p = 0.5, rate 1e3/s, T = 500 K
+    call check('johnson_cook_hand_value', abs(yield_stress(mat, 0.5_rk, 1.0e3_rk, 500.0_rk) &
+               - (90e6_rk + 292e6_rk*0.5_rk**0.31_rk)*(1 + 0.025_rk*log(1.0e3_rk))*(1 - (206.0_rk/1062.0_rk)**1.09_rk)) &
+               < 1e-6_rk, 'sigma_y(0.5, 1e3/s, 500 K) = '//r2s(yield_stress(mat, 0.5_rk, 1.0e3_rk, 500.0_rk)))
+    mat%strength = strength_elastic
+    s = 0; eps = 0
+    call deviatoric_update(mat, dt, d, 294.0_rk, s, eps, de, wd, wp)
+    call check('elastic_trial', abs(s(1) - 2*40.0e9_rk*dt*1.0e4_rk) < 1e-3_rk, 's_xx = 2 G dt d_xx')
+  end subroutine
+
+  real(rk) function rate_of(d)
+    real(rk), intent(in) :: d(6)
+    real(rk) :: dd(6)
+    dd = d; dd(1:3) = dd(1:3) - sum(d(1:3))/3
+    rate_of = sqrt(2.0_rk/3*(dd(1)**2 + dd(2)**2 + dd(3)**2 + 2*(dd(4)**2 + dd(5)**2 + dd(6)**2)))
+  end function
+
+  subroutine test_eos()
+    real(rk) :: a, b, p, j, us, up
+    ! linear: p = K (1/J - 1); K = 130 GPa, J = 0.99 -> 1.3131313 GPa
+    call eos_linear_ab(130.0e9_rk, 0.99_rk, a, b)
+    call check('eos_linear', abs(a - 1.3131313131e9_rk) < 1.0_rk .and. b == 0, 'p = '//r2s(a)//' Pa (1.3131313e9)')
+    ! Mie-Grueneisen copper on its Hugoniot: up = 500 m/s, Us = c0 + s up = 4684.5 m/s,
+    ! J = 1 - up/Us, e = up^2/2 -> p = rho0 Us up = 20.917 GPa (Rankine-Hugoniot)
+    up = 500.0_rk; us = 3940.0_rk + 1.489_rk*up
+    j = 1.0_rk - up/us
+    call eos_mie_gruneisen_ab(8930.0_rk, 3940.0_rk, 1.489_rk, 2.02_rk, j, a, b)
+    p = a + b*0.5_rk*up**2
+    call check('eos_mie_gruneisen_hugoniot', abs(p/(8930.0_rk*us*up) - 1) < 1e-12_rk, &
+               'p = '//r2s(p)//' Pa (rho0 Us up = 2.0917e10)')
+    ! cold compression (e = 0), J = 0.9 (eta = 0.1): p_H = rho0 c0^2 eta/(1 - s eta)^2 = 1.9137e10,
+    ! p = p_H (1 - gamma0 eta/2) = 1.7205e10 Pa
+    call eos_mie_gruneisen_ab(8930.0_rk, 3940.0_rk, 1.489_rk, 2.02_rk, 0.9_rk, a, b)
+    p = 8930.0_rk*3940.0_rk**2*0.1_rk/(1 - 0.1489_rk)**2*(1 - 0.101_rk)
+    call check('eos_mie_gruneisen_cold', abs(a/p - 1) < 1e-12_rk .and. abs(b - 2.02_rk*8930) < 1e-9_rk, &
+               'p = '//r2s(a)//' Pa (hand '//r2s(p)//')')
+    ! tension, J = 1.01 (eta = -0.01): p = rho0 c0^2 eta (1 - gamma0 eta/2) = -1.4003e9 Pa
+    call eos_mie_gruneisen_ab(8930.0_rk, 3940.0_rk, 1.489_rk, 2.02_rk, 1.01_rk, a, b)
+    p = 8930.0_rk*3940.0_rk**2*(-0.01_rk)*(1 + 0.0101_rk)
+    call check('eos_mie_gruneisen_tension', abs(a/p - 1) < 1e-12_rk .and. a < 0, 'p = '//r2s(a)//' Pa')
+  end subroutine
+
+  pure function cross(a, b)
+    real(rk), intent(in) :: a(3), b(3)
+    real(rk) :: cross(3)
+    cross = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
+  end function
+
+  pure real(rk) function j2(s)
+    real(rk), intent(in) :: s(6)
+    j2 = 0.5_rk*(s(1)**2 + s(2)**2 + s(3)**2) + s(4)**2 + s(5)**2 + s(6)**2
+  end function
+
+  pure real(rk) function j3(s)
+    real(rk), intent(in) :: s(6)
+    j3 = s(1)*(s(2)*s(3) - s(5)**2) - s(4)*(s(4)*s(3) - s(5)*s(6)) + s(6)*(s(4)*s(5) - s(2)*s(6))
+  end function
+end program test_kernels
