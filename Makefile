@@ -17,7 +17,7 @@ ifeq ($(BUILD),debug)
   FFLAGS := -O0 -g -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace -Wall -Wno-maybe-uninitialized
   EXE    := bin/udar-debug
 else
-  FFLAGS := -O3 -march=$(ARCH) -g -fno-math-errno
+  FFLAGS := -O3 -march=$(ARCH) -g -fno-math-errno -flto=auto
   EXE    := bin/udar
 endif
 FFLAGS += -std=f2018 -ffree-line-length-none $(HDF5_INC)
@@ -27,7 +27,7 @@ BDIR   := build/$(BUILD)
 SRC := src/core/kinds.f90 src/parallel/comms.f90 src/core/fatal.f90 src/core/log.f90 \
        src/core/version.f90 src/core/input_errors.f90 src/model/config.f90 src/io/nml_scan.f90 \
        src/io/deck.f90 src/io/gmsh_reader.f90 src/io/field_output.f90 src/io/history.f90 \
-       src/model/domain.f90 src/model/eos.f90 src/model/strength.f90 src/element/tet4.f90 \
+       src/model/domain.f90 src/model/eos.f90 src/model/strength.f90 src/element/tet4.f90 src/element/hydro.f90 \
        src/element/element_driver.f90 src/solver/nodal.f90 src/solver/setup.f90 src/solver/run.f90
 OBJ := $(patsubst src/%.f90,$(BDIR)/%.o,$(SRC))
 MAIN_OBJ := $(BDIR)/main.o

@@ -5,10 +5,9 @@
 module udar_element_driver
   use udar_kinds, only: rk
   use udar_domain, only: domain_t, block_size
-  use udar_config, only: material_cfg_t, eos_linear, eos_mie_gruneisen, strength_none
   use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_volume
-  use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
-  use udar_strength, only: rotate_deviator, deviatoric_update
+  use udar_strength, only: strength_block, thermal_softening
+  use udar_hydro, only: volumetric_update, dilatational_speed2
   implicit none
   private
   public :: element_volumes, nodal_volumes, element_update, nodal_pressures, &
@@ -69,148 +68,115 @@ contains
     real(rk), intent(in) :: dt
     real(rk), intent(out) :: dt_stable
     integer, intent(out) :: bad_elem
-    real(rk) :: xe(block_size,4,3), ve(block_size,4,3), grad(block_size,4,3), fe(block_size,4,3)
-    real(rk) :: vol(block_size), h(block_size), d(block_size,6), w(block_size,3), p_app(block_size)
-    real(rk) :: sb(block_size,6), s6(6), d6(6), w3(3)
-    integer :: b, i, e, a, nb, first, node, k
+    integer, parameter :: ld = block_size
+    real(rk) :: xe(ld,4,3), ve(ld,4,3), grad(ld,4,3), fe(ld,4,3)
+    real(rk) :: vol(ld), h(ld), d(ld,6), w(ld,3), s(ld,6), p_app(ld), trd(ld), j_new(ld), &
+                w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld)
+    integer :: b, i, e, a, nb, first, last, node, k
     dt_stable = huge(1.0_rk)
     bad_elem = 0
     do b = 1, dom%n_blocks
       first = dom%blk_first(b)
-      nb = dom%blk_last(b) - first + 1
+      last = dom%blk_last(b)
+      nb = last - first + 1
       do a = 1, 4
         do i = 1, nb
           node = dom%el_conn(first+i-1, a)
-          xe(i,a,:) = dom%nd_x(node,:)
-          ve(i,a,:) = dom%nd_v(node,:)
+          xe(i,a,1) = dom%nd_x(node,1); xe(i,a,2) = dom%nd_x(node,2); xe(i,a,3) = dom%nd_x(node,3)
+          ve(i,a,1) = dom%nd_v(node,1); ve(i,a,2) = dom%nd_v(node,2); ve(i,a,3) = dom%nd_v(node,3)
         end do
       end do
-      call tet_gradients(block_size, nb, xe, vol, grad, h)
-      call tet_velocity_gradient(block_size, nb, ve, grad, d, w)
-      associate (mat => dom%mat(dom%el_mat(first)))
+      call tet_gradients(ld, nb, xe, vol, grad, h)
+      if (any(vol(1:nb) <= 0.0_rk)) then
+        ! stop after this cycle; keep the arithmetic finite meanwhile
+        do i = 1, nb
+          if (vol(i) <= 0.0_rk .and. bad_elem == 0) bad_elem = first + i - 1
+        end do
+        where (vol(1:nb) <= 0.0_rk) vol(1:nb) = dom%el_vol0(first:last)
+      end if
+      call tet_velocity_gradient(ld, nb, ve, grad, d, w)
+      ! volume ratio seen by the EOS: nodal average (Bonet-Burton) or the element's own
+      if (dom%anti_locking) then
         do i = 1, nb
           e = first + i - 1
-          p_app(i) = 0.0_rk
-          if (vol(i) <= 0.0_rk) then
-            if (bad_elem == 0) bad_elem = e
-            sb(i,:) = 0.0_rk
-            cycle
+          j_new(i) = 0.25_rk*(dom%nd_vol(dom%el_conn(e,1))/dom%nd_vol0(dom%el_conn(e,1)) &
+                            + dom%nd_vol(dom%el_conn(e,2))/dom%nd_vol0(dom%el_conn(e,2)) &
+                            + dom%nd_vol(dom%el_conn(e,3))/dom%nd_vol0(dom%el_conn(e,3)) &
+                            + dom%nd_vol(dom%el_conn(e,4))/dom%nd_vol0(dom%el_conn(e,4)))
+        end do
+      else
+        j_new(1:nb) = vol(1:nb)/dom%el_vol0(first:last)
+      end if
+      do k = 1, 6
+        s(1:nb,k) = dom%el_s(first:last,k)
+      end do
+      eps(1:nb) = dom%el_eps_p(first:last)
+      hard(1:nb) = dom%el_hard(first:last)
+      soft(1:nb) = dom%el_soft(first:last)
+      e_int(1:nb) = dom%el_e(first:last)
+      p(1:nb) = dom%el_p(first:last)
+      trd(1:nb) = d(1:nb,1) + d(1:nb,2) + d(1:nb,3)
+      associate (mat => dom%mat(dom%el_mat(first)))
+        call strength_block(mat, ld, nb, dt, d, w, soft, hard, s, eps, w_dev, w_pl)
+        call volumetric_update(mat, dom%q_linear, dom%q_quadratic, ld, nb, dt, vol, h, trd, &
+                               dom%el_mass(first:last), dom%el_j(first:last), j_new, w_dev, e_int, p, q, dt_stable)
+        ! plastic work heats the material (Taylor-Quinney share), which softens it
+        do i = 1, nb
+          if (w_pl(i) <= 0.0_rk) cycle
+          e = first + i - 1
+          dom%el_wp(e) = dom%el_wp(e) + w_pl(i)*vol(i)/dom%el_mass(e)
+          if (mat%specific_heat > 0.0_rk) then
+            dom%el_temp(e) = dom%el_temp(e) + mat%taylor_quinney*w_pl(i)*vol(i)/(dom%el_mass(e)*mat%specific_heat)
+            soft(i) = thermal_softening(mat, dom%el_temp(e))
           end if
-          s6 = dom%el_s(e,:); d6 = d(i,:); w3 = w(i,:)
-          call material_update(mat, dom, e, dt, vol(i), h(i), d6, w3, s6, p_app(i), dt_stable)
-          dom%el_s(e,:) = s6; sb(i,:) = s6
         end do
       end associate
+      do k = 1, 6
+        dom%el_s(first:last,k) = s(1:nb,k)
+      end do
+      dom%el_eps_p(first:last) = eps(1:nb)
+      dom%el_hard(first:last) = hard(1:nb)
+      dom%el_soft(first:last) = soft(1:nb)
+      dom%el_e(first:last) = e_int(1:nb)
+      dom%el_p(first:last) = p(1:nb)
+      dom%el_q(first:last) = q(1:nb)
+      dom%el_j(first:last) = j_new(1:nb)
+      dom%el_vol(first:last) = vol(1:nb)
       if (dom%anti_locking) then
         do k = 1, 3
           do a = 1, 4
-            dom%el_grad(first:first+nb-1,a,k) = grad(1:nb,a,k)
+            dom%el_grad(first:last,a,k) = grad(1:nb,a,k)
           end do
         end do
       else
-        call tet_internal_forces(block_size, nb, vol, grad, sb, p_app, fe)
+        p_app(1:nb) = p(1:nb) + q(1:nb)
+        call tet_internal_forces(ld, nb, vol, grad, s, p_app, fe)
         call store_forces(dom, first, nb, fe)
       end if
-      dom%el_vol(first:first+nb-1) = vol(1:nb)
     end do
   end subroutine
-
-  !> State update of element e: rotation, strength, viscosity, EOS and energy.
-  !> p_app returns the pressure its forces see when there is no averaging.
-  subroutine material_update(mat, dom, e, dt, vol, h, d, w, s, p_app, dt_stable)
-    type(material_cfg_t), intent(in) :: mat
-    type(domain_t), intent(inout) :: dom
-    integer, intent(in) :: e
-    real(rk), intent(in) :: dt, vol, h, d(6), w(3)
-    real(rk), intent(inout) :: s(6), dt_stable
-    real(rk), intent(out) :: p_app
-    real(rk) :: j_new, j_old, rho, trd, mass, d_eps_p, w_dev, w_pl, c2, c, q, dv, e_star, a, bcoef, eq, qdt
-    integer :: k
-    mass = dom%el_mass(e)
-    rho = mass/vol
-    trd = d(1) + d(2) + d(3)
-    if (dom%anti_locking) then
-      j_new = 0.0_rk
-      do k = 1, 4
-        j_new = j_new + dom%nd_vol(dom%el_conn(e,k))/dom%nd_vol0(dom%el_conn(e,k))
-      end do
-      j_new = 0.25_rk*j_new
-    else
-      j_new = vol/dom%el_vol0(e)
-    end if
-    j_old = dom%el_j(e)
-    ! deviatoric part (Jaumann rotation, trial step, radial return)
-    if (mat%strength /= strength_none) call rotate_deviator(dt, w, s)
-    call deviatoric_update(mat, dt, d, dom%el_temp(e), s, dom%el_eps_p(e), d_eps_p, w_dev, w_pl)
-    ! sound speed at the old pressure, for the viscosity and the time step
-    c2 = sound_speed2(mat, j_old, dom%el_p(e), rho)
-    c = sqrt(c2)
-    ! linear + quadratic bulk viscosity in compression only
-    if (trd < 0.0_rk) then
-      q = rho*h*(dom%q_quadratic*h*trd*trd - dom%q_linear*c*trd)
-      eq = dom%q_linear*c + dom%q_quadratic*h*abs(trd)
-    else
-      q = 0.0_rk
-      eq = 0.0_rk
-    end if
-    ! energy: e(n+1) = e* - dv/2 (A + B e(n+1)), solved exactly (p linear in e)
-    dv = (j_new - j_old)/mat%rho0
-    qdt = q*trd*dt*vol/mass
-    e_star = dom%el_e(e) + w_dev*vol/mass - qdt - 0.5_rk*dom%el_p(e)*dv
-    select case (mat%eos)
-    case (eos_mie_gruneisen)
-      call eos_mie_gruneisen_ab(mat%rho0, mat%c0, mat%s, mat%gamma0, j_new, a, bcoef)
-    case default
-      call eos_linear_ab(mat%bulk_modulus, j_new, a, bcoef)
-    end select
-    dom%el_e(e) = (e_star - 0.5_rk*dv*a)/(1.0_rk + 0.5_rk*dv*bcoef)
-    dom%el_p(e) = a + bcoef*dom%el_e(e)
-    dom%el_q(e) = q
-    dom%el_j(e) = j_new
-    if (w_pl > 0.0_rk) then
-      dom%el_wp(e) = dom%el_wp(e) + w_pl*vol/mass
-      if (mat%specific_heat > 0.0_rk) &
-        dom%el_temp(e) = dom%el_temp(e) + mat%taylor_quinney*w_pl/(rho*mat%specific_heat)
-    end if
-    p_app = dom%el_p(e) + q
-    ! stable step h / (Q + sqrt(Q^2 + c^2)) with Q the viscosity's own speed
-    dt_stable = min(dt_stable, h/(eq + sqrt(eq*eq + c2)))
-  end subroutine
-
-  !> Square of the dilatational wave speed: bulk sound speed plus 4G/(3 rho).
-  pure real(rk) function sound_speed2(mat, j, p, rho) result(c2)
-    type(material_cfg_t), intent(in) :: mat
-    real(rk), intent(in) :: j, p, rho
-    select case (mat%eos)
-    case (eos_mie_gruneisen)
-      c2 = eos_mie_gruneisen_c2(mat%rho0, mat%c0, mat%s, mat%gamma0, j, p)
-    case default
-      c2 = eos_linear_c2(mat%bulk_modulus, mat%rho0)
-    end select
-    if (mat%strength /= strength_none) c2 = c2 + 4.0_rk*mat%shear_modulus/(3.0_rk*rho)
-  end function
 
   !> Stable step of the current state without advancing it (start-up).
   subroutine element_stable_dt(dom, dt_stable)
     type(domain_t), intent(in) :: dom
     real(rk), intent(out) :: dt_stable
-    real(rk) :: xe(block_size,4,3), grad(block_size,4,3), vol(block_size), h(block_size), c2
-    integer :: b, i, a, nb, first, e
+    integer, parameter :: ld = block_size
+    real(rk) :: xe(ld,4,3), grad(ld,4,3), vol(ld), h(ld), c2(ld)
+    integer :: b, i, a, nb, first, last
     dt_stable = huge(1.0_rk)
     do b = 1, dom%n_blocks
       first = dom%blk_first(b)
-      nb = dom%blk_last(b) - first + 1
+      last = dom%blk_last(b)
+      nb = last - first + 1
       do a = 1, 4
         do i = 1, nb
           xe(i,a,:) = dom%nd_x(dom%el_conn(first+i-1, a),:)
         end do
       end do
-      call tet_gradients(block_size, nb, xe, vol, grad, h)
-      do i = 1, nb
-        e = first + i - 1
-        c2 = sound_speed2(dom%mat(dom%el_mat(e)), dom%el_j(e), dom%el_p(e), dom%el_mass(e)/vol(i))
-        dt_stable = min(dt_stable, h(i)/sqrt(c2))
-      end do
+      call tet_gradients(ld, nb, xe, vol, grad, h)
+      call dilatational_speed2(dom%mat(dom%el_mat(first)), ld, nb, dom%el_j(first:last), dom%el_p(first:last), &
+                               dom%el_mass(first:last), vol, c2)
+      dt_stable = min(dt_stable, minval(h(1:nb)/sqrt(c2(1:nb))))
     end do
   end subroutine
 

@@ -9,6 +9,7 @@ module udar_setup
   use udar_domain, only: domain_t, block_size
   use udar_input_errors, only: input_errors_t
   use udar_tet4, only: tet_volume
+  use udar_strength, only: initial_hardening, thermal_softening
   implicit none
   private
   public :: build_domain
@@ -91,6 +92,8 @@ contains
       dom%el_vol0(e) = tet_volume(xe)
       dom%el_mass(e) = dom%mat(dom%el_mat(e))%rho0*dom%el_vol0(e)
       dom%el_temp(e) = dom%mat(dom%el_mat(e))%initial_temperature
+      dom%el_hard(e) = initial_hardening(dom%mat(dom%el_mat(e)))
+      dom%el_soft(e) = thermal_softening(dom%mat(dom%el_mat(e)), dom%el_temp(e))
     end do
     dom%el_vol = dom%el_vol0
     dom%el_j = 1.0_rk
@@ -123,7 +126,7 @@ contains
              dom%nd_f(nn,3), dom%nd_mass(nn), dom%nd_vol0(nn), dom%nd_vol(nn), dom%nd_p(nn))
     allocate(dom%el_id(ne), dom%el_part(ne), dom%el_mat(ne), dom%el_conn(ne,4), dom%el_vol0(ne), &
              dom%el_vol(ne), dom%el_mass(ne), dom%el_j(ne), dom%el_e(ne), dom%el_wp(ne), dom%el_p(ne), &
-             dom%el_q(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_grad(ne,4,3), &
+             dom%el_q(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_hard(ne), dom%el_soft(ne), dom%el_grad(ne,4,3), &
              dom%el_f(ne,4,3))
     dom%nd_f = 0.0_rk; dom%nd_p = 0.0_rk
     dom%el_e = 0.0_rk; dom%el_wp = 0.0_rk; dom%el_p = 0.0_rk; dom%el_q = 0.0_rk; dom%el_s = 0.0_rk

@@ -5,10 +5,11 @@ program test_kernels
   use udar_config, only: material_cfg_t, strength_perfectly_plastic, strength_linear_hardening, &
       strength_johnson_cook, strength_elastic
   use udar_tet4, only: tet_volume, tet_gradients, tet_velocity_gradient
-  use udar_strength, only: rotate_deviator, deviatoric_update, von_mises, yield_stress
+  use udar_strength, only: strength_block, von_mises, yield_stress, thermal_softening
   use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
   implicit none
   integer :: n_fail = 0
+  real(rk) :: w_test(3) = 0.0_rk   ! spin seen by one_step
 
   call test_tet_geometry()
   call test_rigid_rotation()
@@ -68,7 +69,8 @@ contains
   !> by the Jaumann update keeps its invariants.
   subroutine test_rigid_rotation()
     real(rk) :: x(1,4,3), v(1,4,3), vol(1), grad(1,4,3), h(1), d(1,6), w(1,3), omega(3), s(6), s0(6)
-    real(rk) :: i2_0, i3_0, dt, xa(3)
+    real(rk) :: i2_0, i3_0, dt, xa(3), eps, de, wd, wp
+    type(material_cfg_t) :: mat
     integer :: a, step
     omega = [300.0_rk, -200.0_rk, 500.0_rk]
     x(1,1,:) = [0.1_rk, -0.2_rk, 0.3_rk]; x(1,2,:) = [1.3_rk, 0.1_rk, -0.2_rk]
@@ -79,18 +81,22 @@ contains
     end do
     call tet_gradients(1, 1, x, vol, grad, h)
     call tet_velocity_gradient(1, 1, v, grad, d, w)
+    eps = 0.0_rk
     call check('rigid_rotation_strain_rate', maxval(abs(d(1,:))) < 1e-10_rk*norm2(omega), &
                'max |D| = '//r2s(maxval(abs(d(1,:))))//' 1/s for |omega| = '//r2s(norm2(omega)))
     s0 = [100.0e6_rk, -30.0e6_rk, -70.0e6_rk, 40.0e6_rk, -25.0e6_rk, 10.0e6_rk]
     s = s0
     i2_0 = j2(s); i3_0 = j3(s)
     dt = 1.0e-6_rk
+    mat%strength = strength_elastic; mat%shear_modulus = 40.0e9_rk
+    w_test = w(1,:)
     do step = 1, 10000   ! 10 ms of rotation: several full turns
-      call rotate_deviator(dt, w(1,:), s)
+      call one_step(mat, dt, d(1,:), 294.0_rk, s, eps, de, wd, wp)
     end do
     call check('objectivity_invariants', abs(j2(s)/i2_0 - 1) < 1e-12_rk .and. abs(j3(s)/i3_0 - 1) < 1e-11_rk, &
       'J2 drift '//r2s(j2(s)/i2_0 - 1)//', J3 drift '//r2s(j3(s)/i3_0 - 1)//' after 10^4 steps')
     call check('objectivity_rotates', maxval(abs(s - s0)) > 1e6_rk, 'the stress components did rotate')
+    w_test = 0.0_rk
   end subroutine
 
   subroutine test_radial_return()
@@ -102,14 +108,14 @@ contains
     s = 0; eps = 0; dt = 1.0e-7_rk
     d = [1.0e4_rk, -0.5e4_rk, -0.5e4_rk, 0.3e4_rk, 0.0_rk, -0.2e4_rk]
     do k = 1, 50
-      call deviatoric_update(mat, dt, d, 294.0_rk, s, eps, de, wd, wp)
+      call one_step(mat, dt, d, 294.0_rk, s, eps, de, wd, wp)
     end do
     call check('radial_return_perfect', abs(von_mises(s)/300.0e6_rk - 1) < 1e-12_rk .and. eps > 0, &
                'q = '//r2s(von_mises(s))//' Pa on sigma_y = 3e8, eps_p = '//r2s(eps))
     mat%strength = strength_linear_hardening; mat%hardening_modulus = 1.0e9_rk
     s = 0; eps = 0
     do k = 1, 50
-      call deviatoric_update(mat, dt, d, 294.0_rk, s, eps, de, wd, wp)
+      call one_step(mat, dt, d, 294.0_rk, s, eps, de, wd, wp)
     end do
     call check('radial_return_hardening', abs(von_mises(s)/(300.0e6_rk + 1.0e9_rk*eps) - 1) < 1e-12_rk, &
                'q = '//r2s(von_mises(s))//' = sigma_y(eps_p) = '//r2s(300.0e6_rk + 1.0e9_rk*eps))
@@ -119,7 +125,7 @@ contains
     mat%t_melt = 1356; mat%t_room = 294; mat%jc_rate0 = 1
     s = 0; eps = 0
     do k = 1, 50
-      call deviatoric_update(mat, dt, d, 400.0_rk, s, eps, de, wd, wp)
+      call one_step(mat, dt, d, 400.0_rk, s, eps, de, wd, wp)
     end do
     call check('radial_return_johnson_cook', abs(von_mises(s)/yield_stress(mat, eps, rate_of(d), 400.0_rk) - 1) &
                < 1e-9_rk, 'q = '//r2s(von_mises(s))//' Pa, eps_p = '//r2s(eps))
@@ -129,8 +135,23 @@ contains
                < 1e-6_rk, 'sigma_y(0.5, 1e3/s, 500 K) = '//r2s(yield_stress(mat, 0.5_rk, 1.0e3_rk, 500.0_rk)))
     mat%strength = strength_elastic
     s = 0; eps = 0
-    call deviatoric_update(mat, dt, d, 294.0_rk, s, eps, de, wd, wp)
+    call one_step(mat, dt, d, 294.0_rk, s, eps, de, wd, wp)
     call check('elastic_trial', abs(s(1) - 2*40.0e9_rk*dt*1.0e4_rk) < 1e-3_rk, 's_xx = 2 G dt d_xx')
+  end subroutine
+
+  !> One strength step of a single element through the block kernel.
+  subroutine one_step(mat, dt, d, temp, s, eps, de, wd, wp)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: dt, d(6), temp
+    real(rk), intent(inout) :: s(6), eps
+    real(rk), intent(out) :: de, wd, wp
+    real(rk) :: db(1,6), wb(1,3), soft(1), hard(1), sb(1,6), eb(1), wdb(1), wpb(1)
+    db(1,:) = d; wb(1,:) = w_test; sb(1,:) = s; eb(1) = eps
+    soft(1) = thermal_softening(mat, temp)
+    hard(1) = yield_stress(mat, eps, 0.0_rk, mat%t_room)   ! rate factor 1, no softening
+    call strength_block(mat, 1, 1, dt, db, wb, soft, hard, sb, eb, wdb, wpb)
+    de = eb(1) - eps
+    s = sb(1,:); eps = eb(1); wd = wdb(1); wp = wpb(1)
   end subroutine
 
   real(rk) function rate_of(d)

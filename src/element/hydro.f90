@@ -1,0 +1,82 @@
+!> Volumetric half of the element update, block-wise and pure: linear plus
+!> quadratic artificial viscosity, the energy equation solved exactly with
+!> the EOS (both EOS are linear in e), and the stable time step.
+module udar_hydro
+  use udar_kinds, only: rk
+  use udar_config, only: material_cfg_t, eos_mie_gruneisen, strength_none
+  use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
+  implicit none
+  private
+  public :: volumetric_update, dilatational_speed2
+
+contains
+
+  !> For the first nb elements of a block: viscosity q from the rate of
+  !> volume change trd = tr D (compression only), then
+  !>   e(n+1) = e(n) + (w_dev - q trd dt) V/m - (p(n) + p(n+1)) dv / 2,
+  !>   dv = (J(n+1) - J(n)) / rho0,  p(n+1) = A(J(n+1)) + B e(n+1),
+  !> solved for e(n+1) in closed form; and the smallest
+  !>   dt = h / (Q + sqrt(Q^2 + c^2)),  Q = q_lin c + q_quad h |trd|
+  !> (Hallquist, LS-DYNA theory manual, section 18).
+  pure subroutine volumetric_update(mat, q_lin, q_quad, ld, nb, dt, vol, h, trd, mass, j_old, j_new, &
+                                    w_dev, e, p, q, dt_min)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: q_lin, q_quad, dt
+    integer, intent(in) :: ld, nb
+    real(rk), intent(in) :: vol(ld), h(ld), trd(ld), mass(ld), j_old(ld), j_new(ld), w_dev(ld)
+    real(rk), intent(inout) :: e(ld), p(ld), q(ld), dt_min
+    real(rk) :: c2(ld), a(ld), b(ld), rho, c, eq, dv, e_star
+    integer :: i
+    call dilatational_speed2(mat, ld, nb, j_old, p, mass, vol, c2)
+    if (mat%eos == eos_mie_gruneisen) then
+      do i = 1, nb
+        call eos_mie_gruneisen_ab(mat%rho0, mat%c0, mat%s, mat%gamma0, j_new(i), a(i), b(i))
+      end do
+    else
+      do i = 1, nb
+        call eos_linear_ab(mat%bulk_modulus, j_new(i), a(i), b(i))
+      end do
+    end if
+    do i = 1, nb
+      rho = mass(i)/vol(i)
+      c = sqrt(c2(i))
+      if (trd(i) < 0.0_rk) then
+        q(i) = rho*h(i)*(q_quad*h(i)*trd(i)**2 - q_lin*c*trd(i))
+        eq = q_lin*c - q_quad*h(i)*trd(i)
+      else
+        q(i) = 0.0_rk
+        eq = 0.0_rk
+      end if
+      dv = (j_new(i) - j_old(i))/mat%rho0
+      e_star = e(i) + (w_dev(i) - q(i)*trd(i)*dt)*vol(i)/mass(i) - 0.5_rk*p(i)*dv
+      e(i) = (e_star - 0.5_rk*dv*a(i))/(1.0_rk + 0.5_rk*dv*b(i))
+      p(i) = a(i) + b(i)*e(i)
+      dt_min = min(dt_min, h(i)/(eq + sqrt(eq*eq + c2(i))))
+    end do
+  end subroutine
+
+  !> Square of the dilatational wave speed: bulk sound speed at (J, p) plus
+  !> 4G/(3 rho) for materials with strength.
+  pure subroutine dilatational_speed2(mat, ld, nb, j, p, mass, vol, c2)
+    type(material_cfg_t), intent(in) :: mat
+    integer, intent(in) :: ld, nb
+    real(rk), intent(in) :: j(ld), p(ld), mass(ld), vol(ld)
+    real(rk), intent(inout) :: c2(ld)
+    real(rk) :: g43
+    integer :: i
+    if (mat%eos == eos_mie_gruneisen) then
+      do i = 1, nb
+        c2(i) = eos_mie_gruneisen_c2(mat%rho0, mat%c0, mat%s, mat%gamma0, j(i), p(i))
+      end do
+    else
+      do i = 1, nb
+        c2(i) = eos_linear_c2(mat%bulk_modulus, mat%rho0)
+      end do
+    end if
+    g43 = 0.0_rk
+    if (mat%strength /= strength_none) g43 = 4.0_rk*mat%shear_modulus/3.0_rk
+    do i = 1, nb
+      c2(i) = c2(i) + g43*vol(i)/mass(i)
+    end do
+  end subroutine
+end module udar_hydro
