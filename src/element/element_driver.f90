@@ -6,7 +6,7 @@ module udar_element_driver
   use udar_kinds, only: rk
   use udar_domain, only: domain_t, block_size
   use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_volume
-  use udar_strength, only: strength_block, thermal_softening
+  use udar_strength, only: strength_block, thermal_softening_update
   use udar_hydro, only: volumetric_update, dilatational_speed2
   implicit none
   private
@@ -72,6 +72,7 @@ contains
     real(rk) :: xe(ld,4,3), ve(ld,4,3), grad(ld,4,3), fe(ld,4,3)
     real(rk) :: vol(ld), h(ld), d(ld,6), w(ld,3), s(ld,6), p_app(ld), trd(ld), j_new(ld), &
                 w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld)
+    real(rk) :: t_old
     integer :: b, i, e, a, nb, first, last, node, k
     dt_stable = huge(1.0_rk)
     bad_elem = 0
@@ -87,6 +88,7 @@ contains
         end do
       end do
       call tet_gradients(ld, nb, xe, vol, grad, h)
+      h(1:nb) = 1.0_rk/sqrt(h(1:nb))      ! smallest altitude
       if (any(vol(1:nb) <= 0.0_rk)) then
         ! stop after this cycle; keep the arithmetic finite meanwhile
         do i = 1, nb
@@ -126,8 +128,9 @@ contains
           e = first + i - 1
           dom%el_wp(e) = dom%el_wp(e) + w_pl(i)*vol(i)/dom%el_mass(e)
           if (mat%specific_heat > 0.0_rk) then
-            dom%el_temp(e) = dom%el_temp(e) + mat%taylor_quinney*w_pl(i)*vol(i)/(dom%el_mass(e)*mat%specific_heat)
-            soft(i) = thermal_softening(mat, dom%el_temp(e))
+            t_old = dom%el_temp(e)
+            dom%el_temp(e) = t_old + mat%taylor_quinney*w_pl(i)*vol(i)/(dom%el_mass(e)*mat%specific_heat)
+            soft(i) = thermal_softening_update(mat, soft(i), t_old, dom%el_temp(e))
           end if
         end do
       end associate
@@ -142,13 +145,7 @@ contains
       dom%el_q(first:last) = q(1:nb)
       dom%el_j(first:last) = j_new(1:nb)
       dom%el_vol(first:last) = vol(1:nb)
-      if (dom%anti_locking) then
-        do k = 1, 3
-          do a = 1, 4
-            dom%el_grad(first:last,a,k) = grad(1:nb,a,k)
-          end do
-        end do
-      else
+      if (.not. dom%anti_locking) then
         p_app(1:nb) = p(1:nb) + q(1:nb)
         call tet_internal_forces(ld, nb, vol, grad, s, p_app, fe)
         call store_forces(dom, first, nb, fe)
@@ -174,6 +171,7 @@ contains
         end do
       end do
       call tet_gradients(ld, nb, xe, vol, grad, h)
+      h(1:nb) = 1.0_rk/sqrt(h(1:nb))
       call dilatational_speed2(dom%mat(dom%el_mat(first)), ld, nb, dom%el_j(first:last), dom%el_p(first:last), &
                                dom%el_mass(first:last), vol, c2)
       dt_stable = min(dt_stable, minval(h(1:nb)/sqrt(c2(1:nb))))
@@ -181,41 +179,48 @@ contains
   end subroutine
 
   !> Forces with the element pressure replaced by the mean of its nodes'
-  !> averaged pressures (plus its own viscosity).
+  !> averaged pressures (plus its own viscosity). The gradients are
+  !> recomputed from x(n+1): cheaper than storing and reloading them.
   subroutine element_forces_averaged(dom)
     type(domain_t), intent(inout) :: dom
-    real(rk) :: p_app(block_size), fe(block_size,4,3), vol(block_size), grad(block_size,4,3), sb(block_size,6)
-    integer :: b, i, e, nb, first, a, k
+    integer, parameter :: ld = block_size
+    real(rk) :: xe(ld,4,3), p_app(ld), fe(ld,4,3), vol(ld), grad(ld,4,3), h(ld), sb(ld,6)
+    integer :: b, i, e, nb, first, last, a, k, node
     do b = 1, dom%n_blocks
       first = dom%blk_first(b)
-      nb = dom%blk_last(b) - first + 1
+      last = dom%blk_last(b)
+      nb = last - first + 1
+      do a = 1, 4
+        do i = 1, nb
+          node = dom%el_conn(first+i-1, a)
+          xe(i,a,1) = dom%nd_x(node,1); xe(i,a,2) = dom%nd_x(node,2); xe(i,a,3) = dom%nd_x(node,3)
+        end do
+      end do
+      call tet_gradients(ld, nb, xe, vol, grad, h)
       do i = 1, nb
         e = first + i - 1
         p_app(i) = 0.25_rk*(dom%nd_p(dom%el_conn(e,1)) + dom%nd_p(dom%el_conn(e,2)) &
                  + dom%nd_p(dom%el_conn(e,3)) + dom%nd_p(dom%el_conn(e,4))) + dom%el_q(e)
-        vol(i) = dom%el_vol(e)
       end do
       do k = 1, 6
-        sb(1:nb,k) = dom%el_s(first:first+nb-1,k)
+        sb(1:nb,k) = dom%el_s(first:last,k)
       end do
-      do k = 1, 3
-        do a = 1, 4
-          grad(1:nb,a,k) = dom%el_grad(first:first+nb-1,a,k)
-        end do
-      end do
-      call tet_internal_forces(block_size, nb, vol, grad, sb, p_app, fe)
+      call tet_internal_forces(ld, nb, vol, grad, sb, p_app, fe)
       call store_forces(dom, first, nb, fe)
     end do
   end subroutine
 
+  !> Block forces (ld,4,3) into the element-major el_f(12,n).
   subroutine store_forces(dom, first, nb, fe)
     type(domain_t), intent(inout) :: dom
     integer, intent(in) :: first, nb
     real(rk), intent(in) :: fe(block_size,4,3)
-    integer :: a, k
-    do k = 1, 3
+    integer :: a, i
+    do i = 1, nb
       do a = 1, 4
-        dom%el_f(first:first+nb-1,a,k) = fe(1:nb,a,k)
+        dom%el_f(3*a-2, first+i-1) = fe(i,a,1)
+        dom%el_f(3*a-1, first+i-1) = fe(i,a,2)
+        dom%el_f(3*a,   first+i-1) = fe(i,a,3)
       end do
     end do
   end subroutine
@@ -223,14 +228,16 @@ contains
   !> Nodal forces: element contributions summed in ascending element id.
   subroutine assemble_forces(dom)
     type(domain_t), intent(inout) :: dom
-    integer :: n, k
+    integer :: n, k, c, e
     real(rk) :: fx, fy, fz
     do n = 1, dom%n_nodes
       fx = 0.0_rk; fy = 0.0_rk; fz = 0.0_rk
       do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
-        fx = fx + dom%el_f(dom%nd_el(k), dom%nd_el_corner(k), 1)
-        fy = fy + dom%el_f(dom%nd_el(k), dom%nd_el_corner(k), 2)
-        fz = fz + dom%el_f(dom%nd_el(k), dom%nd_el_corner(k), 3)
+        c = 3*dom%nd_el_corner(k)
+        e = dom%nd_el(k)
+        fx = fx + dom%el_f(c-2, e)
+        fy = fy + dom%el_f(c-1, e)
+        fz = fz + dom%el_f(c, e)
       end do
       dom%nd_f(n,1) = fx; dom%nd_f(n,2) = fy; dom%nd_f(n,3) = fz
     end do

@@ -18,12 +18,12 @@ contains
        + d1(3)*(d2(1)*d3(2) - d2(2)*d3(1))) / 6.0_rk
   end function
 
-  !> Volume, shape-function gradients dN_a/dx_k and smallest altitude
-  !> (1/max|grad N_a|: the altitude over face a is 1/|grad N_a|).
-  pure subroutine tet_gradients(ld, nb, x, vol, grad, h_min)
+  !> Volume, shape-function gradients dN_a/dx_k and g2max = max_a |grad N_a|^2
+  !> (the altitude over face a is 1/|grad N_a|: smallest altitude 1/sqrt(g2max)).
+  pure subroutine tet_gradients(ld, nb, x, vol, grad, g2max)
     integer, intent(in) :: ld, nb
     real(rk), intent(in) :: x(ld,4,3)
-    real(rk), intent(inout) :: vol(ld), grad(ld,4,3), h_min(ld)
+    real(rk), intent(inout) :: vol(ld), grad(ld,4,3), g2max(ld)
     real(rk) :: d1x, d1y, d1z, d2x, d2y, d2z, d3x, d3y, d3z, six_v, r, g2, gmax
     integer :: i, a
     do i = 1, nb
@@ -47,7 +47,7 @@ contains
         g2 = grad(i,a,1)**2 + grad(i,a,2)**2 + grad(i,a,3)**2
         gmax = max(gmax, g2)
       end do
-      h_min(i) = 1.0_rk / sqrt(max(gmax, tiny(1.0_rk)))
+      g2max(i) = max(gmax, tiny(1.0_rk))
     end do
   end subroutine
 

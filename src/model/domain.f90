@@ -38,8 +38,8 @@ module udar_domain
     real(rk), allocatable :: el_s(:,:)          !< (n,6) Pa, deviatoric stress xx,yy,zz,xy,yz,zx
     real(rk), allocatable :: el_eps_p(:), el_temp(:)  !< -, K
     real(rk), allocatable :: el_hard(:), el_soft(:)   !< Pa, -: strain-hardening part and thermal factor of the flow stress
-    real(rk), allocatable :: el_grad(:,:,:)     !< (n,4,3) 1/m, kept between passes (anti-locking)
-    real(rk), allocatable :: el_f(:,:,:)        !< (n,4,3) N, element nodal forces
+    real(rk), allocatable :: el_f(:,:)          !< (12,n) N, element nodal forces (x,y,z of corner 1..4):
+                                                !< element-major so the node-wise assembly reads contiguously
     ! vectorized blocks: runs of consecutive elements of one material
     integer :: n_blocks = 0
     integer, allocatable :: blk_first(:), blk_last(:)

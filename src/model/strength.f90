@@ -7,7 +7,8 @@ module udar_strength
       strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook
   implicit none
   private
-  public :: strength_block, yield_stress, von_mises, thermal_softening, initial_hardening
+  public :: strength_block, yield_stress, von_mises, thermal_softening, thermal_softening_update, &
+            initial_hardening, power_ratio
 
 contains
 
@@ -103,12 +104,11 @@ contains
     case (strength_johnson_cook)
       do i = 1, nb
         d_eps(i) = 0.0_rk
+        sy(i) = soft(i)*hard(i)
+        if (q_trial(i) <= sy(i)) cycle          ! the rate factor is >= 1: elastic
         factor = jc_rate_factor(mat, rate(i))*soft(i)
         sy(i) = factor*hard(i)
-        if (q_trial(i) > sy(i)) then
-          call jc_return(mat, q_trial(i), eps_p(i), factor, d_eps(i), sy(i))
-          if (factor > 0.0_rk) hard(i) = sy(i)/factor
-        end if
+        if (q_trial(i) > sy(i)) call jc_return(mat, q_trial(i), eps_p(i), factor, d_eps(i), sy(i), hard(i))
       end do
     case default
       d_eps(1:nb) = 0.0_rk
@@ -180,36 +180,46 @@ contains
   !> Solves q_trial - 3 G de = factor (A + B (eps_p + de)^n) for de > 0 by
   !> Newton's method kept inside a shrinking bracket (the power law has an
   !> infinite slope at zero plastic strain), started from the return with
-  !> the hardening slope of the current state: usually 2-3 iterations, one
-  !> power each. sy enters with the flow stress at eps_p and leaves with the
-  !> one at eps_p + de.
-  pure subroutine jc_return(mat, q_trial, eps_p, factor, de, sy)
+  !> the hardening slope of the current state. hard = A + B eps_p^n is the
+  !> cached state, so (eps_p + de)^n = eps_p^n (1 + de/eps_p)^n needs no
+  !> power for the small increments of a flowing element (power_ratio).
+  !> sy enters with the flow stress at eps_p and leaves with the one at
+  !> eps_p + de; hard is updated.
+  pure subroutine jc_return(mat, q_trial, eps_p, factor, de, sy, hard)
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: q_trial, eps_p, factor
-    real(rk), intent(inout) :: de, sy
-    real(rk) :: g3, lo, hi, f, fp, e, pw, de_new, slope
+    real(rk), intent(inout) :: de, sy, hard
+    real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, de_new, slope
     integer :: it
     g3 = 3.0_rk*mat%shear_modulus
+    if (factor <= 0.0_rk .or. mat%jc_b <= 0.0_rk) then   ! melted, or no hardening: closed form
+      de = max(q_trial - sy, 0.0_rk)/g3
+      sy = q_trial - g3*de
+      return
+    end if
+    pw0 = max(hard - mat%jc_a, 0.0_rk)/mat%jc_b          ! eps_p^n
     lo = 0.0_rk
     hi = (q_trial - factor*mat%jc_a)/g3     ! the return with no hardening at all
     slope = 0.0_rk
-    if (eps_p > 0.0_rk) slope = mat%jc_n*(sy - factor*mat%jc_a)/eps_p
-    if (factor <= 0.0_rk) then   ! melted: no strength left
-      de = q_trial/g3; sy = 0.0_rk
-      return
-    end if
+    if (eps_p > 0.0_rk) slope = factor*mat%jc_b*mat%jc_n*pw0/eps_p
     de = min((q_trial - sy)/(g3 + slope), hi)
     do it = 1, 60
       e = eps_p + de
-      pw = 0.0_rk
-      if (e > 0.0_rk) pw = e**mat%jc_n
+      if (eps_p > 0.0_rk) then
+        pw = pw0*power_ratio(de/eps_p, mat%jc_n)
+      else
+        pw = e**mat%jc_n
+      end if
       f = q_trial - g3*de - factor*(mat%jc_a + mat%jc_b*pw)
+      ! converged to round-off of the residual (a relative step test alone
+      ! never ends for tiny increments, whose residual noise dominates)
+      if (abs(f) <= 1.0e-13_rk*q_trial) exit
       if (f > 0.0_rk) then
         lo = de
       else
         hi = de
       end if
-      fp = -g3 - factor*mat%jc_b*mat%jc_n*pw/max(e, tiny(1.0_rk))
+      fp = -g3 - factor*mat%jc_b*mat%jc_n*pw/e
       de_new = de - f/fp
       if (de_new <= lo .or. de_new >= hi) de_new = 0.5_rk*(lo + hi)
       if (abs(de_new - de) <= 1.0e-12_rk*de_new) then
@@ -220,7 +230,44 @@ contains
     end do
     ! on the yield surface by construction of the return
     sy = q_trial - g3*de
+    hard = sy/factor
   end subroutine
+
+  !> (1 + x)^n for x > -1: the binomial series to x^6 where |x| < 0.02
+  !> (first omitted term below 1e-13 relative for 0 < n < 2), the power
+  !> otherwise.
+  pure elemental real(rk) function power_ratio(x, n) result(r)
+    real(rk), intent(in) :: x, n
+    real(rk), parameter :: inv_k(6) = [1.0_rk, 1.0_rk/2, 1.0_rk/3, 1.0_rk/4, 1.0_rk/5, 1.0_rk/6]
+    integer :: k
+    if (abs(x) < 0.02_rk) then
+      r = 1.0_rk
+      do k = 6, 1, -1
+        r = 1.0_rk + x*(n - real(k - 1, rk))*inv_k(k)*r
+      end do
+    else
+      r = (1.0_rk + x)**n
+    end if
+  end function
+
+  !> Thermal softening after the temperature rose from temp_old (where it
+  !> was soft_old) to temp_new, with the same series for small changes.
+  pure elemental real(rk) function thermal_softening_update(mat, soft_old, temp_old, temp_new) result(soft)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: soft_old, temp_old, temp_new
+    real(rk) :: ts_old, ts_new
+    if (mat%strength /= strength_johnson_cook) then
+      soft = 1.0_rk
+      return
+    end if
+    ts_old = (temp_old - mat%t_room)/(mat%t_melt - mat%t_room)
+    ts_new = (temp_new - mat%t_room)/(mat%t_melt - mat%t_room)
+    if (ts_old > 0.0_rk .and. ts_new > 0.0_rk .and. ts_new < 1.0_rk .and. soft_old < 1.0_rk) then
+      soft = 1.0_rk - (1.0_rk - soft_old)*power_ratio(ts_new/ts_old - 1.0_rk, mat%jc_m)
+    else
+      soft = jc_thermal_factor(mat, temp_new)
+    end if
+  end function
 
   pure real(rk) function dot6(a, b)
     real(rk), intent(in) :: a(6), b(6)

@@ -5,7 +5,7 @@ program test_kernels
   use udar_config, only: material_cfg_t, strength_perfectly_plastic, strength_linear_hardening, &
       strength_johnson_cook, strength_elastic
   use udar_tet4, only: tet_volume, tet_gradients, tet_velocity_gradient
-  use udar_strength, only: strength_block, von_mises, yield_stress, thermal_softening
+  use udar_strength, only: strength_block, von_mises, yield_stress, thermal_softening, power_ratio
   use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
   implicit none
   integer :: n_fail = 0
@@ -44,6 +44,7 @@ contains
     ! unit right tetrahedron
     x(1,1,:) = [0, 0, 0]; x(1,2,:) = [1, 0, 0]; x(1,3,:) = [0, 1, 0]; x(1,4,:) = [0, 0, 1]
     call tet_gradients(1, 1, x, vol, grad, h)
+    h = 1/sqrt(h)
     call check('tet_volume_unit', abs(vol(1) - 1.0_rk/6) < 1e-15_rk, 'V = '//r2s(vol(1))//' (1/6)')
     call check('tet_gradient_unit', maxval(abs(grad(1,1,:) + 1)) < 1e-15_rk .and. &
                abs(grad(1,2,1) - 1) < 1e-15_rk .and. abs(grad(1,4,3) - 1) < 1e-15_rk, 'grad N1 = (-1,-1,-1), grad N2 = e_x')
@@ -101,7 +102,7 @@ contains
 
   subroutine test_radial_return()
     type(material_cfg_t) :: mat
-    real(rk) :: d(6), s(6), eps, de, wd, wp, dt
+    real(rk) :: d(6), s(6), eps, de, wd, wp, dt, err
     integer :: k
     mat%shear_modulus = 40.0e9_rk; mat%yield_stress = 300.0e6_rk
     mat%strength = strength_perfectly_plastic
@@ -133,6 +134,13 @@ contains
     call check('johnson_cook_hand_value', abs(yield_stress(mat, 0.5_rk, 1.0e3_rk, 500.0_rk) &
                - (90e6_rk + 292e6_rk*0.5_rk**0.31_rk)*(1 + 0.025_rk*log(1.0e3_rk))*(1 - (206.0_rk/1062.0_rk)**1.09_rk)) &
                < 1e-6_rk, 'sigma_y(0.5, 1e3/s, 500 K) = '//r2s(yield_stress(mat, 0.5_rk, 1.0e3_rk, 500.0_rk)))
+    ! the binomial series that replaces the power for small increments
+    err = 0
+    do k = -40, 40
+      err = max(err, abs(power_ratio(k*0.0005_rk, 0.31_rk)/(1 + k*0.0005_rk)**0.31_rk - 1), &
+                     abs(power_ratio(k*0.0005_rk, 1.09_rk)/(1 + k*0.0005_rk)**1.09_rk - 1))
+    end do
+    call check('power_ratio_series', err < 1e-13_rk, 'max relative error '//r2s(err)//' for |x| <= 0.02')
     mat%strength = strength_elastic
     s = 0; eps = 0
     call one_step(mat, dt, d, 294.0_rk, s, eps, de, wd, wp)
