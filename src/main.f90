@@ -5,7 +5,7 @@ program udar
   use udar_kinds, only: rk, max_path_len
   use udar_comms, only: comms_init, comms_finalize, comms_is_root, comms_size
   use udar_fatal, only: fatal, exit_input
-  use udar_log, only: log_info
+  use udar_log, only: log_info, log_warn
   use udar_version, only: program_version
   use udar_config, only: config_t
   use udar_input_errors, only: input_errors_t, input_errors_report
@@ -80,10 +80,13 @@ program udar
     stop
   end if
 
+  if (cfg%run%wall_limit > 0.0_rk) call log_warn('&run wall_limit is not active yet: it needs checkpoint/restart '// &
+                                                 '(to come with the domain-decomposition issue); the run ignores it')
   call log_info('udar '//program_version//': '//trim(cfg%run%title))
   call run_simulation(cfg, dom, res)
-  write(line, '(a,i0,a,es12.5,a,es10.3,a,f10.2,a)') 'udar: done: ', res%cycles, ' cycles to t = ', res%time, &
-    ' s, energy error ', res%energy_error, ', ', res%wall_seconds, ' s wall; fields '// &
+  write(line, '(a,i0,a,es12.5,a,es10.3,a,f0.2,a,f0.1,a)') 'udar: done: ', res%cycles, ' cycles to t = ', &
+    res%time, ' s, energy error ', res%energy_error, ', ', res%wall_seconds, ' s wall (', &
+    res%ns_per_element_cycle, ' ns per element-cycle); fields '// &
     trim(res%field_file)//', history '//trim(res%history_file)
   call log_info(line)
   call comms_finalize()

@@ -43,9 +43,9 @@ contains
   !> the velocity the node moves with over the step (zero for a node resting
   !> on a fixed wall), so the kinetic energy a node loses when it is stopped
   !> dead stays visible in the energy balance as the discrete impact loss.
-  subroutine apply_rigid_walls(dom, dt, wall_work)
+  subroutine apply_rigid_walls(dom, dt, dt_v, wall_work)
     type(domain_t), intent(inout) :: dom
-    real(rk), intent(in) :: dt
+    real(rk), intent(in) :: dt, dt_v   !< the coming step, and the interval the velocity update spans
     real(rk), intent(out) :: wall_work
     integer :: iw, n
     real(rk) :: gap, vn, vn_new, impulse
@@ -57,7 +57,8 @@ contains
           gap = dot_product(dom%nd_x(n,:) - wall%point, wall%normal)
           vn = dot_product(dom%nd_v(n,:), wall%normal)
           if (gap + dt*vn >= 0.0_rk) cycle
-          vn_new = -max(gap, 0.0_rk)/dt
+          ! lands on the wall at the end of the step (a node found behind it is put back)
+          vn_new = -gap/dt
           if (wall%wall_type == wall_sticking) then
             dom%nd_v(n,:) = vn_new*wall%normal
           else
@@ -66,7 +67,8 @@ contains
           impulse = impulse + dom%nd_mass(n)*(vn_new - vn)
           wall_work = wall_work + dom%nd_mass(n)*(vn_new - vn)*vn_new
         end do
-        wall%force = impulse/dt
+        ! the correction is part of the velocity update, so it spans dt_v
+        wall%force = impulse/dt_v
       end associate
     end do
   end subroutine

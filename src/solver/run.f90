@@ -26,6 +26,7 @@ module udar_run
   type :: run_result_t
     integer :: cycles = 0
     real(rk) :: time = 0.0_rk, energy_error = 0.0_rk, wall_seconds = 0.0_rk
+    real(rk) :: ns_per_element_cycle = 0.0_rk   !< wall time of the cycle loop per element and cycle
     character(len=max_path_len) :: field_file = '', history_file = ''
   end type
 
@@ -47,7 +48,7 @@ contains
     type(balance_t) :: bal
     real(rk), allocatable :: work_svm(:), work_rho(:), row(:)
     real(rk) :: t, dt, dt_old, dt_stable, dt_v, e0, e_ref, wall_step_work, wall_work, t_next_field, &
-                t_next_hist, wall0, elapsed
+                t_next_hist, wall0, elapsed, loop0
     integer :: cycle, bad
     logical :: ok, done, history_due, print_due
     integer, parameter :: balance_interval = 10
@@ -84,6 +85,7 @@ contains
     call log_info(line)
 
     done = .false.
+    loop0 = comms_wtime()
     do while (.not. done)
       ! ---- time step: the stable one, or what is left to t_end
       if (cycle == 0 .and. cfg%run%dt_initial > 0.0_rk) then
@@ -99,7 +101,7 @@ contains
       ! ---- nodes: v(n+1/2), conditions, walls, x(n+1)
       call update_velocities(dom, dt_v)
       call apply_velocity_conditions(dom)
-      call apply_rigid_walls(dom, dt, wall_step_work)
+      call apply_rigid_walls(dom, dt, dt_v, wall_step_work)
       wall_work = wall_work + wall_step_work
       call update_positions(dom, dt)
       t = t + dt
@@ -166,6 +168,7 @@ contains
     res%time = t
     res%energy_error = bal%error
     res%wall_seconds = comms_wtime() - wall0
+    res%ns_per_element_cycle = 1.0e9_rk*(comms_wtime() - loop0)/(real(dom%n_elems, rk)*max(cycle, 1))
   contains
     subroutine write_fields(fw, dom, t, cycle, svm, rho)
       type(field_writer_t), intent(inout) :: fw

@@ -3,7 +3,8 @@
 !> Mesh-dependent deck mistakes (unknown group names, a curved symmetry
 !> surface) are added to the same error list as the deck's own.
 module udar_setup
-  use udar_kinds, only: rk, max_name_len
+  use udar_kinds, only: rk, i8, max_name_len
+  use udar_ordering, only: morton_keys, stable_sort_permutation
   use udar_config, only: config_t, bc_fixed, bc_symmetry, bc_rigid_wall
   use udar_gmsh, only: gmsh_mesh_t
   use udar_domain, only: domain_t, block_size
@@ -21,7 +22,9 @@ contains
     type(gmsh_mesh_t), intent(in) :: mesh
     type(domain_t), intent(out) :: dom
     type(input_errors_t), intent(inout) :: errs
-    integer, allocatable :: group_part(:), node_new(:)
+    integer, allocatable :: group_part(:), node_new(:), used(:), perm(:), elem_order(:)
+    integer(i8), allocatable :: keys(:)
+    real(rk), allocatable :: centroid(:,:)
     integer :: ip, ig, e, n, a, k, n_err0
     character(len=:), allocatable :: where
     real(rk) :: xe(4,3)
@@ -50,30 +53,43 @@ contains
     call boundaries_check(cfg, mesh, errs)
     if (errs%count() > n_err0) return
 
-    ! nodes: only those used by tetrahedra, ascending tag order kept
+    ! nodes: only those used by tetrahedra; nodes and elements stored in a
+    ! space-filling-curve order (elements grouped by material) so that
+    ! neighbours are near in memory. The order derives from the mesh alone,
+    ! so it is the same global numbering on every rank; the mesh-file tags
+    ! are kept as the ids.
     allocate(node_new(mesh%n_nodes), source=0)
     do a = 1, 4
       node_new(mesh%tet(:,a)) = 1
     end do
-    dom%n_nodes = 0
-    do n = 1, mesh%n_nodes
-      if (node_new(n) /= 0) then
-        dom%n_nodes = dom%n_nodes + 1
-        node_new(n) = dom%n_nodes
-      end if
-    end do
+    used = pack([(n, n = 1, mesh%n_nodes)], node_new /= 0)
+    dom%n_nodes = size(used)
     dom%n_elems = mesh%n_tets
+    allocate(keys(dom%n_nodes), perm(dom%n_nodes))
+    call morton_keys(mesh%x(used,:), keys)
+    call stable_sort_permutation(keys, perm)
+    node_new(used(perm)) = [(n, n = 1, dom%n_nodes)]
     call allocate_state(dom)
-    do n = 1, mesh%n_nodes
-      if (node_new(n) /= 0) then
-        dom%nd_id(node_new(n)) = mesh%node_tag(n)
-        dom%nd_x0(node_new(n),:) = mesh%x(n,:)
-      end if
-    end do
+    dom%nd_id = mesh%node_tag(used(perm))
+    dom%nd_x0 = mesh%x(used(perm),:)
     dom%nd_x = dom%nd_x0
-    dom%el_id = mesh%tet_tag
+    deallocate(keys, perm)
+    allocate(keys(dom%n_elems), perm(dom%n_elems), centroid(dom%n_elems,3), elem_order(dom%n_elems))
+    do k = 1, 3
+      centroid(:,k) = 0.25_rk*(mesh%x(mesh%tet(:,1),k) + mesh%x(mesh%tet(:,2),k) &
+                             + mesh%x(mesh%tet(:,3),k) + mesh%x(mesh%tet(:,4),k))
+    end do
+    call morton_keys(centroid, keys)
+    call stable_sort_permutation(keys, perm)
+    ! then by material, keeping the curve order inside each material
+    do e = 1, dom%n_elems
+      keys(e) = int(material_index(cfg, cfg%parts(group_part(mesh%tet_group(perm(e))))%material), i8)
+    end do
+    call stable_sort_permutation(keys, elem_order)
+    elem_order = perm(elem_order)
+    dom%el_id = mesh%tet_tag(elem_order)
     do a = 1, 4
-      dom%el_conn(:,a) = node_new(mesh%tet(:,a))
+      dom%el_conn(:,a) = node_new(mesh%tet(elem_order,a))
     end do
 
     ! materials and parts
@@ -84,7 +100,7 @@ contains
       dom%part_name(ip) = cfg%parts(ip)%group
     end do
     do e = 1, dom%n_elems
-      dom%el_part(e) = group_part(mesh%tet_group(e))
+      dom%el_part(e) = group_part(mesh%tet_group(elem_order(e)))
       dom%el_mat(e) = material_index(cfg, cfg%parts(dom%el_part(e))%material)
       do a = 1, 4
         xe(a,:) = dom%nd_x(dom%el_conn(e,a),:)

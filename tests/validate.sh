@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# make validate: the longer validation runs behind doc/validation.md.
+# Taylor bars (Wilkins-Guinan; OFHC copper, Johnson and Cook 1983) at several
+# mesh sizes, anti-locking on and off, run two at a time; the measured final
+# length and footprint go to doc/validation/taylor.csv and the pictures to
+# doc/validation/. About 40 minutes on 2 cores.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+PYTHON=${PYTHON:-/usr/bin/python3}
+W=${VALIDATE_WORK:-$ROOT/tests/work/validate}
+JOBS=${JOBS:-2}
+mkdir -p "$W" doc/validation
+cp bin/udar "$W/udar"     # a rebuild during the runs must not change them
+# case  geo  deck  mesh sizes (mm)
+cases="wg tests/regression/taylor_wg/taylor_wg.geo tests/regression/taylor_wg/taylor_wg.nml 0.6,0.4,0.3
+ofhc input/taylor_ofhc/taylor_ofhc.geo input/taylor_ofhc/taylor_ofhc.nml 0.6,0.45,0.3"
+jobs=()
+while read -r name geo deck sizes; do
+  for h in ${sizes//,/ }; do
+    gmsh -3 -v 0 -setnumber h "$h" "$geo" -o "$W/${name}_h$h.msh"
+    for al in on off; do
+      run=${name}_h${h}_al$al
+      flag=$([ $al = on ] && echo .true. || echo .false.)
+      sed -e "s|file = '[^']*'|file = '$W/${name}_h$h.msh'|" -e "s|directory = 'out'|directory = '$W/$run'|" \
+          -e "/^&numerics/d" "$deck" > "$W/$run.nml"
+      printf '&numerics anti_locking = %s /\n' "$flag" >> "$W/$run.nml"
+      jobs+=("$run")
+    done
+  done
+done <<< "$cases"
+printf '%s\n' "${jobs[@]}" | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"
+csv=doc/validation/taylor.csv
+echo "case,mesh_mm,anti_locking,tets,cycles,wall_s,final_length_mm,footprint_diameter_mm,energy_error" > $csv
+for run in "${jobs[@]}"; do
+  name=${run%%_h*}; rest=${run#*_h}; h=${rest%%_al*}; al=${run##*_al}
+  m=$($PYTHON postproc/taylor.py "$W/$run/$run.h5" --json)
+  L=$($PYTHON -c "import json,sys; m=json.loads(sys.argv[1]); print('%.3f' % (1e3*m['length_m']))" "$m")
+  D=$($PYTHON -c "import json,sys; m=json.loads(sys.argv[1]); print('%.3f' % (1e3*m['footprint_diameter_m']))" "$m")
+  tets=$(grep -o '[0-9]* tetrahedra' "$W/$run.log" | cut -d' ' -f1)
+  cyc=$(grep -o 'done: [0-9]*' "$W/$run.log" | cut -d' ' -f2)
+  wall=$(grep -o '[0-9.]* s wall' "$W/$run.log" | cut -d' ' -f1)
+  err=$(grep -o 'energy error [-0-9.E]*,' "$W/$run.log" | tail -1 | cut -d' ' -f3 | tr -d ,)
+  echo "$name,$h,$al,$tets,$cyc,$wall,$L,$D,$err" | tee -a $csv
+done
+# pictures of the finest anti-locking runs
+for name in wg ofhc; do
+  run=$(printf '%s\n' "${jobs[@]}" | grep "^${name}_" | grep "_alon" | tail -1)
+  $PYTHON postproc/section.py "$W/$run/$run.h5" --plane y=0 --color plastic_strain --mirror -o doc/validation/${name}_section.png
+  $PYTHON postproc/plot_history.py "$W/$run/${run}_history.csv" -o doc/validation/${name}_history.png
+done
+echo "results in $csv and doc/validation/*.png"
