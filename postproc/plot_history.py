@@ -9,40 +9,21 @@ Panels whose columns are missing from the file are left out (a warning names the
 Library use: ``plot_history(path, out, ...)``.
 """
 
-import argparse
 import math
 import os
 import sys
 import tempfile
 import warnings
 
-try:
-    import numpy as np
-except ImportError:
-    if __name__ == "__main__":
-        sys.exit("plot_history.py: error: numpy is not installed for %s; run the udar post-processing "
-                 "scripts with /usr/bin/python3" % sys.executable)
-    raise
-
 if __package__:
     from . import udar_results as ur
 else:
-    import udar_results as ur
+    import udar_results as ur  # run as a script, it stops with a message if numpy is missing
+import numpy as np
 
 
 class HistoryError(Exception):
     """Bad history file or request; the message names the file and the problem."""
-
-
-def _scale(values, unit, prefixes=((1e9, "G"), (1e6, "M"), (1e3, "k"))):
-    """(factor, unit with SI prefix) so that the largest |value| reads between 1 and 1000."""
-    finite = np.asarray(values, dtype=float)
-    finite = finite[np.isfinite(finite)]
-    m = float(np.max(np.abs(finite))) if finite.size else 0.0
-    for f, p in prefixes:
-        if m >= f:
-            return 1.0 / f, p + unit
-    return 1.0, unit
 
 
 def decimate(x, y, max_points=20000):
@@ -70,10 +51,7 @@ def case_name(path):
 
 def plot_history(path, out, title=None, error_limit=None, size=None, dpi=150, verbose=True):
     """Read the history CSV ``path`` and write the figure ``out``. Returns a summary dict."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = ur.agg_pyplot()
     h = ur.read_history(path)
     if "time" not in h:
         raise HistoryError("%s: no 'time' column (columns: %s)" % (path, ", ".join(h)))
@@ -98,7 +76,7 @@ def plot_history(path, out, title=None, error_limit=None, size=None, dpi=150, ve
             present.append((c, lab, ":"))
     if present:
         def p_energy(ax):
-            f, u = _scale(np.concatenate([h[c] for c, _, _ in present]), "J")
+            f, u = ur.si_scale(np.concatenate([h[c] for c, _, _ in present]), "J")
             for c, lab, ls in present:
                 kw = {"color": "k", "lw": 1.6} if c == "total" else {}
                 ax.plot(*decimate(t_us, h[c] * f), ls=ls, label=lab, **kw)
@@ -137,7 +115,7 @@ def plot_history(path, out, title=None, error_limit=None, size=None, dpi=150, ve
     # 4. wall force
     if "wall_force" in h:
         def p_wall(ax):
-            f, u = _scale(h["wall_force"], "N")
+            f, u = ur.si_scale(h["wall_force"], "N")
             ax.plot(*decimate(t_us, h["wall_force"] * f), color="C4")
             ax.set_ylabel("wall force (%s)" % u)
             ax.set_title("rigid wall force")
@@ -148,7 +126,7 @@ def plot_history(path, out, title=None, error_limit=None, size=None, dpi=150, ve
     # 5. per-part kinetic energy
     if parts:
         def p_ke(ax):
-            f, u = _scale(np.concatenate([h["ke_" + p] for p in parts]), "J")
+            f, u = ur.si_scale(np.concatenate([h["ke_" + p] for p in parts]), "J")
             for k, p in enumerate(parts):
                 ax.plot(*decimate(t_us, h["ke_" + p] * f), color="C%d" % (k % 10), label=p)
             ax.set_ylabel("kinetic energy (%s)" % u)
@@ -201,12 +179,7 @@ def plot_history(path, out, title=None, error_limit=None, size=None, dpi=150, ve
             col[-1].set_xlabel("time (µs)")
             col[-1].xaxis.set_tick_params(labelbottom=True)
     fig.suptitle(title or "%s — history" % case_name(path))
-    try:
-        fig.savefig(out, dpi=dpi)
-    except (OSError, ValueError) as e:
-        plt.close(fig)
-        raise HistoryError("cannot write %s: %s" % (out, e)) from None
-    plt.close(fig)
+    ur.save_figure(fig, out, dpi, HistoryError)
 
     summary = {"rows": n, "t_end_s": float(h["time"][-1]), "parts": parts, "panels": len(panels)}
     if "energy_error" in h and np.any(np.isfinite(h["energy_error"])):
@@ -231,6 +204,7 @@ def plot_history(path, out, title=None, error_limit=None, size=None, dpi=150, ve
 # --------------------------------------------------------------------------------------
 
 def _write_synthetic(path, parts=("rod", "anvil_plate"), n=400, columns=None):
+    """A history CSV of an impact with the given parts (all columns, or ``columns``)."""
     t = np.linspace(0.0, 8e-5, n)
     ke0 = 2000.0
     ke = ke0 * np.exp(-t / 2e-5)
@@ -248,22 +222,12 @@ def _write_synthetic(path, parts=("rod", "anvil_plate"), n=400, columns=None):
         cols["com_x_" + p] = np.zeros(n)
         cols["com_y_" + p] = np.zeros(n)
         cols["com_z_" + p] = 0.0127 + k * 0.01 - 1e-3 * (1 - np.exp(-t / 2e-5))
-    names = columns or list(cols)
-    with open(path, "w") as fh:
-        fh.write(",".join(names) + "\n")
-        for i in range(n):
-            fh.write(",".join("%.10E" % cols[c][i] for c in names) + "\n")
+    ur.write_history(path, cols, columns)
 
 
 def _self_test(verbose=True):
-    failures = []
-
-    def check(cond, what):
-        if verbose:
-            print("  %s  %s" % ("ok  " if cond else "FAIL", what))
-        if not cond:
-            failures.append(what)
-
+    test = ur.SelfTest("plot_history", verbose)
+    check = test.check
     with tempfile.TemporaryDirectory(prefix="udar_history_test_") as tmp:
         csvp = os.path.join(tmp, "impact_history.csv")
         _write_synthetic(csvp)
@@ -291,16 +255,11 @@ def _self_test(verbose=True):
         empty = os.path.join(tmp, "empty_history.csv")
         with open(empty, "w") as fh:
             fh.write("time,kinetic\n")
-        try:
-            plot_history(empty, out, verbose=False)
-            check(False, "header-only file rejected")
-        except HistoryError as e:
-            check("empty_history.csv" in str(e) and "no data rows" in str(e), "header-only file rejected")
-        rc = main([os.path.join(tmp, "nope.csv"), "-o", out], _quiet_errors=True)
+        test.raises(HistoryError, "header-only file rejected", plot_history, empty, out,
+                    verbose=False, contains=("empty_history.csv", "no data rows"))
+        rc, _, _ = test.run_main(main, [os.path.join(tmp, "nope.csv"), "-o", out])
         check(rc == 1, "missing file: exit code 1")
-    ok = not failures
-    print("plot_history self-test: %s" % ("PASS" if ok else "FAIL (%d)" % len(failures)))
-    return ok
+    return test.finish()
 
 
 # --------------------------------------------------------------------------------------
@@ -308,18 +267,17 @@ def _self_test(verbose=True):
 # --------------------------------------------------------------------------------------
 
 def build_parser():
-    p = argparse.ArgumentParser(
-        prog="plot_history.py",
-        description="Plot a udar history CSV: energies (kinetic, internal, plastic work, total), "
-                    "relative energy error, momentum components, rigid-wall force, kinetic "
-                    "energy and centre-of-mass displacement per part, against time in µs.",
-        epilog="""examples:
+    p = ur.cli_parser(
+        "plot_history.py",
+        "Plot a udar history CSV: energies (kinetic, internal, plastic work, total), "
+        "relative energy error, momentum components, rigid-wall force, kinetic "
+        "energy and centre-of-mass displacement per part, against time in µs.",
+        """examples:
   /usr/bin/python3 postproc/plot_history.py out/taylor_history.csv -o taylor_history.png
   /usr/bin/python3 postproc/plot_history.py out/taylor_history.csv --error-limit 0.2 -o h.pdf
   /usr/bin/python3 postproc/plot_history.py --self-test
 
-The energy_error column is taken as relative (dimensionless) and drawn in percent.""",
-        formatter_class=argparse.RawDescriptionHelpFormatter)
+The energy_error column is taken as relative (dimensionless) and drawn in percent.""")
     p.add_argument("history", nargs="?", metavar="HISTORY.csv", help="udar history CSV file")
     p.add_argument("-o", "--output", metavar="OUT.png",
                    help="output image (png/pdf/svg by extension); default <case>_history.png")
@@ -328,34 +286,20 @@ The energy_error column is taken as relative (dimensionless) and drawn in percen
                    help="draw +-FRAC lines on the energy error panel (e.g. 0.2, the run's limit)")
     p.add_argument("--size", type=float, nargs=2, metavar=("W", "H"), help="figure size in inches")
     p.add_argument("--dpi", type=int, default=150, help="image resolution (default 150)")
-    p.add_argument("--self-test", action="store_true", help="run the built-in checks, print PASS/FAIL")
-    return p
+    return ur.add_self_test(p)
 
 
-def main(argv=None, _quiet_errors=False):
-    p = build_parser()
-    args = p.parse_args(argv)
-    prog = p.prog
-    ur.cli_warnings(prog)
-    if args.self_test:
-        return 0 if _self_test() else 1
-    if not args.history:
-        p.error("the HISTORY.csv argument is required (or --self-test)")
+def main(argv=None):
+    return ur.cli_main(build_parser(), argv, _self_test, _run, errors=(HistoryError,),
+                       require=("history", "the HISTORY.csv argument is required (or --self-test)"))
+
+
+def _run(args, p):
     out = args.output or os.path.splitext(os.path.basename(args.history))[0] + ".png"
     if os.path.abspath(out) == os.path.abspath(args.history):
         p.error("the output file would overwrite the input")
-    try:
-        plot_history(args.history, out, title=args.title, error_limit=args.error_limit,
-                     size=tuple(args.size) if args.size else None, dpi=args.dpi)
-    except (ur.UdarFileError, HistoryError) as e:
-        if not _quiet_errors:
-            print("%s: error: %s" % (prog, e.args[0] if e.args else e), file=sys.stderr)
-        return 1
-    except ImportError as e:  # matplotlib missing
-        print("%s: error: %s (run the udar post-processing scripts with /usr/bin/python3)"
-              % (prog, e), file=sys.stderr)
-        return 1
-    return 0
+    plot_history(args.history, out, title=args.title, error_limit=args.error_limit,
+                 size=tuple(args.size) if args.size else None, dpi=args.dpi)
 
 
 if __name__ == "__main__":

@@ -14,27 +14,17 @@ Library use: ``plane_from_spec``, ``plane_from_normal``, ``cut_tets``, ``polygon
 ``render_section``.
 """
 
-import argparse
-import io
 import os
 import re
 import sys
 import tempfile
 import time as _time
-from contextlib import redirect_stderr, redirect_stdout
-
-try:
-    import numpy as np
-except ImportError:
-    if __name__ == "__main__":
-        sys.exit("section.py: error: numpy is not installed for %s; run the udar post-processing "
-                 "scripts with /usr/bin/python3" % sys.executable)
-    raise
 
 if __package__:
     from . import udar_results as ur
 else:
-    import udar_results as ur
+    import udar_results as ur  # run as a script, it stops with a message if numpy is missing
+import numpy as np
 
 AXES = "xyz"
 # in-plane (horizontal, vertical) global axes for the axis-aligned planes
@@ -214,14 +204,7 @@ def section_polygons(coords, connectivity, plane):
 
 def _pretty_unit(unit, values):
     """(scale factor, display unit) for stresses in Pa -> kPa/MPa/GPa."""
-    if unit != "Pa":
-        return 1.0, unit
-    finite = values[np.isfinite(values)]
-    m = float(np.max(np.abs(finite))) if finite.size else 0.0
-    for f, u in ((1e9, "GPa"), (1e6, "MPa"), (1e3, "kPa")):
-        if m >= f:
-            return 1.0 / f, u
-    return 1.0, "Pa"
+    return ur.si_scale(values, unit) if unit == "Pa" else (1.0, unit)
 
 
 def element_values(step, name, connectivity):
@@ -258,9 +241,7 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
                    verbose=True):
     """Draw the section of field file ``path`` into image ``out``. Returns a dict with the
     numbers of cut tets, total cut area (m²), step index and time."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = ur.agg_pyplot()
     from matplotlib.collections import PolyCollection
     from matplotlib.patches import Patch
 
@@ -374,12 +355,7 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
             fname, " (%s)" % ftitle if ftitle else "", plane.description, idx, step_cycle,
             step_time * 1e6, ", undeformed" if undeformed else "")
     ax.set_title(title, fontsize="medium")
-    try:
-        fig.savefig(out, dpi=dpi)
-    except (OSError, ValueError) as e:
-        plt.close(fig)
-        raise SectionError("cannot write %s: %s" % (out, e)) from None
-    plt.close(fig)
+    ur.save_figure(fig, out, dpi, SectionError)
     info = {"file": path, "out": out, "step": idx, "cycle": step_cycle, "time_s": step_time,
             "cut_tets": int(elem.size), "area_m2": area, "seconds_cut": t_cut,
             "seconds_total": _time.perf_counter() - t0}
@@ -396,13 +372,8 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
 
 def _self_test(verbose=True):
     """Known cut areas of a unit cube of tets, plus an end-to-end render. Returns True if OK."""
-    failures = []
-
-    def check(cond, what):
-        if verbose:
-            print("  %s  %s" % ("ok  " if cond else "FAIL", what))
-        if not cond:
-            failures.append(what)
+    test = ur.SelfTest("section", verbose)
+    check = test.check
 
     def area_of(nodes, conn, point, normal):
         pl = plane_from_normal(normal, point)
@@ -455,11 +426,7 @@ def _self_test(verbose=True):
     pl = plane_from_spec("x=-2.5mm")
     check(np.allclose(pl.point, [-2.5e-3, 0, 0]) and pl.u_label == "y" and pl.v_label == "z",
           "plane spec 'x=-2.5mm'")
-    try:
-        plane_from_spec("q=1")
-        check(False, "bad plane spec rejected")
-    except SectionError:
-        check(True, "bad plane spec rejected")
+    test.raises(SectionError, "bad plane spec rejected", plane_from_spec, "q=1")
 
     # end-to-end: synthetic field file with two parts, pressure, rendering with mirror
     with tempfile.TemporaryDirectory(prefix="udar_section_test_") as tmp:
@@ -485,28 +452,16 @@ def _self_test(verbose=True):
         check(os.path.getsize(out2) > 1000 and info["step"] == 1, "render by pressure, step -1")
         render_section(h5, out2, step=-1, plane=plane_from_spec("y=0"), color="velocity", verbose=False)
         check(True, "render by node field (averaged)")
-        buf = io.StringIO()
-        with redirect_stdout(buf):
-            rc = main([h5, "--step", "-1", "--plane", "z=5mm", "--color", "pressure", "--mirror-axis", "hv", "--edges", "-o", out2])
-        check(rc == 0 and "tets cut" in buf.getvalue(), "CLI: --plane z=5mm --mirror-axis hv")
-        err = io.StringIO()
-        with redirect_stderr(err):
-            rc = main([h5, "--color", "temperature", "-o", out2])
-        check(rc == 1 and "no field 'temperature'" in err.getvalue(), "CLI: unknown field -> exit 1")
-        try:
-            render_section(h5, out2, color="nosuchfield", verbose=False)
-            check(False, "unknown field rejected")
-        except SectionError as e:
-            check("pressure" in str(e), "unknown field rejected, message lists the fields")
-        try:
-            render_section(h5, out2, plane=plane_from_spec("z=1"), verbose=False)
-            check(False, "plane missing the mesh rejected")
-        except SectionError as e:
-            check("does not cut" in str(e), "plane missing the mesh rejected")
-
-    ok = not failures
-    print("section self-test: %s" % ("PASS" if ok else "FAIL (%d)" % len(failures)))
-    return ok
+        rc, out, _ = test.run_main(main, [h5, "--step", "-1", "--plane", "z=5mm", "--color", "pressure",
+                                   "--mirror-axis", "hv", "--edges", "-o", out2])
+        check(rc == 0 and "tets cut" in out, "CLI: --plane z=5mm --mirror-axis hv")
+        rc, _, err = test.run_main(main, [h5, "--color", "temperature", "-o", out2])
+        check(rc == 1 and "no field 'temperature'" in err, "CLI: unknown field -> exit 1")
+        test.raises(SectionError, "unknown field rejected, message lists the fields", render_section,
+                    h5, out2, color="nosuchfield", verbose=False, contains="pressure")
+        test.raises(SectionError, "plane missing the mesh rejected", render_section, h5, out2,
+                    plane=plane_from_spec("z=1"), verbose=False, contains="does not cut")
+    return test.finish()
 
 
 # --------------------------------------------------------------------------------------
@@ -514,11 +469,11 @@ def _self_test(verbose=True):
 # --------------------------------------------------------------------------------------
 
 def build_parser():
-    p = argparse.ArgumentParser(
-        prog="section.py",
-        description="Cut the deformed tetrahedral mesh of a udar field file (<case>.h5) with a "
-                    "plane and draw the section (axes in mm), coloured by part or by a field.",
-        epilog="""examples:
+    p = ur.cli_parser(
+        "section.py",
+        "Cut the deformed tetrahedral mesh of a udar field file (<case>.h5) with a "
+        "plane and draw the section (axes in mm), coloured by part or by a field.",
+        """examples:
   /usr/bin/python3 postproc/section.py out/taylor.h5 -o taylor_parts.png
   /usr/bin/python3 postproc/section.py out/taylor.h5 --step -1 --plane y=0 --color plastic_strain --mirror -o eps.png
   /usr/bin/python3 postproc/section.py out/taylor.h5 --plane z=1.5mm --color pressure --mirror-axis hv -o p.png
@@ -529,14 +484,10 @@ def build_parser():
 Plane values are in metres (suffix 'mm' for millimetres). For an axis plane the picture
 axes are the global coordinates: x=c -> (y, z), y=c -> (x, z), z=c -> (x, y).
 Element fields are drawn as stored; vector fields as their magnitude; node fields
-(e.g. velocity) as the average of the tet's 4 nodes.""",
-        formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("fields", nargs="?", metavar="FIELDS.h5", help="udar HDF5 field file")
+(e.g. velocity) as the average of the tet's 4 nodes.""")
     p.add_argument("-o", "--output", metavar="OUT.png",
                    help="output image (png/pdf/svg by extension); default <case>_section.png")
-    g = p.add_mutually_exclusive_group()
-    g.add_argument("--step", type=int, default=-1,
-                   help="output step index, negative from the end (default -1 = last)")
+    g = ur.add_fields_argument(p)
     g.add_argument("--time", type=float, metavar="T_US",
                    help="use the step nearest to this time in microseconds instead of --step")
     p.add_argument("--plane", metavar="AXIS=VALUE",
@@ -572,55 +523,40 @@ Element fields are drawn as stored; vector fields as their magnitude; node field
                    help="figure size in inches (default: fitted to the section's shape)")
     p.add_argument("--dpi", type=int, default=150, help="image resolution (default 150)")
     p.add_argument("--info", action="store_true", help="list the file's steps and fields, then exit")
-    p.add_argument("--self-test", action="store_true",
-                   help="run the built-in checks (known cut areas), print PASS/FAIL")
-    return p
+    return ur.add_self_test(p, "run the built-in checks (known cut areas), print PASS/FAIL")
 
 
 def main(argv=None):
-    p = build_parser()
-    args = p.parse_args(argv)
-    prog = p.prog
-    ur.cli_warnings(prog)
-    if args.self_test:
-        return 0 if _self_test() else 1
-    if not args.fields:
-        p.error("the FIELDS.h5 argument is required (or --self-test)")
-    try:
-        if args.info:
-            with ur.open_fields(args.fields) as f:
-                print(f.summary())
-            return 0
-        if args.plane and (args.normal or args.point):
-            p.error("give either --plane or --normal/--point, not both")
-        if args.point and not args.normal:
-            p.error("--point needs --normal")
-        if args.normal:
-            plane = plane_from_normal(args.normal, args.point or (0.0, 0.0, 0.0))
-        else:
-            plane = plane_from_spec(args.plane or "y=0")
-        if args.cmap:
-            import matplotlib
-            matplotlib.use("Agg")
-            if args.cmap not in matplotlib.colormaps:
-                raise SectionError("unknown colormap %r (for example viridis, plasma, inferno, "
-                                   "coolwarm, RdBu_r, jet)" % args.cmap)
-        out = args.output or os.path.splitext(os.path.basename(args.fields))[0] + "_section.png"
-        mirror = args.mirror_axis or ("h" if args.mirror else None)
-        render_section(args.fields, out, step=args.step, plane=plane, color=args.color,
-                       mirror=mirror, cmap=args.cmap, vmin=args.vmin, vmax=args.vmax,
-                       part_names=args.part_names, edges=args.edges, undeformed=args.undeformed,
-                       xlim=args.xlim, ylim=args.ylim, title=args.title,
-                       size=tuple(args.size) if args.size else None,
-                       dpi=args.dpi, time_us=args.time)
-    except (ur.UdarFileError, SectionError, IndexError) as e:
-        print("%s: error: %s" % (prog, e.args[0] if e.args else e), file=sys.stderr)
-        return 1
-    except ImportError as e:  # matplotlib missing
-        print("%s: error: %s (run the udar post-processing scripts with /usr/bin/python3)"
-              % (prog, e), file=sys.stderr)
-        return 1
-    return 0
+    return ur.cli_main(build_parser(), argv, _self_test, _run, errors=(SectionError, IndexError),
+                       require=ur.FIELDS_REQUIRED)
+
+
+def _run(args, p):
+    if args.info:
+        with ur.open_fields(args.fields) as f:
+            print(f.summary())
+        return 0
+    if args.plane and (args.normal or args.point):
+        p.error("give either --plane or --normal/--point, not both")
+    if args.point and not args.normal:
+        p.error("--point needs --normal")
+    if args.normal:
+        plane = plane_from_normal(args.normal, args.point or (0.0, 0.0, 0.0))
+    else:
+        plane = plane_from_spec(args.plane or "y=0")
+    if args.cmap:
+        import matplotlib
+        if args.cmap not in matplotlib.colormaps:
+            raise SectionError("unknown colormap %r (for example viridis, plasma, inferno, "
+                               "coolwarm, RdBu_r, jet)" % args.cmap)
+    out = args.output or os.path.splitext(os.path.basename(args.fields))[0] + "_section.png"
+    mirror = args.mirror_axis or ("h" if args.mirror else None)
+    render_section(args.fields, out, step=args.step, plane=plane, color=args.color,
+                   mirror=mirror, cmap=args.cmap, vmin=args.vmin, vmax=args.vmax,
+                   part_names=args.part_names, edges=args.edges, undeformed=args.undeformed,
+                   xlim=args.xlim, ylim=args.ylim, title=args.title,
+                   size=tuple(args.size) if args.size else None,
+                   dpi=args.dpi, time_us=args.time)
 
 
 if __name__ == "__main__":

@@ -19,28 +19,18 @@ models give the same numbers.
 Library use: ``measure(coords, axis, wall, center, band)`` -> dict.
 """
 
-import argparse
-import io
 import json
 import math
 import os
 import re
 import sys
 import tempfile
-from contextlib import redirect_stderr, redirect_stdout
-
-try:
-    import numpy as np
-except ImportError:
-    if __name__ == "__main__":
-        sys.exit("taylor.py: error: numpy is not installed for %s; run the udar post-processing "
-                 "scripts with /usr/bin/python3" % sys.executable)
-    raise
 
 if __package__:
     from . import udar_results as ur
 else:
-    import udar_results as ur
+    import udar_results as ur  # run as a script, it stops with a message if numpy is missing
+import numpy as np
 
 AXES = "xyz"
 
@@ -147,13 +137,8 @@ def measure_file(path, steps=(-1,), axis=2, wall=0.0, center=(0.0, 0.0), band=5e
 
 def _self_test(verbose=True):
     """Synthetic deformed cylinders (full/half/quarter, each axis, both wall sides)."""
-    failures = []
-
-    def check(cond, what):
-        if verbose:
-            print("  %s  %s" % ("ok  " if cond else "FAIL", what))
-        if not cond:
-            failures.append(what)
+    test = ur.SelfTest("taylor", verbose)
+    check = test.check
 
     def close(a, b, tol=1e-12):
         return abs(a - b) <= tol * max(1.0, abs(b))
@@ -201,10 +186,7 @@ def _self_test(verbose=True):
                 {"time": 6e-5, "cycle": 1234, "coordinates": x}])
             argv = [h5, "--axis", AXES[axis], "--wall", repr(wall), "--center",
                     repr(center[0]), repr(center[1]), "--band", "0.0005"]
-            buf = io.StringIO()
-            with redirect_stdout(buf):
-                rc = main(argv)
-            out = buf.getvalue()
+            rc, out, _ = test.run_main(main, argv)
             mm = re.search(r"^length_m=(\S+) footprint_diameter_m=(\S+) max_diameter_m=(\S+) "
                            r"time_s=(\S+)$", out, re.M)
             ok = rc == 0 and mm is not None
@@ -214,25 +196,19 @@ def _self_test(verbose=True):
                       and close(vals[2], exp_max, 1e-8) and vals[3] == 6e-5)
             check(ok, "%s: CLI machine-readable line" % what)
             if axis == 2 and sector == "full":
-                buf, err = io.StringIO(), io.StringIO()
-                with redirect_stdout(buf), redirect_stderr(err):
-                    rc = main(argv + ["--json", "--all"])
+                rc, out, err = test.run_main(main, argv + ["--json", "--all"])
                 try:
-                    js = json.loads(buf.getvalue())
+                    js = json.loads(out)
                     ok = (rc == 0 and len(js) == 2 and js[0]["footprint_diameter_m"] is None
-                          and "no node within" in err.getvalue()
+                          and "no node within" in err
                           and close(js[1]["length_m"], exp_len) and close(js[0]["initial_length_m"], L))
                 except ValueError:
                     ok = False
                 check(ok, "--json --all (step 0 has no footprint -> null)")
-        err = io.StringIO()
-        with redirect_stderr(err):
-            rc = main([os.path.join(tmp, "missing.h5")])
-        ok = rc == 1 and "missing.h5: no such file" in err.getvalue()
-        check(ok, "missing file: exit code 1 and a message naming the file")
-    ok = not failures
-    print("taylor self-test: %s" % ("PASS" if ok else "FAIL (%d)" % len(failures)))
-    return ok
+        rc, _, err = test.run_main(main, [os.path.join(tmp, "missing.h5")])
+        check(rc == 1 and "missing.h5: no such file" in err,
+              "missing file: exit code 1 and a message naming the file")
+    return test.finish()
 
 
 # --------------------------------------------------------------------------------------
@@ -240,13 +216,13 @@ def _self_test(verbose=True):
 # --------------------------------------------------------------------------------------
 
 def build_parser():
-    p = argparse.ArgumentParser(
-        prog="taylor.py",
-        description="Measure a Taylor anvil rod in a udar field file (<case>.h5): final length "
-                    "from the wall, footprint diameter at the wall and maximum diameter. Prints "
-                    "a machine-readable line 'length_m=... footprint_diameter_m=... "
-                    "max_diameter_m=... time_s=...' and a human-readable line in mm.",
-        epilog="""examples:
+    p = ur.cli_parser(
+        "taylor.py",
+        "Measure a Taylor anvil rod in a udar field file (<case>.h5): final length "
+        "from the wall, footprint diameter at the wall and maximum diameter. Prints "
+        "a machine-readable line 'length_m=... footprint_diameter_m=... "
+        "max_diameter_m=... time_s=...' and a human-readable line in mm.",
+        """examples:
   /usr/bin/python3 postproc/taylor.py out/taylor.h5
   /usr/bin/python3 postproc/taylor.py out/taylor.h5 --step -1 --axis z --wall 0.0 --center 0 0 --band 0.0005
   /usr/bin/python3 postproc/taylor.py out/taylor.h5 --all            # one line per output step
@@ -256,12 +232,8 @@ def build_parser():
 All lengths in metres. --center gives the rod axis in the two transverse coordinates in
 increasing axis order: (x, y) for --axis z, (x, z) for --axis y, (y, z) for --axis x.
 The rod's side of the wall is the side of the mean nodal coordinate; full, half and quarter
-models give the same result when the axis lies in the symmetry planes.""",
-        formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("fields", nargs="?", metavar="FIELDS.h5", help="udar HDF5 field file")
-    g = p.add_mutually_exclusive_group()
-    g.add_argument("--step", type=int, default=-1,
-                   help="output step index, negative from the end (default -1 = last)")
+models give the same result when the axis lies in the symmetry planes.""")
+    g = ur.add_fields_argument(p)
     g.add_argument("--all", action="store_true", help="measure every output step")
     p.add_argument("--axis", default="z", choices=("x", "y", "z"), help="rod axis (default z)")
     p.add_argument("--wall", type=float, default=0.0, metavar="POS",
@@ -276,30 +248,21 @@ models give the same result when the axis lies in the symmetry planes.""",
                    help="measured final length, m: also print the difference from it")
     p.add_argument("--reference-diameter", type=float, metavar="D", default=None,
                    help="measured footprint diameter, m: also print the difference from it")
-    p.add_argument("--self-test", action="store_true",
-                   help="run the built-in checks on synthetic cylinders, print PASS/FAIL")
-    return p
+    return ur.add_self_test(p, "run the built-in checks on synthetic cylinders, print PASS/FAIL")
 
 
 def main(argv=None):
-    p = build_parser()
-    args = p.parse_args(argv)
-    prog = p.prog
-    ur.cli_warnings(prog)
-    if args.self_test:
-        return 0 if _self_test() else 1
-    if not args.fields:
-        p.error("the FIELDS.h5 argument is required (or --self-test)")
+    return ur.cli_main(build_parser(), argv, _self_test, _run, errors=(TaylorError, IndexError),
+                       require=ur.FIELDS_REQUIRED)
+
+
+def _run(args, p):
     if args.band < 0:
         p.error("--band must be >= 0")
     if not all(math.isfinite(v) for v in (args.wall, args.band, *args.center)):
         p.error("--wall, --band and --center must be finite numbers")
-    try:
-        res = measure_file(args.fields, "all" if args.all else [args.step], AXES.index(args.axis),
-                           args.wall, tuple(args.center), args.band)
-    except (ur.UdarFileError, TaylorError, IndexError) as e:
-        print("%s: error: %s" % (prog, e.args[0] if e.args else e), file=sys.stderr)
-        return 1
+    res = measure_file(args.fields, "all" if args.all else [args.step], AXES.index(args.axis),
+                       args.wall, tuple(args.center), args.band)
     if args.json:
         def clean(m):
             return {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in m.items()}

@@ -43,20 +43,26 @@ post-processing scripts use them to make synthetic files.
 
 import argparse
 import csv
+import io
 import os
 import re
 import sys
 import tempfile
 import warnings
+from contextlib import redirect_stderr, redirect_stdout
 from collections import namedtuple
 from collections.abc import Mapping
 
 try:
     import numpy as np
 except ImportError:
-    if __name__ == "__main__":
-        sys.exit("udar_results.py: error: numpy is not installed for %s; run the udar post-processing "
-                 "scripts with /usr/bin/python3" % sys.executable)
+    # run as a script (this one, or a postproc script that imports it first): one line naming
+    # the script instead of a traceback; imported from elsewhere: the ImportError
+    _script = getattr(sys.modules.get("__main__"), "__file__", None) or ""
+    if __name__ == "__main__" or (_script and os.path.dirname(os.path.realpath(_script))
+                                  == os.path.dirname(os.path.realpath(__file__))):
+        sys.exit("%s: error: numpy is not installed for %s; run the udar post-processing "
+                 "scripts with /usr/bin/python3" % (os.path.basename(_script), sys.executable))
     raise
 
 try:
@@ -67,7 +73,8 @@ except ImportError:  # pragma: no cover - depends on the interpreter
 __all__ = [
     "UdarFileError", "open_fields", "FieldFile", "Step", "StepInfo", "read_history",
     "history_parts", "write_fields", "box_tets", "cylinder_tets", "FIELD_UNITS",
-    "field_unit", "cli_warnings", "deck_part_names",
+    "field_unit", "cli_warnings", "deck_part_names", "write_history", "si_scale", "agg_pyplot",
+    "save_figure", "cli_parser", "add_fields_argument", "add_self_test", "FIELDS_REQUIRED", "cli_main", "SelfTest",
 ]
 
 #: SI unit of the known fields ("-" = dimensionless).
@@ -795,20 +802,152 @@ def write_fields(path, x0, connectivity, steps, part_id=None, title="synthetic",
                 g[name] = np.asarray(val)
 
 
+def write_history(path, columns, names=None):
+    """Write a history CSV (header line, then one row per entry, ``%.10E``) from ``columns``
+    {name: 1-D array}; ``names`` picks and orders the columns (default: all, dict order)."""
+    names = list(names or columns)
+    with open(path, "w") as fh:
+        fh.write(",".join(names) + "\n")
+        for i in range(len(columns[names[0]])):
+            fh.write(",".join("%.10E" % columns[c][i] for c in names) + "\n")
+
+
+# --------------------------------------------------------------------------------------
+# pieces shared by the postproc scripts: figures, the CLI frame, self-test checks
+# --------------------------------------------------------------------------------------
+
+def si_scale(values, unit, prefixes=((1e9, "G"), (1e6, "M"), (1e3, "k"))):
+    """(factor, unit with SI prefix) so that the largest finite |value| reads below 1000."""
+    finite = np.asarray(values, dtype=float)
+    finite = finite[np.isfinite(finite)]
+    m = float(np.max(np.abs(finite))) if finite.size else 0.0
+    for f, p in prefixes:
+        if m >= f:
+            return 1.0 / f, p + unit
+    return 1.0, unit
+
+
+def agg_pyplot():
+    """``matplotlib.pyplot`` on the Agg backend (no display needed)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def save_figure(fig, out, dpi, error=UdarFileError):
+    """Write ``fig`` to ``out`` (format from the extension) and close it; a failure raises
+    ``error("cannot write OUT: reason")``."""
+    import matplotlib.pyplot as plt
+    try:
+        fig.savefig(out, dpi=dpi)
+    except (OSError, ValueError) as e:
+        raise error("cannot write %s: %s" % (out, e)) from None
+    finally:
+        plt.close(fig)
+
+
+def cli_parser(prog, description, epilog):
+    """The argument parser of a postproc script (``epilog``: examples, shown as written)."""
+    return argparse.ArgumentParser(prog=prog, description=description, epilog=epilog,
+                                   formatter_class=argparse.RawDescriptionHelpFormatter)
+
+
+#: ``cli_main(..., require=FIELDS_REQUIRED)`` for the scripts using ``add_fields_argument``
+FIELDS_REQUIRED = ("fields", "the FIELDS.h5 argument is required (or --self-test)")
+
+
+def add_fields_argument(parser):
+    """Add the FIELDS.h5 argument of the scripts that read a field file and a mutually
+    exclusive group holding --step (add the alternatives to it); returns the group."""
+    parser.add_argument("fields", nargs="?", metavar="FIELDS.h5", help="udar HDF5 field file")
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("--step", type=int, default=-1,
+                       help="output step index, negative from the end (default -1 = last)")
+    return group
+
+
+def add_self_test(parser, help="run the built-in checks, print PASS/FAIL"):
+    """Add the --self-test option that ``cli_main`` acts on (last, as in every script's
+    --help); returns the parser."""
+    parser.add_argument("--self-test", action="store_true", help=help)
+    return parser
+
+
+def cli_main(parser, argv, self_test, run, errors=(), require=None):
+    """The frame of the postproc command-line scripts; returns the exit status.
+
+    Parses ``argv`` (argparse usage errors exit with 2), makes warnings print one line
+    'prog: warning: ...', runs ``self_test()`` for --self-test (0 on PASS, else 1), stops with
+    a usage error ``require[1]`` when the positional argument ``require[0]`` (its dest) is
+    missing, then returns ``run(args, parser)`` (None = 0). ``UdarFileError``, the exception
+    types in ``errors`` and a missing module (ImportError) print one line
+    'prog: error: <message>' on stderr and give 1.
+    """
+    args = parser.parse_args(argv)
+    prog = parser.prog
+    cli_warnings(prog)
+    if args.self_test:
+        return 0 if self_test() else 1
+    if require and not getattr(args, require[0]):
+        parser.error(require[1])
+    try:
+        return run(args, parser) or 0
+    except (UdarFileError,) + tuple(errors) as e:
+        print("%s: error: %s" % (prog, e.args[0] if e.args else e), file=sys.stderr)
+    except ImportError as e:  # matplotlib missing
+        print("%s: error: %s (run the udar post-processing scripts with /usr/bin/python3)"
+              % (prog, e), file=sys.stderr)
+    return 1
+
+
+class SelfTest:
+    """The checks of a script's --self-test: ``check`` records one (and prints 'ok'/'FAIL'
+    with its description when verbose); ``finish`` prints 'NAME self-test: PASS' (or
+    'FAIL (n)') and returns True when every check passed."""
+
+    def __init__(self, name, verbose=True):
+        self.name, self.verbose, self.failures = name, verbose, []
+
+    def check(self, cond, what):
+        if self.verbose:
+            print("  %s  %s" % ("ok  " if cond else "FAIL", what))
+        if not cond:
+            self.failures.append(what)
+
+    def raises(self, exc, what, func, *args, contains=(), **kwargs):
+        """Check that ``func(*args, **kwargs)`` raises ``exc`` whose text has every string
+        of ``contains`` (a string or a tuple of strings)."""
+        try:
+            func(*args, **kwargs)
+        except exc as e:
+            words = (contains,) if isinstance(contains, str) else contains
+            self.check(all(w in str(e) for w in words), what)
+        else:
+            self.check(False, what)
+
+    @staticmethod
+    def run_main(main, argv):
+        """Call a script's ``main(argv)`` capturing its output -> (status, stdout, stderr)."""
+        out, err = io.StringIO(), io.StringIO()
+        with redirect_stdout(out), redirect_stderr(err):
+            rc = main(argv)
+        return rc, out.getvalue(), err.getvalue()
+
+    def finish(self):
+        ok = not self.failures
+        print("%s self-test: %s" % (self.name, "PASS" if ok else "FAIL (%d)" % len(self.failures)))
+        return ok
+
+
 # --------------------------------------------------------------------------------------
 # self-test and CLI
 # --------------------------------------------------------------------------------------
 
 def _self_test(verbose=True):
     """Round-trip synthetic files through the readers. Returns True if all checks pass."""
-    failures = []
-
-    def check(cond, what):
-        if verbose:
-            print("  %s  %s" % ("ok  " if cond else "FAIL", what))
-        if not cond:
-            failures.append(what)
-
+    test = SelfTest("udar_results", verbose)
+    check = test.check
     with tempfile.TemporaryDirectory(prefix="udar_results_test_") as tmp:
         nodes, conn = box_tets(2, 3, 4)
         check(conn.shape == (6 * 24, 4), "box_tets element count")
@@ -838,16 +977,10 @@ def _self_test(verbose=True):
             check(s.fields.location("pressure") == "elem" and s.fields.location("velocity") == "node",
                   "field locations")
             check(float(s.fields["pressure"][0]) == 2.0, "lazy field read")
-            try:
-                f.step(3)
-                check(False, "out-of-range step raises IndexError")
-            except IndexError as e:
-                check("out of range" in str(e), "out-of-range step raises IndexError")
-            try:
-                s.fields["nope"]
-                check(False, "unknown field raises KeyError")
-            except KeyError as e:
-                check("available" in str(e), "unknown field raises KeyError listing fields")
+            test.raises(IndexError, "out-of-range step raises IndexError", f.step, 3,
+                        contains="out of range")
+            test.raises(KeyError, "unknown field raises KeyError listing fields",
+                        s.fields.__getitem__, "nope", contains="available")
 
         with h5py.File(h5path, "a") as h5:  # a crashed writer: partial group 000003
             g = h5["steps"].create_group("000003")
@@ -885,23 +1018,14 @@ def _self_test(verbose=True):
         bad = os.path.join(tmp, "bad.h5")
         with open(bad, "w") as fh:
             fh.write("not hdf5")
-        try:
-            open_fields(bad)
-            check(False, "non-HDF5 file rejected")
-        except UdarFileError as e:
-            check("bad.h5" in str(e) and "not an HDF5" in str(e), "non-HDF5 file rejected")
-        try:
-            open_fields(os.path.join(tmp, "missing.h5"))
-            check(False, "missing file rejected")
-        except UdarFileError as e:
-            check("no such file" in str(e), "missing file rejected")
+        test.raises(UdarFileError, "non-HDF5 file rejected", open_fields, bad,
+                    contains=("bad.h5", "not an HDF5"))
+        test.raises(UdarFileError, "missing file rejected", open_fields,
+                    os.path.join(tmp, "missing.h5"), contains="no such file")
         one = os.path.join(tmp, "onebased.h5")
         write_fields(one, nodes, conn + 1, steps[:1])
-        try:
-            open_fields(one)
-            check(False, "1-based connectivity rejected")
-        except UdarFileError as e:
-            check("1-based" in str(e), "1-based connectivity rejected")
+        test.raises(UdarFileError, "1-based connectivity rejected", open_fields, one,
+                    contains="1-based")
 
         csvpath = os.path.join(tmp, "case_history.csv")
         with open(csvpath, "w") as fh:
@@ -918,15 +1042,9 @@ def _self_test(verbose=True):
         check(history_parts(h) == ["rod"], "history_parts")
         with open(csvpath, "w") as fh:
             fh.write("time,kinetic\n0,1\n1,abc\n2,3\n")
-        try:
-            read_history(csvpath)
-            check(False, "non-numeric history rejected")
-        except UdarFileError as e:
-            check("line 3" in str(e), "non-numeric history rejected with line number")
-
-    ok = not failures
-    print("udar_results self-test: %s" % ("PASS" if ok else "FAIL (%d)" % len(failures)))
-    return ok
+        test.raises(UdarFileError, "non-numeric history rejected with line number", read_history,
+                    csvpath, contains="line 3")
+    return test.finish()
 
 
 def _summarize_history(path):
@@ -943,33 +1061,25 @@ def _summarize_history(path):
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(
-        prog="udar_results.py",
-        description="Summarize a udar output file: an HDF5 field file (<case>.h5: mesh, steps, "
-                    "fields) or a history CSV (<case>_history.csv: columns with first/last/min/max). "
-                    "Mainly a library for the other postproc scripts.",
-        epilog="examples:\n  /usr/bin/python3 postproc/udar_results.py out/taylor.h5\n"
-               "  /usr/bin/python3 postproc/udar_results.py out/taylor_history.csv\n"
-               "  /usr/bin/python3 postproc/udar_results.py --self-test",
-        formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = cli_parser(
+        "udar_results.py",
+        "Summarize a udar output file: an HDF5 field file (<case>.h5: mesh, steps, "
+        "fields) or a history CSV (<case>_history.csv: columns with first/last/min/max). "
+        "Mainly a library for the other postproc scripts.",
+        "examples:\n  /usr/bin/python3 postproc/udar_results.py out/taylor.h5\n"
+        "  /usr/bin/python3 postproc/udar_results.py out/taylor_history.csv\n"
+        "  /usr/bin/python3 postproc/udar_results.py --self-test")
     p.add_argument("file", nargs="?", help="a udar .h5 field file or _history.csv file")
-    p.add_argument("--self-test", action="store_true", help="run the built-in checks, print PASS/FAIL")
-    args = p.parse_args(argv)
-    cli_warnings("udar_results.py")
-    if args.self_test:
-        return 0 if _self_test() else 1
-    if not args.file:
-        p.error("give a FILE (or --self-test)")
-    try:
-        if args.file.lower().endswith(".csv"):
-            _summarize_history(args.file)
-        else:
-            with open_fields(args.file) as f:
-                print(f.summary())
-    except (UdarFileError, IndexError, KeyError) as e:
-        print("udar_results.py: error: %s" % (e.args[0] if e.args else e), file=sys.stderr)
-        return 1
-    return 0
+    return cli_main(add_self_test(p), argv, _self_test, _summarize, errors=(IndexError, KeyError),
+                    require=("file", "give a FILE (or --self-test)"))
+
+
+def _summarize(args, parser):
+    if args.file.lower().endswith(".csv"):
+        _summarize_history(args.file)
+    else:
+        with open_fields(args.file) as f:
+            print(f.summary())
 
 
 if __name__ == "__main__":

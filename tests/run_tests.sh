@@ -38,8 +38,13 @@ for t in build/debug/tests/test_*; do
   mkdir -p "$WORK/$name"
   run_test "unit/$name" "$t" "$ROOT/tests/unit" "$WORK/$name"
 done
+# ---- post-processing scripts on synthetic files with known answers
+for s in udar_results plot_history section taylor; do
+  run_test "postproc/$s" $PYTHON postproc/$s.py --self-test
+done
 # ---- deck errors through the real program
 run_test "cli/deck_errors" tests/cli/deck_errors.sh bin/udar-debug
+run_test "cli/run_goes_bad" tests/cli/run_goes_bad.sh bin/udar-debug
 # ---- regressions against analytic and experimental references
 run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
 run_test "regression/plate_impact" regression plate_impact bin/udar-debug

@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
 PYTHON=${PYTHON:-/usr/bin/python3}
-W=${VALIDATE_WORK:-$ROOT/tests/work/validate}
+W=${VALIDATE_WORK:-$ROOT/build/validate}   # not tests/work: make check empties that
 JOBS=${JOBS:-2}
 mkdir -p "$W" doc/validation
 cp bin/udar "$W/udar"     # a rebuild during the runs must not change them

@@ -22,7 +22,7 @@ contains
     integer :: e, a
     do e = 1, dom%n_elems
       do a = 1, 4
-        xe(a,:) = dom%nd_x(dom%el_conn(e,a),:)
+        xe(a,:) = dom%nd_x(:,dom%el_conn(e,a))
       end do
       dom%el_vol(e) = tet_volume(xe)
     end do
@@ -73,20 +73,15 @@ contains
     real(rk) :: vol(ld), h(ld), d(ld,6), w(ld,3), s(ld,6), p_app(ld), trd(ld), j_new(ld), &
                 w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld)
     real(rk) :: t_old
-    integer :: b, i, e, a, nb, first, last, node, k
+    integer :: b, i, e, nb, first, last, k
     dt_stable = huge(1.0_rk)
     bad_elem = 0
     do b = 1, dom%n_blocks
       first = dom%blk_first(b)
       last = dom%blk_last(b)
       nb = last - first + 1
-      do a = 1, 4
-        do i = 1, nb
-          node = dom%el_conn(first+i-1, a)
-          xe(i,a,1) = dom%nd_x(node,1); xe(i,a,2) = dom%nd_x(node,2); xe(i,a,3) = dom%nd_x(node,3)
-          ve(i,a,1) = dom%nd_v(node,1); ve(i,a,2) = dom%nd_v(node,2); ve(i,a,3) = dom%nd_v(node,3)
-        end do
-      end do
+      call gather_block(dom, dom%nd_x, first, nb, xe)
+      call gather_block(dom, dom%nd_v, first, nb, ve)
       call tet_gradients(ld, nb, xe, vol, grad, h)
       h(1:nb) = 1.0_rk/sqrt(h(1:nb))      ! smallest altitude
       if (any(vol(1:nb) <= 0.0_rk)) then
@@ -159,17 +154,13 @@ contains
     real(rk), intent(out) :: dt_stable
     integer, parameter :: ld = block_size
     real(rk) :: xe(ld,4,3), grad(ld,4,3), vol(ld), h(ld), c2(ld)
-    integer :: b, i, a, nb, first, last
+    integer :: b, nb, first, last
     dt_stable = huge(1.0_rk)
     do b = 1, dom%n_blocks
       first = dom%blk_first(b)
       last = dom%blk_last(b)
       nb = last - first + 1
-      do a = 1, 4
-        do i = 1, nb
-          xe(i,a,:) = dom%nd_x(dom%el_conn(first+i-1, a),:)
-        end do
-      end do
+      call gather_block(dom, dom%nd_x, first, nb, xe)
       call tet_gradients(ld, nb, xe, vol, grad, h)
       h(1:nb) = 1.0_rk/sqrt(h(1:nb))
       call dilatational_speed2(dom%mat(dom%el_mat(first)), ld, nb, dom%el_j(first:last), dom%el_p(first:last), &
@@ -185,17 +176,12 @@ contains
     type(domain_t), intent(inout) :: dom
     integer, parameter :: ld = block_size
     real(rk) :: xe(ld,4,3), p_app(ld), fe(ld,4,3), vol(ld), grad(ld,4,3), h(ld), sb(ld,6)
-    integer :: b, i, e, nb, first, last, a, k, node
+    integer :: b, i, e, nb, first, last, k
     do b = 1, dom%n_blocks
       first = dom%blk_first(b)
       last = dom%blk_last(b)
       nb = last - first + 1
-      do a = 1, 4
-        do i = 1, nb
-          node = dom%el_conn(first+i-1, a)
-          xe(i,a,1) = dom%nd_x(node,1); xe(i,a,2) = dom%nd_x(node,2); xe(i,a,3) = dom%nd_x(node,3)
-        end do
-      end do
+      call gather_block(dom, dom%nd_x, first, nb, xe)
       call tet_gradients(ld, nb, xe, vol, grad, h)
       do i = 1, nb
         e = first + i - 1
@@ -207,6 +193,21 @@ contains
       end do
       call tet_internal_forces(ld, nb, vol, grad, sb, p_app, fe)
       call store_forces(dom, first, nb, fe)
+    end do
+  end subroutine
+
+  !> Nodal vectors a(3,n) of the nb elements from first on, into a block (ld,4,3).
+  subroutine gather_block(dom, a, first, nb, block)
+    type(domain_t), intent(in) :: dom
+    real(rk), intent(in) :: a(:,:)
+    integer, intent(in) :: first, nb
+    real(rk), intent(inout) :: block(block_size,4,3)
+    integer :: i, c, node
+    do c = 1, 4
+      do i = 1, nb
+        node = dom%el_conn(first+i-1, c)
+        block(i,c,1) = a(1,node); block(i,c,2) = a(2,node); block(i,c,3) = a(3,node)
+      end do
     end do
   end subroutine
 
@@ -239,7 +240,7 @@ contains
         fy = fy + dom%el_f(c-1, e)
         fz = fz + dom%el_f(c, e)
       end do
-      dom%nd_f(n,1) = fx; dom%nd_f(n,2) = fy; dom%nd_f(n,3) = fz
+      dom%nd_f(1,n) = fx; dom%nd_f(2,n) = fy; dom%nd_f(3,n) = fz
     end do
   end subroutine
 end module udar_element_driver

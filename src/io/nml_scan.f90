@@ -14,12 +14,14 @@
 !> a string without its closing quote, text inside a group that is not part of
 !> an assignment.
 module udar_nml_scan
+  use udar_strings, only: nml_lower => to_lower, itoa, shorten, is_letter, is_digit
   implicit none
   private
   public :: nml_assign_t, nml_group_t, nml_issue_t, nml_scan_t
   public :: nml_scan_file, nml_scan_string, nml_lower
 
   character(len=*), parameter :: lf = achar(10)
+  integer, parameter :: snippet_len = 40   !< longest piece of deck text quoted in an issue
 
   !> One "variable = value" inside a group.
   type :: nml_assign_t
@@ -90,7 +92,7 @@ contains
     integer :: i, j, e, n, line, last_end_line
     character :: c
 
-    allocate(scan%groups(4), scan%issues(4))
+    allocate(scan%groups(0), scan%issues(0))
     n = len(text)
     ! cl is the working copy: comments inside groups get blanked in it, so
     ! that bodies and values can be cut out of it directly
@@ -112,11 +114,7 @@ contains
       else if (c == '!') then
         i = eol(cl, i)
       else if (c == '&') then
-        j = i + 1
-        do while (j <= n)
-          if (.not. is_name_char(cl(j:j))) exit
-          j = j + 1
-        end do
+        j = name_end(cl, i + 1)
         if (j == i + 1) then
           call add_issue(scan, line, 0, "'&' must be followed by a group name, e.g. &run")
           i = eol(cl, i)
@@ -129,7 +127,7 @@ contains
         ! the snippet stops at a comment (a '!' in quotes here is rare enough)
         j = index(cl(i:e-1), '!')
         if (j == 0) j = e - i + 1
-        msg = "text outside any group: '"//shorten(trim(cl(i:i+j-2)))//"'"
+        msg = "text outside any group: '"//shorten(trim(cl(i:i+j-2)), snippet_len)//"'"
         if (last_end_line == line) then
           ! typical cause: an unquoted value containing '/', which ends the group early
           msg = msg//" (a '/' ends a group: should a value before it be in quotes?)"
@@ -152,7 +150,6 @@ contains
     type(nml_scan_t), intent(inout) :: scan
     integer :: n, g, start, body_start, vstart, k, m, p, e, last_tok_line, last_unexp_line
     character :: c
-    character(len=16) :: num
     character(len=:), allocatable :: gname
 
     n = len(cl)
@@ -186,14 +183,10 @@ contains
       else if (c == '&') then
         ! a new group begins although this one was never closed
         call close_value(i - 1)
-        k = i + 1
-        do while (k <= n)
-          if (.not. is_name_char(cl(k:k))) exit
-          k = k + 1
-        end do
-        write(num, '(i0)') scan%groups(g)%start_line
-        call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '//trim(num)// &
-             ") has no closing '/' before &"//nml_lower(cl(i+1:k-1))//' at line '//itoa(line))
+        k = name_end(cl, i + 1)
+        call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '// &
+             itoa(scan%groups(g)%start_line)//") has no closing '/' before &"// &
+             nml_lower(cl(i+1:k-1))//' at line '//itoa(line))
         call finish_open(i - 1)
         return
       else if (c == "'" .or. c == '"') then
@@ -202,7 +195,7 @@ contains
         last_tok_line = line
         if (k == 0) then
           e = eol(cl, i)
-          call add_issue(scan, line, g, 'unterminated string '//shorten(trim(cl(i:e-1)))// &
+          call add_issue(scan, line, g, 'unterminated string '//shorten(trim(cl(i:e-1)), snippet_len)// &
                ' (missing closing '//c//')')
           scan%groups(g)%clean = .false.
           if (scan%groups(g)%n_assign > 0) scan%groups(g)%assigns(scan%groups(g)%n_assign)%ok = .false.
@@ -215,11 +208,7 @@ contains
       else if (is_letter(c)) then
         ! an identifier followed by an optional (subscript) and '=' starts an
         ! assignment; otherwise it is part of a value (e.g. T, F, NaN)
-        k = i
-        do while (k <= n)
-          if (.not. is_name_char(cl(k:k))) exit
-          k = k + 1
-        end do
+        k = name_end(cl, i)
         e = k
         m = skip_blanks(cl, k, .false.)
         if (m <= n) then
@@ -257,9 +246,8 @@ contains
     end do
     ! end of text inside the group
     call close_value(n)
-    write(num, '(i0)') scan%groups(g)%start_line
-    call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '//trim(num)// &
-         ") has no closing '/' (the end of the file was reached)")
+    call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '// &
+         itoa(scan%groups(g)%start_line)//") has no closing '/' (the end of the file was reached)")
     call finish_open(n)
 
   contains
@@ -305,8 +293,9 @@ contains
         t = t + 1
       end do
       tok = cl(at:t-1)
-      msg = "unexpected text '"//shorten(tok)//"' in &"//gname//": expected 'variable = value'"
-      if (is_letter(tok(1:1))) msg = msg//" (missing '=' after '"//shorten(tok)//"'?)"
+      msg = "unexpected text '"//shorten(tok, snippet_len)//"' in &"//gname// &
+            ": expected 'variable = value'"
+      if (is_letter(tok(1:1))) msg = msg//" (missing '=' after '"//shorten(tok, snippet_len)//"'?)"
       call add_issue(scan, line, g, msg)
     end subroutine unexpected
 
@@ -434,101 +423,49 @@ contains
     r = s(1:k)
   end function trim_trailing
 
-  !> Cut long snippets for messages.
-  pure function shorten(s) result(r)
-    character(len=*), intent(in) :: s
-    character(len=:), allocatable :: r
-    if (len(s) > 40) then
-      r = s(1:37)//'...'
-    else
-      r = s
-    end if
-  end function shorten
-
-  pure function itoa(i) result(r)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: r
-    character(len=16) :: buf
-    write(buf, '(i0)') i
-    r = trim(buf)
-  end function itoa
-
-  pure logical function is_letter(c)
-    character, intent(in) :: c
-    is_letter = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
-  end function is_letter
-
   pure logical function is_name_char(c)
     character, intent(in) :: c
-    is_name_char = is_letter(c) .or. (c >= '0' .and. c <= '9') .or. c == '_'
+    is_name_char = is_letter(c) .or. is_digit(c) .or. c == '_'
   end function is_name_char
 
-  !> Lower-case copy (ASCII).
-  pure function nml_lower(s) result(r)
+  !> First position at or after i that is not part of a name (len+1 if none).
+  pure integer function name_end(s, i)
     character(len=*), intent(in) :: s
-    character(len=len(s)) :: r
-    integer :: i, ic
-    r = s
-    do i = 1, len(s)
-      ic = iachar(s(i:i))
-      if (ic >= iachar('A') .and. ic <= iachar('Z')) r(i:i) = achar(ic + 32)
+    integer, intent(in) :: i
+    name_end = i
+    do while (name_end <= len(s))
+      if (.not. is_name_char(s(name_end:name_end))) exit
+      name_end = name_end + 1
     end do
-  end function nml_lower
+  end function name_end
+
+  ! The lists grow by one item at a time: a deck has tens of groups and
+  ! assignments, so copying on each append costs nothing that matters.
 
   subroutine add_group(scan, name, line)
     type(nml_scan_t), intent(inout) :: scan
     character(len=*), intent(in) :: name
     integer, intent(in) :: line
-    type(nml_group_t), allocatable :: tmp(:)
-    if (scan%n_groups == size(scan%groups)) then
-      allocate(tmp(2*size(scan%groups)))
-      tmp(1:scan%n_groups) = scan%groups(1:scan%n_groups)
-      call move_alloc(tmp, scan%groups)
-    end if
+    type(nml_assign_t) :: no_assigns(0)
+    scan%groups = [scan%groups, nml_group_t(name=name, start_line=line, end_line=line, &
+                                            raw='', body='', assigns=no_assigns)]
     scan%n_groups = scan%n_groups + 1
-    associate(gr => scan%groups(scan%n_groups))
-      gr%name = name
-      gr%start_line = line
-      gr%end_line = line
-      gr%raw = ''
-      gr%body = ''
-      gr%n_assign = 0
-      allocate(gr%assigns(8))
-    end associate
   end subroutine add_group
 
   subroutine add_assign(gr, name, base, line)
     type(nml_group_t), intent(inout) :: gr
     character(len=*), intent(in) :: name, base
     integer, intent(in) :: line
-    type(nml_assign_t), allocatable :: tmp(:)
-    if (gr%n_assign == size(gr%assigns)) then
-      allocate(tmp(2*size(gr%assigns)))
-      tmp(1:gr%n_assign) = gr%assigns(1:gr%n_assign)
-      call move_alloc(tmp, gr%assigns)
-    end if
+    gr%assigns = [gr%assigns, nml_assign_t(name=name, base=base, value='', line=line)]
     gr%n_assign = gr%n_assign + 1
-    gr%assigns(gr%n_assign)%name = name
-    gr%assigns(gr%n_assign)%base = base
-    gr%assigns(gr%n_assign)%value = ''
-    gr%assigns(gr%n_assign)%line = line
-    gr%assigns(gr%n_assign)%ok = .true.
   end subroutine add_assign
 
   subroutine add_issue(scan, line, group, text)
     type(nml_scan_t), intent(inout) :: scan
     integer, intent(in) :: line, group
     character(len=*), intent(in) :: text
-    type(nml_issue_t), allocatable :: tmp(:)
-    if (scan%n_issues == size(scan%issues)) then
-      allocate(tmp(2*size(scan%issues)))
-      tmp(1:scan%n_issues) = scan%issues(1:scan%n_issues)
-      call move_alloc(tmp, scan%issues)
-    end if
+    scan%issues = [scan%issues, nml_issue_t(line=line, group=group, text=text)]
     scan%n_issues = scan%n_issues + 1
-    scan%issues(scan%n_issues)%line = line
-    scan%issues(scan%n_issues)%group = group
-    scan%issues(scan%n_issues)%text = text
   end subroutine add_issue
 
 end module udar_nml_scan

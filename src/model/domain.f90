@@ -20,7 +20,9 @@ module udar_domain
     integer :: n_nodes = 0
     integer, allocatable :: nd_id(:)            !< mesh-file node tag
     integer, allocatable :: nd_part(:)          !< part of the lowest-id incident element
-    real(rk), allocatable :: nd_x0(:,:), nd_x(:,:), nd_v(:,:), nd_f(:,:)   !< (n,3): m, m, m/s, N
+    !> (3,n): m, m, m/s, N. Components interleaved: an element's gather of a node
+    !> reads one cache line, not three.
+    real(rk), allocatable :: nd_x0(:,:), nd_x(:,:), nd_v(:,:), nd_f(:,:)
     real(rk), allocatable :: nd_mass(:)         !< kg, lumped
     real(rk), allocatable :: nd_vol0(:), nd_vol(:)   !< m3, nodal volumes (anti-locking)
     real(rk), allocatable :: nd_p(:)            !< Pa, nodal average pressure (anti-locking)

@@ -15,11 +15,13 @@ contains
   subroutine update_velocities(dom, dt_v)
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt_v
-    integer :: k, n
-    do k = 1, 3
-      do n = 1, dom%n_nodes
-        dom%nd_v(n,k) = dom%nd_v(n,k) + dt_v*dom%nd_f(n,k)/dom%nd_mass(n)
-      end do
+    integer :: n
+    real(rk) :: r
+    do n = 1, dom%n_nodes
+      r = dt_v/dom%nd_mass(n)
+      dom%nd_v(1,n) = dom%nd_v(1,n) + r*dom%nd_f(1,n)
+      dom%nd_v(2,n) = dom%nd_v(2,n) + r*dom%nd_f(2,n)
+      dom%nd_v(3,n) = dom%nd_v(3,n) + r*dom%nd_f(3,n)
     end do
   end subroutine
 
@@ -29,11 +31,11 @@ contains
     real(rk) :: vn
     do k = 1, size(dom%sym_nodes)
       n = dom%sym_nodes(k)
-      vn = dot_product(dom%nd_v(n,:), dom%sym_normal(k,:))
-      dom%nd_v(n,:) = dom%nd_v(n,:) - vn*dom%sym_normal(k,:)
+      vn = dot_product(dom%nd_v(:,n), dom%sym_normal(k,:))
+      dom%nd_v(:,n) = dom%nd_v(:,n) - vn*dom%sym_normal(k,:)
     end do
     do k = 1, size(dom%fixed_nodes)
-      dom%nd_v(dom%fixed_nodes(k),:) = 0.0_rk
+      dom%nd_v(:,dom%fixed_nodes(k)) = 0.0_rk
     end do
   end subroutine
 
@@ -54,15 +56,15 @@ contains
       associate (wall => dom%walls(iw))
         impulse = 0.0_rk
         do n = 1, dom%n_nodes
-          gap = dot_product(dom%nd_x(n,:) - wall%point, wall%normal)
-          vn = dot_product(dom%nd_v(n,:), wall%normal)
+          gap = dot_product(dom%nd_x(:,n) - wall%point, wall%normal)
+          vn = dot_product(dom%nd_v(:,n), wall%normal)
           if (gap + dt*vn >= 0.0_rk) cycle
           ! lands on the wall at the end of the step (a node found behind it is put back)
           vn_new = -gap/dt
           if (wall%wall_type == wall_sticking) then
-            dom%nd_v(n,:) = vn_new*wall%normal
+            dom%nd_v(:,n) = vn_new*wall%normal
           else
-            dom%nd_v(n,:) = dom%nd_v(n,:) + (vn_new - vn)*wall%normal
+            dom%nd_v(:,n) = dom%nd_v(:,n) + (vn_new - vn)*wall%normal
           end if
           impulse = impulse + dom%nd_mass(n)*(vn_new - vn)
           wall_work = wall_work + dom%nd_mass(n)*(vn_new - vn)*vn_new
@@ -76,11 +78,11 @@ contains
   subroutine update_positions(dom, dt)
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
-    integer :: k, n
-    do k = 1, 3
-      do n = 1, dom%n_nodes
-        dom%nd_x(n,k) = dom%nd_x(n,k) + dt*dom%nd_v(n,k)
-      end do
+    integer :: n
+    do n = 1, dom%n_nodes
+      dom%nd_x(1,n) = dom%nd_x(1,n) + dt*dom%nd_v(1,n)
+      dom%nd_x(2,n) = dom%nd_x(2,n) + dt*dom%nd_v(2,n)
+      dom%nd_x(3,n) = dom%nd_x(3,n) + dt*dom%nd_v(3,n)
     end do
   end subroutine
 end module udar_nodal

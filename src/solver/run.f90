@@ -46,7 +46,7 @@ contains
     type(field_writer_t) :: fw
     type(history_t) :: hist
     type(balance_t) :: bal
-    real(rk), allocatable :: work_svm(:), work_rho(:), row(:)
+    real(rk), allocatable :: work_svm(:), work_rho(:), row(:), work_node(:,:)
     real(rk) :: t, dt, dt_old, dt_stable, dt_v, e0, e_ref, wall_step_work, wall_work, t_next_field, &
                 t_next_hist, wall0, elapsed, loop0
     integer :: cycle, bad
@@ -62,7 +62,9 @@ contains
     res%history_file = base//'_history.csv'
     call execute_command_line('mkdir -p "'//trim(cfg%output%directory)//'"')
 
-    call fw_open(fw, base//'.h5', base//'.xmf', dom%nd_id, dom%el_id, dom%el_conn, dom%el_part, dom%nd_x0, &
+    allocate(work_node(dom%n_nodes,3))
+    work_node = transpose(dom%nd_x0)
+    call fw_open(fw, base//'.h5', base//'.xmf', dom%nd_id, dom%el_id, dom%el_conn, dom%el_part, work_node, &
                  cfg%resolved_text, program_version, trim(cfg%run%title), comms_size(), ok, errmsg)
     if (.not. ok) call fatal(exit_io, errmsg)
     call history_open(hist, base//'_history.csv', history_columns(dom), ok, errmsg)
@@ -140,7 +142,7 @@ contains
         call write_fields(fw, dom, t, cycle, work_svm, work_rho)
         call fw_close(fw); call history_close(hist)
         write(line, '(a,es10.3,a,i0,a,es14.7,a)') 'energy balance lost (error ', bal%error, ') at cycle ', &
-          cycle, ', time ', t, ' s; last state written to '//trim(res%field_file)
+          cycle, ', time ', t, ' s; '//hot_spot(dom)//'; last state written to '//trim(res%field_file)
         call fatal(exit_physics, line)
       end if
       if (history_due) then
@@ -185,8 +187,11 @@ contains
         svm(e) = von_mises(s6)
         rho(e) = dom%el_mass(e)/dom%el_vol(e)
       end do
-      call fw_begin_step(fw, t, cycle, dom%nd_x, ok, msg)
-      if (ok) call fw_node_vector(fw, 'velocity', dom%nd_v, ok, msg)
+      ! the field file holds (n,3) tables
+      work_node = transpose(dom%nd_x)
+      call fw_begin_step(fw, t, cycle, work_node, ok, msg)
+      work_node = transpose(dom%nd_v)
+      if (ok) call fw_node_vector(fw, 'velocity', work_node, ok, msg)
       if (ok) call fw_elem_scalar(fw, 'pressure', dom%el_p, ok, msg)
       if (ok) call fw_elem_scalar(fw, 'von_mises', svm, ok, msg)
       if (ok) call fw_elem_scalar(fw, 'plastic_strain', dom%el_eps_p, ok, msg)
@@ -196,6 +201,26 @@ contains
       if (.not. ok) call fatal(exit_io, msg)
     end subroutine
   end subroutine
+
+  !> Where a run that lost its energy balance is worst: the element with the
+  !> largest specific internal energy and the fastest node (mesh-file ids).
+  function hot_spot(dom) result(msg)
+    type(domain_t), intent(in) :: dom
+    character(len=:), allocatable :: msg
+    character(len=200) :: buf
+    integer :: e, n
+    e = maxloc(abs(dom%el_e), dim=1, mask=ieee_is_finite(dom%el_e))
+    if (e == 0) e = 1
+    n = 1
+    do n = 1, dom%n_nodes
+      if (.not. ieee_is_finite(dom%nd_v(1,n) + dom%nd_v(2,n) + dom%nd_v(3,n))) exit
+    end do
+    if (n > dom%n_nodes) n = maxloc(dom%nd_v(1,:)**2 + dom%nd_v(2,:)**2 + dom%nd_v(3,:)**2, dim=1)
+    write(buf, '(a,i0,a,es10.3,a,i0,a,es10.3,a)') 'worst element ', dom%el_id(e), ' (specific internal energy ', &
+      dom%el_e(e), ' J/kg, part '''//trim(dom%part_name(dom%el_part(e)))//'''), fastest node ', dom%nd_id(n), &
+      ' (', norm2(dom%nd_v(:,n)), ' m/s)'
+    msg = trim(buf)
+  end function
 
   function history_columns(dom) result(cols)
     type(domain_t), intent(in) :: dom
@@ -242,12 +267,12 @@ contains
     bal%kinetic = 0; bal%internal = 0; bal%plastic = 0; bal%momentum = 0
     bal%part_ke = 0; bal%part_com = 0; bal%part_mass = 0
     do n = 1, dom%n_nodes
-      ke = 0.5_rk*dom%nd_mass(n)*(dom%nd_v(n,1)**2 + dom%nd_v(n,2)**2 + dom%nd_v(n,3)**2)
+      ke = 0.5_rk*dom%nd_mass(n)*(dom%nd_v(1,n)**2 + dom%nd_v(2,n)**2 + dom%nd_v(3,n)**2)
       bal%kinetic = bal%kinetic + ke
-      bal%momentum = bal%momentum + dom%nd_mass(n)*dom%nd_v(n,:)
+      bal%momentum = bal%momentum + dom%nd_mass(n)*dom%nd_v(:,n)
       ip = dom%nd_part(n)
       bal%part_ke(ip) = bal%part_ke(ip) + ke
-      bal%part_com(ip,:) = bal%part_com(ip,:) + dom%nd_mass(n)*dom%nd_x(n,:)
+      bal%part_com(ip,:) = bal%part_com(ip,:) + dom%nd_mass(n)*dom%nd_x(:,n)
       bal%part_mass(ip) = bal%part_mass(ip) + dom%nd_mass(n)
     end do
     do ip = 1, dom%n_parts

@@ -71,7 +71,7 @@ contains
     node_new(used(perm)) = [(n, n = 1, dom%n_nodes)]
     call allocate_state(dom)
     dom%nd_id = mesh%node_tag(used(perm))
-    dom%nd_x0 = mesh%x(used(perm),:)
+    dom%nd_x0 = transpose(mesh%x(used(perm),:))
     dom%nd_x = dom%nd_x0
     deallocate(keys, perm)
     allocate(keys(dom%n_elems), perm(dom%n_elems), centroid(dom%n_elems,3), elem_order(dom%n_elems))
@@ -103,7 +103,7 @@ contains
       dom%el_part(e) = group_part(mesh%tet_group(elem_order(e)))
       dom%el_mat(e) = material_index(cfg, cfg%parts(dom%el_part(e))%material)
       do a = 1, 4
-        xe(a,:) = dom%nd_x(dom%el_conn(e,a),:)
+        xe(a,:) = dom%nd_x(:,dom%el_conn(e,a))
       end do
       dom%el_vol0(e) = tet_volume(xe)
       dom%el_mass(e) = dom%mat(dom%el_mat(e))%rho0*dom%el_vol0(e)
@@ -124,7 +124,7 @@ contains
         dom%nd_vol0(n) = dom%nd_vol0(n) + 0.25_rk*dom%el_vol0(dom%nd_el(k))
       end do
       dom%nd_part(n) = dom%el_part(dom%nd_el(dom%nd_el_ptr(n)))
-      dom%nd_v(n,:) = cfg%parts(dom%nd_part(n))%velocity
+      dom%nd_v(:,n) = cfg%parts(dom%nd_part(n))%velocity
     end do
     dom%nd_vol = dom%nd_vol0
     call build_blocks(dom)
@@ -138,8 +138,8 @@ contains
     type(domain_t), intent(inout) :: dom
     integer :: nn, ne
     nn = dom%n_nodes; ne = dom%n_elems
-    allocate(dom%nd_id(nn), dom%nd_part(nn), dom%nd_x0(nn,3), dom%nd_x(nn,3), dom%nd_v(nn,3), &
-             dom%nd_f(nn,3), dom%nd_mass(nn), dom%nd_vol0(nn), dom%nd_vol(nn), dom%nd_p(nn))
+    allocate(dom%nd_id(nn), dom%nd_part(nn), dom%nd_x0(3,nn), dom%nd_x(3,nn), dom%nd_v(3,nn), &
+             dom%nd_f(3,nn), dom%nd_mass(nn), dom%nd_vol0(nn), dom%nd_vol(nn), dom%nd_p(nn))
     allocate(dom%el_id(ne), dom%el_part(ne), dom%el_mat(ne), dom%el_conn(ne,4), dom%el_vol0(ne), &
              dom%el_vol(ne), dom%el_mass(ne), dom%el_j(ne), dom%el_e(ne), dom%el_wp(ne), dom%el_p(ne), &
              dom%el_q(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_hard(ne), dom%el_soft(ne), &

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# A run that goes bad (a time step far above the stable one) must stop with
+# exit code 2, name the element, cycle and time, and leave its last state in
+# the field file (a committed step at the failing cycle).
+set -u
+EXE=$(realpath "$1")
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+PYTHON=${PYTHON:-/usr/bin/python3}
+W=$(mktemp -d)
+trap 'rm -rf "$W"' EXIT
+cp "$ROOT/tests/regression/elastic_bar/elastic_bar.msh" "$W/bar.msh"
+cat > "$W/bad.nml" <<'DECK'
+&run t_end = 1e-4, dt_initial = 2e-6 /
+&mesh file = 'bar.msh' /
+&material name = 'steel', rho0 = 7850, youngs_modulus = 200e9, poisson_ratio = 0.3 /
+&part group = 'bar', material = 'steel', velocity = 0, 0, -100 /
+&boundary kind = 'rigid_wall', point = 0, 0, 0, normal = 0, 0, 1 /
+&output directory = 'out' /
+DECK
+(cd "$W" && "$EXE" bad.nml) > "$W/out.txt" 2> "$W/err.txt"; rc=$?
+fails=0
+if [ $rc -eq 2 ]; then echo "PASS exit_code_2"; else echo "FAIL exit code $rc (expected 2)"; fails=1; fi
+if grep -qE 'at cycle 1, time .* element [0-9]+' "$W/err.txt"; then echo "PASS message names cycle, time and element"
+else echo "FAIL message:"; cat "$W/err.txt"; fails=1; fi
+if $PYTHON - "$W/out/bad.h5" <<'PY'
+import sys, h5py
+f = h5py.File(sys.argv[1], 'r')
+n = int(f['steps'].attrs['count'])
+last = f['steps/%06d' % (n - 1)]
+sys.exit(0 if n == 2 and int(last.attrs['cycle']) == 1 and 'pressure' in last else 1)
+PY
+then echo "PASS last state written (step at cycle 1)"; else echo "FAIL no last state in out/bad.h5"; fails=1; fi
+[ $fails -eq 0 ]
