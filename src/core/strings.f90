@@ -7,7 +7,7 @@ module udar_strings
   use udar_kinds, only: rk
   implicit none
   private
-  public :: itoa, r2s, to_lower, shorten, is_letter, is_digit, dir_name, base_name
+  public :: itoa, r2s, to_lower, replace, shorten, is_letter, is_digit, dir_name, base_name
 
   !> An integer as text without blanks, for default and 64-bit integers.
   interface itoa
@@ -36,9 +36,7 @@ contains
     real(rk), intent(in) :: x
     character(len=:), allocatable :: s
     character(len=64) :: buf
-    character(len=16) :: fmt
-    real(rk) :: y
-    integer :: d, ios, e
+    integer :: e, ex
 
     if (.not. ieee_is_finite(x)) then
       write(buf, '(g0)') x
@@ -50,34 +48,43 @@ contains
       return
     end if
     if (abs(x) >= 1.0e-3_rk .and. abs(x) < 1.0e7_rk) then
-      do d = 1, 25
-        write(fmt, '(a,i0,a)') '(f0.', d, ')'
-        write(buf, fmt) x
-        read(buf, *, iostat=ios) y
-        if (ios == 0 .and. y == x) exit
-      end do
+      buf = fewest_digits('(f0.', 1, 25, ')')
       s = trim(adjustl(buf))
       if (s(1:1) == '.') s = '0'//s
       if (s(1:2) == '-.') s = '-0'//s(2:)
     else
-      do d = 0, 17
-        write(fmt, '(a,i0,a)') '(es30.', d, 'e3)'
-        write(buf, fmt) x
-        read(buf, *, iostat=ios) y
-        if (ios == 0 .and. y == x) exit
-      end do
-      buf = adjustl(buf)
+      buf = adjustl(fewest_digits('(es30.', 0, 17, 'e3)'))
       e = scan(buf, 'Ee')
       s = buf(1:e-1)
       if (index(s, '.') == 0) s = s//'.0'
       if (s(len(s):len(s)) == '.') s = s//'0'
-      read(buf(e+1:), *) d
-      s = s//'e'//itoa(d)
+      read(buf(e+1:), *) ex
+      s = s//'e'//itoa(ex)
     end if
+
+  contains
+
+    !> x written with format head//d//tail for the fewest digits d in d0..d1
+    !> that read back to x exactly (d1 if none does).
+    function fewest_digits(head, d0, d1, tail) result(b)
+      character(len=*), intent(in) :: head, tail
+      integer, intent(in) :: d0, d1
+      character(len=64) :: b
+      character(len=16) :: fmt
+      real(rk) :: y
+      integer :: d, ios
+      do d = d0, d1
+        write(fmt, '(a,i0,a)') head, d, tail
+        write(b, fmt) x
+        read(b, *, iostat=ios) y
+        if (ios == 0 .and. y == x) exit
+      end do
+    end function fewest_digits
+
   end function r2s
 
   !> Lower-case copy (ASCII).
-  pure function to_lower(s) result(r)
+  elemental function to_lower(s) result(r)
     character(len=*), intent(in) :: s
     character(len=len(s)) :: r
     integer :: i, ic
@@ -87,6 +94,22 @@ contains
       if (ic >= iachar('A') .and. ic <= iachar('Z')) r(i:i) = achar(ic + 32)
     end do
   end function to_lower
+
+  !> s with every character c replaced by the text by ('' removes it).
+  pure function replace(s, c, by) result(r)
+    character(len=*), intent(in) :: s, by
+    character, intent(in) :: c
+    character(len=:), allocatable :: r
+    integer :: i
+    r = ''
+    do i = 1, len(s)
+      if (s(i:i) == c) then
+        r = r//by
+      else
+        r = r//s(i:i)
+      end if
+    end do
+  end function replace
 
   !> Cut long text for messages: at most n characters (60 unless told), the
   !> last three of a cut text being '...'.

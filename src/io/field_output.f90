@@ -13,6 +13,7 @@
 module udar_field_output
   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_loc, c_null_char
   use udar_kinds, only: rk, ik, i8, max_name_len
+  use udar_strings, only: is_letter, is_digit, dir_name, base_name
   use hdf5
   implicit none
   private
@@ -92,54 +93,37 @@ contains
 
     integer :: err, nn, ne, i, j
     integer(hid_t) :: gid
-    integer(hsize_t) :: dims2(2), dims1(1)
-    integer(ik), allocatable, target :: ibuf(:,:)
+    integer(ik), allocatable :: ibuf(:,:)
     integer(c_int) :: irc
 
     ok = .false.
     errmsg = ''
+    nn = size(node_id)
+    ne = size(elem_id)
+    ! the first problem with the call, if any
     if (w%is_open) then
       errmsg = 'field_output: fw_open called on a writer that is already open ('// &
                w%h5_path//')'
-      return
-    end if
-
-    nn = size(node_id)
-    ne = size(elem_id)
-    if (nn < 1 .or. ne < 1) then
+    else if (nn < 1 .or. ne < 1) then
       errmsg = 'field_output: fw_open needs at least one node and one element'
-      return
-    end if
-    if (size(conn, 1) /= ne .or. size(conn, 2) /= 4) then
+    else if (any(shape(conn) /= [ne, 4])) then
       errmsg = 'field_output: conn must have shape (n_elems,4)'
-      return
-    end if
-    if (size(part_id) /= ne) then
+    else if (size(part_id) /= ne) then
       errmsg = 'field_output: part_id must have size n_elems'
-      return
-    end if
-    if (size(x0, 1) /= nn .or. size(x0, 2) /= 3) then
+    else if (any(shape(x0) /= [nn, 3])) then
       errmsg = 'field_output: x0 must have shape (n_nodes,3)'
-      return
-    end if
-    if (any(conn < 1) .or. any(conn > nn)) then
+    else if (any(conn < 1) .or. any(conn > nn)) then
       errmsg = 'field_output: conn holds node indices outside 1..n_nodes'
-      return
-    end if
-    if (len_trim(h5_path) == 0 .or. len_trim(xmf_path) == 0) then
+    else if (len_trim(h5_path) == 0 .or. len_trim(xmf_path) == 0) then
       errmsg = 'field_output: empty output path'
-      return
-    end if
-    if (trim(h5_path) == trim(xmf_path)) then
+    else if (trim(h5_path) == trim(xmf_path)) then
       errmsg = 'field_output: h5 and xmf paths are the same: '//trim(h5_path)
-      return
-    end if
-    ! The .xmf refers to the h5 by base name, so both must share a directory.
-    if (dir_name(trim(h5_path)) /= dir_name(trim(xmf_path))) then
+    else if (dir_name(trim(h5_path)) /= dir_name(trim(xmf_path))) then
+      ! The .xmf refers to the h5 by base name, so both must share a directory.
       errmsg = 'field_output: "'//trim(h5_path)//'" and "'//trim(xmf_path)// &
                '" must be in the same directory (the .xmf references the h5 by base name)'
-      return
     end if
+    if (len(errmsg) > 0) return
 
     w%h5_path = trim(h5_path)
     w%xmf_path = trim(xmf_path)
@@ -178,23 +162,21 @@ contains
       call attr_str(w, w%file_id, 'version', version, ok, errmsg); if (.not. ok) exit setup
       call attr_str(w, w%file_id, 'title', title, ok, errmsg); if (.not. ok) exit setup
       call attr_str(w, w%file_id, 'deck', deck_text, ok, errmsg); if (.not. ok) exit setup
-      call attr_int(w, w%file_id, 'n_nodes', w%n_nodes, ok, errmsg); if (.not. ok) exit setup
-      call attr_int(w, w%file_id, 'n_elems', w%n_elems, ok, errmsg); if (.not. ok) exit setup
+      call attr_num(w, w%file_id, 'n_nodes', w%n_nodes, ok, errmsg); if (.not. ok) exit setup
+      call attr_num(w, w%file_id, 'n_elems', w%n_elems, ok, errmsg); if (.not. ok) exit setup
 
       ! Provenance is isolated in one group so runs on different rank counts
       ! compare equal once this group is skipped.
       call make_group(w, w%file_id, 'provenance', gid, ok, errmsg); if (.not. ok) exit setup
-      call attr_int(w, gid, 'n_ranks', n_ranks, ok, errmsg)
+      call attr_num(w, gid, 'n_ranks', n_ranks, ok, errmsg)
       if (ok) call attr_str(w, gid, 'created', iso8601_now(), ok, errmsg)
       call end_group(w, gid, 'provenance', ok, errmsg); if (.not. ok) exit setup
 
       ! Mesh
       call make_group(w, w%file_id, 'mesh', gid, ok, errmsg); if (.not. ok) exit setup
-      dims1 = [int(nn, hsize_t)]
-      call dset_int1(w, gid, 'node_id', node_id, dims1, ok, errmsg)
-      dims1 = [int(ne, hsize_t)]
-      if (ok) call dset_int1(w, gid, 'elem_id', elem_id, dims1, ok, errmsg)
-      if (ok) call dset_int1(w, gid, 'part_id', part_id, dims1, ok, errmsg)
+      call write_data(w, gid, 'node_id', [int(nn, hsize_t)], ok, errmsg, ints=node_id)
+      if (ok) call write_data(w, gid, 'elem_id', [int(ne, hsize_t)], ok, errmsg, ints=elem_id)
+      if (ok) call write_data(w, gid, 'part_id', [int(ne, hsize_t)], ok, errmsg, ints=part_id)
       if (ok) then
         ! 0-based and transposed: C-order (n_elems,4) is what XDMF reads.
         allocate(ibuf(4, ne))
@@ -203,8 +185,7 @@ contains
             ibuf(j, i) = conn(i, j) - 1_ik
           end do
         end do
-        dims2 = [4_hsize_t, int(ne, hsize_t)]
-        call dset_int2(w, gid, 'connectivity', ibuf, dims2, ok, errmsg)
+        call write_data(w, gid, 'connectivity', [4_hsize_t, int(ne, hsize_t)], ok, errmsg, ints=ibuf)
         deallocate(ibuf)
       end if
       if (ok) then
@@ -214,7 +195,7 @@ contains
       call end_group(w, gid, 'mesh', ok, errmsg); if (.not. ok) exit setup
 
       call make_group(w, w%file_id, 'steps', gid, ok, errmsg); if (.not. ok) exit setup
-      call attr_int(w, gid, 'count', 0_ik, ok, errmsg)
+      call attr_num(w, gid, 'count', 0_ik, ok, errmsg)
       call end_group(w, gid, 'steps', ok, errmsg); if (.not. ok) exit setup
 
       call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, err)
@@ -283,8 +264,8 @@ contains
     w%cur%n_fields = 0
     if (.not. allocated(w%cur%fields)) allocate(w%cur%fields(8))
 
-    call attr_real(w, w%step_gid, 'time', time, ok, errmsg); if (.not. ok) return
-    call attr_i8(w, w%step_gid, 'cycle', cycle, ok, errmsg); if (.not. ok) return
+    call attr_num(w, w%step_gid, 'time', time, ok, errmsg); if (.not. ok) return
+    call attr_num(w, w%step_gid, 'cycle', cycle, ok, errmsg); if (.not. ok) return
     call write_vector(w, w%step_gid, 'coordinates', x, ok, errmsg)
   end subroutine fw_begin_step_i8
 
@@ -295,15 +276,8 @@ contains
     real(rk), intent(in) :: a(:,:)
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
-
-    call check_field(w, name, ok, errmsg); if (.not. ok) return
-    if (size(a, 1) /= w%n_nodes .or. size(a, 2) /= 3) then
-      ok = .false.
-      errmsg = op_err(w, 'fw_node_vector "'//trim(name)//'": shape must be (n_nodes,3)')
-      return
-    end if
-    call write_vector(w, w%step_gid, trim(name), a, ok, errmsg); if (.not. ok) return
-    call add_field(w, trim(name), fk_node_vector)
+    call write_field(w, name, fk_node_vector, size(a, 1) == w%n_nodes .and. size(a, 2) == 3, &
+                     ok, errmsg, vector=a)
   end subroutine fw_node_vector
 
   !> Nodal scalar field a(n_nodes).
@@ -313,16 +287,7 @@ contains
     real(rk), intent(in) :: a(:)
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
-
-    call check_field(w, name, ok, errmsg); if (.not. ok) return
-    if (size(a) /= w%n_nodes) then
-      ok = .false.
-      errmsg = op_err(w, 'fw_node_scalar "'//trim(name)//'": size must be n_nodes')
-      return
-    end if
-    call dset_real1(w, w%step_gid, trim(name), a, [int(size(a), hsize_t)], ok, errmsg)
-    if (.not. ok) return
-    call add_field(w, trim(name), fk_node_scalar)
+    call write_field(w, name, fk_node_scalar, size(a) == w%n_nodes, ok, errmsg, scalar=a)
   end subroutine fw_node_scalar
 
   !> Element (cell) scalar field a(n_elems).
@@ -332,16 +297,7 @@ contains
     real(rk), intent(in) :: a(:)
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
-
-    call check_field(w, name, ok, errmsg); if (.not. ok) return
-    if (size(a) /= w%n_elems) then
-      ok = .false.
-      errmsg = op_err(w, 'fw_elem_scalar "'//trim(name)//'": size must be n_elems')
-      return
-    end if
-    call dset_real1(w, w%step_gid, trim(name), a, [int(size(a), hsize_t)], ok, errmsg)
-    if (.not. ok) return
-    call add_field(w, trim(name), fk_elem_scalar)
+    call write_field(w, name, fk_elem_scalar, size(a) == w%n_elems, ok, errmsg, scalar=a)
   end subroutine fw_elem_scalar
 
   !> Commit the current step: close its group, bump /steps@count, flush the
@@ -460,6 +416,39 @@ contains
     ok = .true.
   end subroutine check_field
 
+  !> What the three field writers share: checks of the step, name and shape
+  !> (fits: the array has the shape of its kind), the dataset, the record.
+  subroutine write_field(w, name, kind, fits, ok, errmsg, vector, scalar)
+    type(field_writer_t), intent(inout) :: w
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: kind
+    logical, intent(in) :: fits
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: errmsg
+    real(rk), intent(in), optional :: vector(:,:), scalar(:)
+
+    call check_field(w, name, ok, errmsg); if (.not. ok) return
+    if (.not. fits) then
+      ok = .false.
+      select case (kind)
+      case (fk_node_vector)
+        errmsg = op_err(w, 'fw_node_vector "'//trim(name)//'": shape must be (n_nodes,3)')
+      case (fk_node_scalar)
+        errmsg = op_err(w, 'fw_node_scalar "'//trim(name)//'": size must be n_nodes')
+      case default
+        errmsg = op_err(w, 'fw_elem_scalar "'//trim(name)//'": size must be n_elems')
+      end select
+      return
+    end if
+    if (present(vector)) then
+      call write_vector(w, w%step_gid, trim(name), vector, ok, errmsg)
+    else
+      call write_data(w, w%step_gid, trim(name), [int(size(scalar), hsize_t)], ok, errmsg, &
+                      reals=scalar)
+    end if
+    if (ok) call add_field(w, trim(name), kind)
+  end subroutine write_field
+
   !> Names become HDF5 link names and XML attribute values: keep them plain.
   pure logical function valid_name(name)
     character(len=*), intent(in) :: name
@@ -471,22 +460,12 @@ contains
     if (name == 'coordinates' .or. name == 'part_id') return
     do i = 1, len(name)
       c = name(i:i)
-      if (is_alpha(c) .or. c == '_') cycle
+      if (is_letter(c) .or. c == '_') cycle
       if (i > 1 .and. (is_digit(c) .or. c == '.' .or. c == '-')) cycle
       return
     end do
     valid_name = .true.
   end function valid_name
-
-  pure logical function is_alpha(c)
-    character, intent(in) :: c
-    is_alpha = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
-  end function is_alpha
-
-  pure logical function is_digit(c)
-    character, intent(in) :: c
-    is_digit = c >= '0' .and. c <= '9'
-  end function is_digit
 
   subroutine add_field(w, name, kind)
     type(field_writer_t), intent(inout) :: w
@@ -519,7 +498,7 @@ contains
         w%buf(j, i) = a(i, j)
       end do
     end do
-    call dset_real2(w, loc, name, w%buf, [3_hsize_t, int(size(a, 1), hsize_t)], ok, errmsg)
+    call write_data(w, loc, name, [3_hsize_t, int(size(a, 1), hsize_t)], ok, errmsg, reals=w%buf)
   end subroutine write_vector
 
   ! ----------------------------------------------------------- XDMF output
@@ -711,176 +690,112 @@ contains
     end if
   end subroutine end_group
 
-  !> Create and write one dataset from a contiguous buffer. dims are in
-  !> Fortran order (HDF5 reverses them: Fortran (3,n) is C (n,3)).
-  subroutine write_dset(w, loc, name, ftype, mtype, dims, buf, ok, errmsg)
+  !> Create and write one dataset (dims given, in Fortran order: HDF5
+  !> reverses them, so Fortran (3,n) is C (n,3)) or one scalar attribute (no
+  !> dims) from the buffer at buf. The two differ only in the HDF5 calls.
+  subroutine write_object(w, loc, name, ftype, mtype, buf, ok, errmsg, dims)
     type(field_writer_t), intent(in) :: w
     integer(hid_t), intent(in) :: loc, ftype, mtype
+    character(len=*), intent(in) :: name
+    type(c_ptr), intent(in) :: buf
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: errmsg
+    integer(hsize_t), intent(in), optional :: dims(:)
+    character(len=:), allocatable :: what
+    integer(hid_t) :: sid, oid
+    integer :: err, e2
+
+    ok = .false.
+    errmsg = ''
+    if (present(dims)) then
+      what = 'dataset '//name
+      call h5screate_simple_f(size(dims), dims, sid, err)
+    else
+      what = 'attribute '//name
+      call h5screate_f(H5S_SCALAR_F, sid, err)
+    end if
+    if (err < 0) then
+      errmsg = op_err(w, 'create dataspace for '//what)
+      return
+    end if
+    if (present(dims)) then
+      call h5dcreate_f(loc, name, ftype, sid, oid, err)
+    else
+      call h5acreate_f(loc, name, ftype, sid, oid, err)
+    end if
+    if (err < 0) then
+      call h5sclose_f(sid, e2)
+      errmsg = op_err(w, 'create '//what)
+      return
+    end if
+    if (present(dims)) then
+      call h5dwrite_f(oid, mtype, buf, err)
+    else
+      call h5awrite_f(oid, mtype, buf, err)
+    end if
+    if (err < 0) errmsg = op_err(w, 'write '//what)
+    ! after a failed write the first error is kept and the closes are best effort
+    if (present(dims)) then
+      call h5dclose_f(oid, e2)
+    else
+      call h5aclose_f(oid, e2)
+    end if
+    if (err >= 0) err = e2
+    call h5sclose_f(sid, e2)
+    if (len(errmsg) > 0) return
+    ok = err >= 0 .and. e2 >= 0
+    if (.not. ok) errmsg = op_err(w, 'close '//what)
+  end subroutine write_object
+
+  !> An int32 (ints) or float64 (reals) dataset of shape dims. Assumed-size
+  !> dummies give the contiguous buffer that c_loc needs, whatever the rank
+  !> (a copy is made only if the caller passed a non-contiguous section).
+  subroutine write_data(w, loc, name, dims, ok, errmsg, ints, reals)
+    type(field_writer_t), intent(in) :: w
+    integer(hid_t), intent(in) :: loc
     character(len=*), intent(in) :: name
     integer(hsize_t), intent(in) :: dims(:)
-    type(c_ptr), intent(in) :: buf
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
-    integer(hid_t) :: sid, did
-    integer :: err, e2
+    integer(ik), intent(in), target, optional :: ints(*)
+    real(rk), intent(in), target, optional :: reals(*)
+    if (present(ints)) then
+      call write_object(w, loc, name, H5T_STD_I32LE, h5kind_to_type(ik, H5_INTEGER_KIND), &
+                        c_loc(ints), ok, errmsg, dims)
+    else
+      call write_object(w, loc, name, H5T_IEEE_F64LE, h5kind_to_type(rk, H5_REAL_KIND), &
+                        c_loc(reals), ok, errmsg, dims)
+    end if
+  end subroutine write_data
 
-    ok = .false.
-    errmsg = ''
-    call h5screate_simple_f(size(dims), dims, sid, err)
-    if (err < 0) then
-      errmsg = op_err(w, 'create dataspace for dataset '//name)
-      return
-    end if
-    call h5dcreate_f(loc, name, ftype, sid, did, err)
-    if (err < 0) then
-      call h5sclose_f(sid, e2)
-      errmsg = op_err(w, 'create dataset '//name)
-      return
-    end if
-    call h5dwrite_f(did, mtype, buf, err)
-    if (err < 0) then
-      call h5dclose_f(did, e2)
-      call h5sclose_f(sid, e2)
-      errmsg = op_err(w, 'write dataset '//name)
-      return
-    end if
-    call h5dclose_f(did, err)
-    call h5sclose_f(sid, e2)
-    if (err < 0 .or. e2 < 0) then
-      errmsg = op_err(w, 'close dataset '//name)
-      return
-    end if
-    ok = .true.
-  end subroutine write_dset
-
-  ! Explicit-shape dummies give a contiguous buffer for c_loc (a copy is made
-  ! only if the caller passed a non-contiguous section).
-  subroutine dset_int1(w, loc, name, a, dims, ok, errmsg)
+  !> One scalar numeric attribute: int32, int64 or float64 by the type of val.
+  subroutine attr_num(w, loc, name, val, ok, errmsg)
     type(field_writer_t), intent(in) :: w
     integer(hid_t), intent(in) :: loc
     character(len=*), intent(in) :: name
-    integer(hsize_t), intent(in) :: dims(1)
-    integer(ik), intent(in), target :: a(dims(1))
+    class(*), intent(in) :: val
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
-    call write_dset(w, loc, name, H5T_STD_I32LE, h5kind_to_type(ik, H5_INTEGER_KIND), &
-                    dims, c_loc(a), ok, errmsg)
-  end subroutine dset_int1
+    integer(ik), target :: vi
+    integer(i8), target :: v8
+    real(rk), target :: vr
+    integer(hid_t) :: ftype, mtype
+    type(c_ptr) :: buf
 
-  subroutine dset_int2(w, loc, name, a, dims, ok, errmsg)
-    type(field_writer_t), intent(in) :: w
-    integer(hid_t), intent(in) :: loc
-    character(len=*), intent(in) :: name
-    integer(hsize_t), intent(in) :: dims(2)
-    integer(ik), intent(in), target :: a(dims(1), dims(2))
-    logical, intent(out) :: ok
-    character(len=:), allocatable, intent(out) :: errmsg
-    call write_dset(w, loc, name, H5T_STD_I32LE, h5kind_to_type(ik, H5_INTEGER_KIND), &
-                    dims, c_loc(a), ok, errmsg)
-  end subroutine dset_int2
-
-  subroutine dset_real1(w, loc, name, a, dims, ok, errmsg)
-    type(field_writer_t), intent(in) :: w
-    integer(hid_t), intent(in) :: loc
-    character(len=*), intent(in) :: name
-    integer(hsize_t), intent(in) :: dims(1)
-    real(rk), intent(in), target :: a(dims(1))
-    logical, intent(out) :: ok
-    character(len=:), allocatable, intent(out) :: errmsg
-    call write_dset(w, loc, name, H5T_IEEE_F64LE, h5kind_to_type(rk, H5_REAL_KIND), &
-                    dims, c_loc(a), ok, errmsg)
-  end subroutine dset_real1
-
-  subroutine dset_real2(w, loc, name, a, dims, ok, errmsg)
-    type(field_writer_t), intent(in) :: w
-    integer(hid_t), intent(in) :: loc
-    character(len=*), intent(in) :: name
-    integer(hsize_t), intent(in) :: dims(2)
-    real(rk), intent(in), target :: a(dims(1), dims(2))
-    logical, intent(out) :: ok
-    character(len=:), allocatable, intent(out) :: errmsg
-    call write_dset(w, loc, name, H5T_IEEE_F64LE, h5kind_to_type(rk, H5_REAL_KIND), &
-                    dims, c_loc(a), ok, errmsg)
-  end subroutine dset_real2
-
-  !> Create and write one scalar attribute.
-  subroutine write_attr(w, loc, name, ftype, mtype, buf, ok, errmsg)
-    type(field_writer_t), intent(in) :: w
-    integer(hid_t), intent(in) :: loc, ftype, mtype
-    character(len=*), intent(in) :: name
-    type(c_ptr), intent(in) :: buf
-    logical, intent(out) :: ok
-    character(len=:), allocatable, intent(out) :: errmsg
-    integer(hid_t) :: sid, aid
-    integer :: err, e2
-
-    ok = .false.
-    errmsg = ''
-    call h5screate_f(H5S_SCALAR_F, sid, err)
-    if (err < 0) then
-      errmsg = op_err(w, 'create dataspace for attribute '//name)
+    select type (val)
+    type is (integer(ik))
+      vi = val; buf = c_loc(vi); ftype = H5T_STD_I32LE; mtype = h5kind_to_type(ik, H5_INTEGER_KIND)
+    type is (integer(i8))
+      v8 = val; buf = c_loc(v8); ftype = H5T_STD_I64LE; mtype = h5kind_to_type(i8, H5_INTEGER_KIND)
+    type is (real(rk))
+      vr = val; buf = c_loc(vr); ftype = H5T_IEEE_F64LE; mtype = h5kind_to_type(rk, H5_REAL_KIND)
+    class default
+      ok = .false.
+      errmsg = op_err(w, 'attribute '//name//' of a type other than int32, int64, float64')
       return
-    end if
-    call h5acreate_f(loc, name, ftype, sid, aid, err)
-    if (err < 0) then
-      call h5sclose_f(sid, e2)
-      errmsg = op_err(w, 'create attribute '//name)
-      return
-    end if
-    call h5awrite_f(aid, mtype, buf, err)
-    if (err < 0) then
-      call h5aclose_f(aid, e2)
-      call h5sclose_f(sid, e2)
-      errmsg = op_err(w, 'write attribute '//name)
-      return
-    end if
-    call h5aclose_f(aid, err)
-    call h5sclose_f(sid, e2)
-    if (err < 0 .or. e2 < 0) then
-      errmsg = op_err(w, 'close attribute '//name)
-      return
-    end if
-    ok = .true.
-  end subroutine write_attr
-
-  subroutine attr_int(w, loc, name, val, ok, errmsg)
-    type(field_writer_t), intent(in) :: w
-    integer(hid_t), intent(in) :: loc
-    character(len=*), intent(in) :: name
-    integer(ik), intent(in) :: val
-    logical, intent(out) :: ok
-    character(len=:), allocatable, intent(out) :: errmsg
-    integer(ik), target :: v
-    v = val
-    call write_attr(w, loc, name, H5T_STD_I32LE, h5kind_to_type(ik, H5_INTEGER_KIND), &
-                    c_loc(v), ok, errmsg)
-  end subroutine attr_int
-
-  subroutine attr_i8(w, loc, name, val, ok, errmsg)
-    type(field_writer_t), intent(in) :: w
-    integer(hid_t), intent(in) :: loc
-    character(len=*), intent(in) :: name
-    integer(i8), intent(in) :: val
-    logical, intent(out) :: ok
-    character(len=:), allocatable, intent(out) :: errmsg
-    integer(i8), target :: v
-    v = val
-    call write_attr(w, loc, name, H5T_STD_I64LE, h5kind_to_type(i8, H5_INTEGER_KIND), &
-                    c_loc(v), ok, errmsg)
-  end subroutine attr_i8
-
-  subroutine attr_real(w, loc, name, val, ok, errmsg)
-    type(field_writer_t), intent(in) :: w
-    integer(hid_t), intent(in) :: loc
-    character(len=*), intent(in) :: name
-    real(rk), intent(in) :: val
-    logical, intent(out) :: ok
-    character(len=:), allocatable, intent(out) :: errmsg
-    real(rk), target :: v
-    v = val
-    call write_attr(w, loc, name, H5T_IEEE_F64LE, h5kind_to_type(rk, H5_REAL_KIND), &
-                    c_loc(v), ok, errmsg)
-  end subroutine attr_real
+    end select
+    call write_object(w, loc, name, ftype, mtype, buf, ok, errmsg)
+  end subroutine attr_num
 
   !> Variable-length UTF-8 string attribute.  Variable length because the
   !> deck can exceed the 64 KiB limit of a fixed-size attribute in the
@@ -911,7 +826,7 @@ contains
       errmsg = op_err(w, 'create string type for attribute '//name)
       return
     end if
-    call write_attr(w, loc, name, tid, tid, c_loc(ptr), ok, errmsg)
+    call write_object(w, loc, name, tid, tid, c_loc(ptr), ok, errmsg)
     call h5tclose_f(tid, e2)
   end subroutine attr_str
 
@@ -937,31 +852,11 @@ contains
     end if
     call h5awrite_f(aid, h5kind_to_type(ik, H5_INTEGER_KIND), c_loc(v), err)
     call h5aclose_f(aid, e2)
-    if (err < 0 .or. e2 < 0) then
-      errmsg = op_err(w, 'write attribute '//name)
-      return
-    end if
-    ok = .true.
+    ok = err >= 0 .and. e2 >= 0
+    if (.not. ok) errmsg = op_err(w, 'write attribute '//name)
   end subroutine update_attr_int
 
   ! ------------------------------------------------------------ utilities
-
-  !> Directory part of a path including the trailing '/', '' if none.
-  pure function dir_name(path) result(d)
-    character(len=*), intent(in) :: path
-    character(len=:), allocatable :: d
-    integer :: k
-    k = index(path, '/', back=.true.)
-    d = path(1:k)
-  end function dir_name
-
-  pure function base_name(path) result(b)
-    character(len=*), intent(in) :: path
-    character(len=:), allocatable :: b
-    integer :: k
-    k = index(path, '/', back=.true.)
-    b = path(k+1:)
-  end function base_name
 
   !> Local time as ISO-8601, e.g. 2024-05-01T12:34:56+02:00.
   function iso8601_now() result(s)

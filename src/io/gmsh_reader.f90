@@ -9,6 +9,7 @@ module udar_gmsh
   use, intrinsic :: iso_fortran_env, only: int32, int64
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use udar_kinds, only: rk, i8, max_name_len
+  use udar_strings, only: itoa
   implicit none
   private
 
@@ -35,6 +36,8 @@ module udar_gmsh
   integer, parameter :: fmt_v22 = 22, fmt_v41 = 41
   integer, parameter :: type_tri3 = 2, type_tet4 = 4
   integer, parameter :: max_listed = 20     ! element tags listed in an error message
+  ! sizes of binary MSH 4.1 values
+  integer(i8), parameter :: int_bytes = 4, size_bytes = 8, real_bytes = 8
   real(rk), parameter :: degenerate_tol = 1.0e-12_rk
 
   ! Exact powers of ten: a decimal with <= 2**53 mantissa and |exponent| <= 22
@@ -66,6 +69,14 @@ module udar_gmsh
     integer, allocatable :: sidx(:)
   end type entity_list_t
 
+  !> Elements of one kind (tets or triangles) as read, before tags are resolved.
+  type :: elem_list_t
+    integer :: nv = 0                         ! nodes per element
+    integer :: n = 0
+    ! ref: entity tag (4.1) or physical tag (2.2)
+    integer, allocatable :: tag(:), ref(:), node(:,:)   ! node(nv,n): node tags
+  end type elem_list_t
+
   !> Everything gathered while parsing, before tags are resolved.
   type :: raw_t
     integer :: version = 0
@@ -77,11 +88,7 @@ module udar_gmsh
     integer :: nn = 0
     integer, allocatable :: ntag(:)
     real(rk), allocatable :: nx(:,:)          ! (3,nn) as in the file
-    ! ref: entity tag (4.1) or physical tag (2.2)
-    integer :: nt = 0
-    integer, allocatable :: t_tag(:), t_ref(:), t_node(:,:)   ! t_node(4,nt): node tags
-    integer :: nr = 0
-    integer, allocatable :: r_tag(:), r_ref(:), r_node(:,:)   ! r_node(3,nr)
+    type(elem_list_t) :: tets = elem_list_t(nv=4), tris = elem_list_t(nv=3)
     integer(i8) :: n_other3d = 0
     integer :: other3d_type = 0
     ! MSH 2.2: groups used by elements of other types, so that the group list
@@ -89,10 +96,6 @@ module udar_gmsh
     integer :: n_keys = 0
     integer(i8), allocatable :: keys(:)
   end type raw_t
-
-  interface itoa
-    module procedure itoa4, itoa8
-  end interface itoa
 
 contains
 
@@ -196,10 +199,7 @@ contains
         return
       end if
       p0 = c%pos + 1
-      do while (c%pos <= c%n)
-        if (iachar(c%buf(c%pos:c%pos)) <= 32) exit
-        c%pos = c%pos + 1
-      end do
+      c%pos = token_end(c, c%pos)
       name = c%buf(p0:c%pos-1)
       call skip_line(c)
       if (raw%version == 0 .and. name /= 'MeshFormat') then
@@ -218,22 +218,16 @@ contains
         else
           call skip_section(c, name)
         end if
-      case ('Nodes')
+      case ('Nodes')       ! (the version is known: $MeshFormat came first)
         if (raw%have_nodes) call fail(c, 'more than one $Nodes section')
-        if (raw%version == fmt_v41) then
-          call parse_nodes_41(c, raw)
-        else
-          call parse_nodes_22(c, raw)
-        end if
         raw%have_nodes = .true.
+        if (raw%version == fmt_v41) call parse_nodes_41(c, raw)
+        if (raw%version == fmt_v22) call parse_nodes_22(c, raw)
       case ('Elements')
         if (raw%have_elements) call fail(c, 'more than one $Elements section')
-        if (raw%version == fmt_v41) then
-          call parse_elements_41(c, raw)
-        else
-          call parse_elements_22(c, raw)
-        end if
         raw%have_elements = .true.
+        if (raw%version == fmt_v41) call parse_elements_41(c, raw)
+        if (raw%version == fmt_v22) call parse_elements_22(c, raw)
       case default
         ! $Periodic, $NodeData, $Comments, $PartitionedEntities...: not needed
         call skip_section(c, name)
@@ -321,7 +315,7 @@ contains
       ! The binary marker int 1 follows the header line; anything else means
       ! the file was written on a machine with the other byte order.
       call skip_line(c)
-      call bin_int(c, one, 'binary endianness marker')
+      call rd_int(c, one, 'binary endianness marker')
       if (c%bad) return
       if (one /= 1) then
         call fail(c, 'binary file has foreign byte order (only little-endian files are supported)')
@@ -406,11 +400,11 @@ contains
     end if
     ! points: tag, x, y, z, physical tags (no bounding entities)
     do i = 1, cnt(1)
-      call skip_ints(c, 1_i8, 'point entity tag')
-      call skip_reals(c, 3_i8, 'point entity coordinates')
+      call skip_values(c, 1_i8, int_bytes, 'point entity tag')
+      call skip_values(c, 3_i8, real_bytes, 'point entity coordinates')
       call rd_size(c, np, 'number of physical tags')
       if (c%bad) return
-      call skip_ints(c, np, 'point entity physical tags')
+      call skip_values(c, np, int_bytes, 'point entity physical tags')
     end do
     call read_entity_list(c, cnt(2), curves)
     call read_entity_list(c, cnt(3), raw%surf)
@@ -431,7 +425,7 @@ contains
     m = 0
     do i = 1, list%n
       call rd_int(c, list%tag(i), 'entity tag')
-      call skip_reals(c, 6_i8, 'entity bounding box')
+      call skip_values(c, 6_i8, real_bytes, 'entity bounding box')
       call rd_size(c, np, 'number of physical tags')
       if (c%bad) return
       if (np > c%n - c%pos + 1) then
@@ -450,7 +444,7 @@ contains
         end if
       end do
       call rd_size(c, nb, 'number of bounding entities')
-      call skip_ints(c, nb, 'bounding entity tags')
+      call skip_values(c, nb, int_bytes, 'bounding entity tags')
       if (c%bad) return
     end do
     list%first(list%n+1) = m + 1
@@ -463,13 +457,10 @@ contains
   subroutine parse_nodes_41(c, raw)
     type(cursor_t), intent(inout) :: c
     type(raw_t), intent(inout) :: raw
-    integer(i8) :: nblocks, nnodes, tmin, tmax, nb, b, k, i
-    integer :: edim, etag, param, extra
+    integer(i8) :: nblocks, nnodes, nb, b, k, i
+    integer :: edim, etag, param, extra, j
 
-    call rd_size(c, nblocks, 'number of node blocks')
-    call rd_size(c, nnodes, 'number of nodes')
-    call rd_size(c, tmin, 'minimum node tag')
-    call rd_size(c, tmax, 'maximum node tag')
+    call rd_counts(c, 'node', nblocks, nnodes)
     if (c%bad) return
     if (nnodes > c%n - c%pos + 1 .or. nnodes > huge(1) .or. nblocks > c%n - c%pos + 1) then
       call fail(c, 'invalid node count '//itoa(nnodes)//' in $Nodes (file corrupt or truncated)')
@@ -479,10 +470,7 @@ contains
     allocate(raw%ntag(raw%nn), raw%nx(3, raw%nn))
     k = 0
     do b = 1, nblocks
-      call rd_int(c, edim, 'node block entity dimension')
-      call rd_int(c, etag, 'node block entity tag')
-      call rd_int(c, param, 'node block parametric flag')
-      call rd_size(c, nb, 'number of nodes in block')
+      call rd_block_head(c, 'node', 'node block parametric flag', edim, etag, param, nb)
       if (c%bad) return
       if (edim < 0 .or. edim > 3 .or. param < 0 .or. param > 1) then
         call fail(c, 'invalid node block header (entity dim '//itoa(edim)//', parametric '// &
@@ -494,16 +482,14 @@ contains
         return
       end if
       ! all tags of the block come first, then all coordinates
-      do i = k + 1, k + nb
-        call rd_tag(c, raw%ntag(i), 'node tag')
-      end do
+      call rd_tags(c, raw%ntag(k+1:k+nb), 'node tag')
       extra = 0
       if (param == 1) extra = edim   ! parametric coordinates u, v, w follow x y z
       do i = k + 1, k + nb
-        call rd_real(c, raw%nx(1, i), 'node coordinate')
-        call rd_real(c, raw%nx(2, i), 'node coordinate')
-        call rd_real(c, raw%nx(3, i), 'node coordinate')
-        if (extra > 0) call skip_reals(c, int(extra, i8), 'parametric node coordinate')
+        do j = 1, 3
+          call rd_real(c, raw%nx(j, i), 'node coordinate')
+        end do
+        if (extra > 0) call skip_values(c, int(extra, i8), real_bytes, 'parametric node coordinate')
       end do
       if (c%bad) return
       k = k + nb
@@ -516,48 +502,26 @@ contains
   subroutine parse_elements_41(c, raw)
     type(cursor_t), intent(inout) :: c
     type(raw_t), intent(inout) :: raw
-    integer(i8) :: nblocks, nelem, tmin, tmax, nb, b, i
-    integer :: edim, etag, etype, nn, tdim, j
+    integer(i8) :: nblocks, nelem, nb, b, i
+    integer :: edim, etag, etype, nn, tdim
 
-    call rd_size(c, nblocks, 'number of element blocks')
-    call rd_size(c, nelem, 'number of elements')
-    call rd_size(c, tmin, 'minimum element tag')
-    call rd_size(c, tmax, 'maximum element tag')
+    call rd_counts(c, 'element', nblocks, nelem)
     if (c%bad) return
     if (nelem > c%n - c%pos + 1 .or. nblocks > c%n - c%pos + 1) then
       call fail(c, 'invalid element count '//itoa(nelem)//' in $Elements (file corrupt or truncated)')
       return
     end if
     do b = 1, nblocks
-      call rd_int(c, edim, 'element block entity dimension')
-      call rd_int(c, etag, 'element block entity tag')
-      call rd_int(c, etype, 'element type')
-      call rd_size(c, nb, 'number of elements in block')
+      call rd_block_head(c, 'element', 'element type', edim, etag, etype, nb)
       if (c%bad) return
       if (nb > c%n - c%pos + 1) then
         call fail(c, 'invalid element block size '//itoa(nb)//' (file corrupt or truncated)')
         return
       end if
       if (etype == type_tet4 .and. edim == 3) then
-        call reserve(raw%t_tag, raw%t_ref, raw%t_node, 4, raw%nt + nb)
-        do i = 1, nb
-          raw%nt = raw%nt + 1
-          call rd_tag(c, raw%t_tag(raw%nt), 'element tag')
-          do j = 1, 4
-            call rd_tag(c, raw%t_node(j, raw%nt), 'element node tag')
-          end do
-          raw%t_ref(raw%nt) = etag
-        end do
+        call read_block(raw%tets)
       else if (etype == type_tri3 .and. edim == 2) then
-        call reserve(raw%r_tag, raw%r_ref, raw%r_node, 3, raw%nr + nb)
-        do i = 1, nb
-          raw%nr = raw%nr + 1
-          call rd_tag(c, raw%r_tag(raw%nr), 'element tag')
-          do j = 1, 3
-            call rd_tag(c, raw%r_node(j, raw%nr), 'element node tag')
-          end do
-          raw%r_ref(raw%nr) = etag
-        end do
+        call read_block(raw%tris)
       else
         ! not needed: remember 3D elements for the diagnostic, then skip
         if (edim == 3) then
@@ -566,7 +530,7 @@ contains
         end if
         call element_info(etype, nn, tdim)
         if (nn > 0) then
-          call skip_sizes(c, nb * (1 + nn), 'element data')
+          call skip_values(c, nb * (1 + nn), size_bytes, 'element data')
         else if (.not. c%binary) then
           ! unknown type in ASCII: one element per line
           call skip_line(c)
@@ -579,6 +543,22 @@ contains
       end if
       if (c%bad) return
     end do
+
+  contains
+
+    !> The nb elements of this block: each a tag and list%nv node tags.
+    subroutine read_block(list)
+      type(elem_list_t), intent(inout) :: list
+      integer(i8) :: e
+      call reserve(list, list%n + nb)
+      do e = 1, nb
+        list%n = list%n + 1
+        call rd_tag(c, list%tag(list%n), 'element tag')
+        call rd_tags(c, list%node(:, list%n), 'element node tag')
+        list%ref(list%n) = etag
+      end do
+    end subroutine read_block
+
   end subroutine parse_elements_41
 
   ! ==========================================================================
@@ -589,7 +569,7 @@ contains
     type(cursor_t), intent(inout) :: c
     type(raw_t), intent(inout) :: raw
     integer(i8) :: nnodes
-    integer :: i
+    integer :: i, j
 
     call get_i8(c, nnodes, 'number of nodes')
     if (c%bad) return
@@ -601,9 +581,9 @@ contains
     allocate(raw%ntag(raw%nn), raw%nx(3, raw%nn))
     do i = 1, raw%nn
       call rd_tag(c, raw%ntag(i), 'node tag')
-      call get_real(c, raw%nx(1, i), 'node coordinate')
-      call get_real(c, raw%nx(2, i), 'node coordinate')
-      call get_real(c, raw%nx(3, i), 'node coordinate')
+      do j = 1, 3
+        call get_real(c, raw%nx(j, i), 'node coordinate')
+      end do
       if (c%bad) return
     end do
   end subroutine parse_nodes_22
@@ -638,25 +618,9 @@ contains
       end do
       if (c%bad) return
       if (etype == type_tet4) then
-        if (raw%nt == size_or_zero(raw%t_tag)) &
-          call reserve(raw%t_tag, raw%t_ref, raw%t_node, 4, max(1024_i8, 2_i8 * raw%nt))
-        raw%nt = raw%nt + 1
-        raw%t_tag(raw%nt) = etag
-        raw%t_ref(raw%nt) = phys
-        do j = 1, 4
-          call rd_tag(c, raw%t_node(j, raw%nt), 'element node tag')
-        end do
-        if (phys == 0) raw%nt = raw%nt - 1    ! not in a physical group: drop
+        call add_element(raw%tets)
       else if (etype == type_tri3) then
-        if (raw%nr == size_or_zero(raw%r_tag)) &
-          call reserve(raw%r_tag, raw%r_ref, raw%r_node, 3, max(1024_i8, 2_i8 * raw%nr))
-        raw%nr = raw%nr + 1
-        raw%r_tag(raw%nr) = etag
-        raw%r_ref(raw%nr) = phys
-        do j = 1, 3
-          call rd_tag(c, raw%r_node(j, raw%nr), 'element node tag')
-        end do
-        if (phys == 0) raw%nr = raw%nr - 1
+        call add_element(raw%tris)
       else
         call element_info(etype, nn, tdim)
         if (tdim == 3) then
@@ -675,6 +639,21 @@ contains
       end if
       if (c%bad) return
     end do
+
+  contains
+
+    !> This element (tag etag, node tags to read), kept only if it is in a
+    !> physical group.
+    subroutine add_element(list)
+      type(elem_list_t), intent(inout) :: list
+      if (list%n == size_or_zero(list%tag)) call reserve(list, max(1024_i8, 2_i8 * list%n))
+      list%n = list%n + 1
+      list%tag(list%n) = etag
+      list%ref(list%n) = phys
+      call rd_tags(c, list%node(:, list%n), 'element node tag')
+      if (phys == 0) list%n = list%n - 1    ! not in a physical group: drop
+    end subroutine add_element
+
   end subroutine parse_elements_22
 
   ! ==========================================================================
@@ -716,31 +695,16 @@ contains
         call push_key(key, m, 3, raw%vol%phys(i))
       end do
     else
-      last_ref = -1
-      do i = 1, raw%nt
-        if (raw%t_ref(i) /= last_ref) call push_key(key, m, 3, raw%t_ref(i))
-        last_ref = raw%t_ref(i)
-      end do
-      last_ref = -1
-      do i = 1, raw%nr
-        if (raw%r_ref(i) /= last_ref) call push_key(key, m, 2, raw%r_ref(i))
-        last_ref = raw%r_ref(i)
-      end do
+      call push_refs(raw%tets, 3)
+      call push_refs(raw%tris, 2)
       do i = 1, raw%n_keys
         call push_key(key, m, int(raw%keys(i) / dim_shift), int(mod(raw%keys(i), dim_shift)))
       end do
     end if
     allocate(perm(m))
-    call sort_perm(key(1:m), perm)
-    allocate(gkey(m))
-    ng = 0
-    do i = 1, m
-      if (ng > 0) then
-        if (key(perm(i)) == gkey(ng)) cycle
-      end if
-      ng = ng + 1
-      gkey(ng) = key(perm(i))
-    end do
+    call sort_unique(key(1:m), perm, ng)
+    allocate(gkey(ng))
+    gkey = key(perm(1:ng))
     deallocate(key, perm)
     mesh%n_groups = ng
     allocate(mesh%groups(ng))
@@ -762,21 +726,21 @@ contains
     end if
 
     ! ---- tetrahedra in a physical volume: first dim-3 physical tag wins
-    allocate(keep(raw%nt), kgrp(raw%nt))
+    allocate(keep(raw%tets%n), kgrp(raw%tets%n))
     nkeep = 0
     last_ref = -1
     last_g = 0
-    do i = 1, raw%nt
-      if (raw%t_ref(i) /= last_ref) then    ! blocks share a ref: look up once per run
-        last_ref = raw%t_ref(i)
+    do i = 1, raw%tets%n
+      if (raw%tets%ref(i) /= last_ref) then    ! blocks share a ref: look up once per run
+        last_ref = raw%tets%ref(i)
         phys = 0
         if (raw%version == fmt_v41) then
-          e = find_entity(raw%vol, raw%t_ref(i))
+          e = find_entity(raw%vol, raw%tets%ref(i))
           if (e > 0) then
             if (raw%vol%first(e+1) > raw%vol%first(e)) phys = raw%vol%phys(raw%vol%first(e))
           end if
         else
-          phys = raw%t_ref(i)
+          phys = raw%tets%ref(i)
         end if
         last_g = 0
         if (phys > 0) last_g = find_sorted(gkey(1:ng), 3 * dim_shift + phys)
@@ -801,24 +765,16 @@ contains
     ! stable sort by element tag; duplicates (MSH 2.2 lists an element once
     ! per physical group) keep their first occurrence
     allocate(key(nkeep), perm(nkeep))
-    key = int(raw%t_tag(keep(1:nkeep)), i8)
-    call sort_perm(key, perm)
-    m = 0
-    do i = 1, nkeep
-      if (m > 0) then
-        if (key(perm(i)) == key(perm(m))) cycle
-      end if
-      m = m + 1
-      perm(m) = perm(i)
-    end do
+    key = int(raw%tets%tag(keep(1:nkeep)), i8)
+    call sort_unique(key, perm, m)
     mesh%n_tets = m
     allocate(mesh%tet_tag(m), mesh%tet(m, 4), mesh%tet_group(m))
     do i = 1, m
-      mesh%tet_tag(i) = raw%t_tag(keep(perm(i)))
+      mesh%tet_tag(i) = raw%tets%tag(keep(perm(i)))
       mesh%tet_group(i) = kgrp(perm(i))
-      mesh%tet(i, :) = raw%t_node(:, keep(perm(i)))   ! node tags for now
+      mesh%tet(i, :) = raw%tets%node(:, keep(perm(i)))   ! node tags for now
     end do
-    deallocate(key, perm, keep, kgrp, raw%t_tag, raw%t_ref, raw%t_node)
+    deallocate(key, perm, keep, kgrp, raw%tets%tag, raw%tets%ref, raw%tets%node)
 
     ! ---- triangles: one row per (triangle, physical surface group)
     nrows = 0
@@ -829,22 +785,14 @@ contains
     ! order by (element tag, group); drop exact duplicates
     allocate(key(nrows), perm(nrows))
     do i = 1, nrows
-      key(i) = int(raw%r_tag(rows(i)), i8) * int(ng + 1, i8) + rgrp(i)
+      key(i) = int(raw%tris%tag(rows(i)), i8) * int(ng + 1, i8) + rgrp(i)
     end do
-    call sort_perm(key, perm)
-    m = 0
-    do i = 1, nrows
-      if (m > 0) then
-        if (key(perm(i)) == key(perm(m))) cycle
-      end if
-      m = m + 1
-      perm(m) = perm(i)
-    end do
+    call sort_unique(key, perm, m)
     mesh%n_tris = m
     allocate(mesh%tri(m, 3), mesh%tri_group(m), ttag(m))
     do i = 1, m
-      ttag(i) = raw%r_tag(rows(perm(i)))     ! kept only for error messages
-      mesh%tri(i, :) = raw%r_node(:, rows(perm(i)))
+      ttag(i) = raw%tris%tag(rows(perm(i)))     ! kept only for error messages
+      mesh%tri(i, :) = raw%tris%node(:, rows(perm(i)))
       mesh%tri_group(i) = rgrp(perm(i))
     end do
     deallocate(key, perm, rows, rgrp)
@@ -914,29 +862,44 @@ contains
 
   contains
 
+    !> MSH 2.2: the physical groups (of dimension dim) the elements refer to.
+    subroutine push_refs(list, dim)
+      type(elem_list_t), intent(in) :: list
+      integer, intent(in) :: dim
+      integer :: k, last
+      last = -1
+      do k = 1, list%n
+        if (list%ref(k) /= last) call push_key(key, m, dim, list%ref(k))
+        last = list%ref(k)
+      end do
+    end subroutine push_refs
+
     subroutine tri_rows(fill)
       logical, intent(in) :: fill
       integer :: ir, jp, ie
-      do ir = 1, raw%nr
+      do ir = 1, raw%tris%n
         if (raw%version == fmt_v41) then
-          ie = find_entity(raw%surf, raw%r_ref(ir))
+          ie = find_entity(raw%surf, raw%tris%ref(ir))
           if (ie == 0) cycle
           do jp = raw%surf%first(ie), raw%surf%first(ie+1) - 1
-            nrows = nrows + 1
-            if (fill) then
-              rows(nrows) = ir
-              rgrp(nrows) = find_sorted(gkey(1:ng), 2 * dim_shift + raw%surf%phys(jp))
-            end if
+            call tri_row(ir, raw%surf%phys(jp), fill)
           end do
         else
-          nrows = nrows + 1
-          if (fill) then
-            rows(nrows) = ir
-            rgrp(nrows) = find_sorted(gkey(1:ng), 2 * dim_shift + raw%r_ref(ir))
-          end if
+          call tri_row(ir, raw%tris%ref(ir), fill)
         end if
       end do
     end subroutine tri_rows
+
+    !> The row of triangle ir in physical surface phys (only counted unless fill).
+    subroutine tri_row(ir, phys, fill)
+      integer, intent(in) :: ir, phys
+      logical, intent(in) :: fill
+      nrows = nrows + 1
+      if (fill) then
+        rows(nrows) = ir
+        rgrp(nrows) = find_sorted(gkey(1:ng), 2 * dim_shift + phys)
+      end if
+    end subroutine tri_row
 
     !> Replace a node tag by its index; record the first failure.
     subroutine translate(v, etag)
@@ -1039,19 +1002,34 @@ contains
     end if
   end subroutine skip_line
 
-  subroutine skip_token(c, what)
+  !> Move to the start of the next token; reaching the end of the file
+  !> instead is an error (nothing is done after an earlier one).
+  subroutine seek_token(c, what)
     type(cursor_t), intent(inout) :: c
     character(len=*), intent(in) :: what
     if (c%bad) return
     call skip_ws(c)
-    if (c%pos > c%n) then
-      call fail_eof(c, what)
-      return
-    end if
-    do while (c%pos <= c%n)
-      if (iachar(c%buf(c%pos:c%pos)) <= 32) exit
-      c%pos = c%pos + 1
+    if (c%pos > c%n) call fail_eof(c, what)
+  end subroutine seek_token
+
+  !> Position after the token that starts at p (at the next blank or control
+  !> character, or past the end).
+  pure integer(i8) function token_end(c, p) result(q)
+    type(cursor_t), intent(in) :: c
+    integer(i8), intent(in) :: p
+    q = p
+    do while (q <= c%n)
+      if (iachar(c%buf(q:q)) <= 32) exit
+      q = q + 1
     end do
+  end function token_end
+
+  subroutine skip_token(c, what)
+    type(cursor_t), intent(inout) :: c
+    character(len=*), intent(in) :: what
+    call seek_token(c, what)
+    if (c%bad) return
+    c%pos = token_end(c, c%pos)
   end subroutine skip_token
 
   !> The whitespace-delimited text at p (at most 40 characters), for messages.
@@ -1059,13 +1037,7 @@ contains
     type(cursor_t), intent(in) :: c
     integer(i8), intent(in) :: p
     character(len=:), allocatable :: s
-    integer(i8) :: q
-    q = p
-    do while (q <= c%n .and. q < p + 40)
-      if (iachar(c%buf(q:q)) <= 32) exit
-      q = q + 1
-    end do
-    s = c%buf(p:q-1)
+    s = c%buf(p:min(token_end(c, p), p + 40)-1)
     if (len(s) == 0) s = '<blank>'
   end function token_at
 
@@ -1076,15 +1048,11 @@ contains
     character(len=*), intent(in) :: what
     integer(i8) :: p
     integer :: ch, nd
-    logical :: neg
+    logical :: neg, ok
 
     v = 0
+    call seek_token(c, what)
     if (c%bad) return
-    call skip_ws(c)
-    if (c%pos > c%n) then
-      call fail_eof(c, what)
-      return
-    end if
     p = c%pos
     ch = iachar(c%buf(p:p))
     neg = ch == 45
@@ -1098,15 +1066,11 @@ contains
       v = 10 * v + (ch - 48)
       p = p + 1
     end do
-    if (nd == 0 .or. nd > 18) then
+    ok = nd > 0 .and. nd <= 18
+    if (ok .and. p <= c%n) ok = iachar(c%buf(p:p)) <= 32    ! the digits are the whole token
+    if (.not. ok) then
       call fail(c, 'expected an integer ('//what//') but found "'//token_at(c, c%pos)//'"')
       return
-    end if
-    if (p <= c%n) then
-      if (iachar(c%buf(p:p)) > 32) then
-        call fail(c, 'expected an integer ('//what//') but found "'//token_at(c, c%pos)//'"')
-        return
-      end if
     end if
     if (neg) v = -v
     c%pos = p
@@ -1123,12 +1087,8 @@ contains
     logical :: neg, eneg, fast, any_digit
 
     x = 0.0_rk
+    call seek_token(c, what)
     if (c%bad) return
-    call skip_ws(c)
-    if (c%pos > c%n) then
-      call fail_eof(c, what)
-      return
-    end if
     s = c%pos
     p = s
     fast = .true.
@@ -1139,25 +1099,11 @@ contains
     ch = iachar(c%buf(p:p))
     neg = ch == 45
     if (ch == 45 .or. ch == 43) p = p + 1
-    ! integer part
-    do while (p <= c%n)
-      ch = iachar(c%buf(p:p))
-      if (ch < 48 .or. ch > 57) exit
-      any_digit = .true.
-      call add_digit(ch - 48, .false.)
-      p = p + 1
-    end do
-    ! fraction
+    call add_digits(.false.)     ! integer part
     if (p <= c%n) then
       if (c%buf(p:p) == '.') then
         p = p + 1
-        do while (p <= c%n)
-          ch = iachar(c%buf(p:p))
-          if (ch < 48 .or. ch > 57) exit
-          any_digit = .true.
-          call add_digit(ch - 48, .true.)
-          p = p + 1
-        end do
+        call add_digits(.true.)  ! fraction
       end if
     end if
     ! exponent
@@ -1199,11 +1145,7 @@ contains
       end if
     else
       ! slow but exact general conversion
-      p = s
-      do while (p <= c%n)
-        if (iachar(c%buf(p:p)) <= 32) exit
-        p = p + 1
-      end do
+      p = token_end(c, s)
       read(c%buf(s:p-1), *, iostat=ios) x
       if (ios /= 0) then
         call fail(c, 'expected a real number ('//what//') but found "'//token_at(c, s)//'"')
@@ -1216,6 +1158,18 @@ contains
     c%pos = p
 
   contains
+
+    !> The run of decimal digits at p.
+    subroutine add_digits(frac)
+      logical, intent(in) :: frac
+      do while (p <= c%n)
+        ch = iachar(c%buf(p:p))
+        if (ch < 48 .or. ch > 57) exit
+        any_digit = .true.
+        call add_digit(ch - 48, frac)
+        p = p + 1
+      end do
+    end subroutine add_digits
 
     subroutine add_digit(dgt, frac)
       integer, intent(in) :: dgt
@@ -1238,58 +1192,52 @@ contains
 
   ! ---- binary primitives (little-endian, checked against the marker)
 
-  subroutine bin_int(c, v, what)
-    type(cursor_t), intent(inout) :: c
-    integer, intent(out) :: v
-    character(len=*), intent(in) :: what
-    v = 0
-    if (c%bad) return
-    if (c%pos + 3 > c%n) then
-      call fail_eof(c, what)
-      return
-    end if
-    v = transfer(c%buf(c%pos:c%pos+3), 0_int32)
-    c%pos = c%pos + 4
-  end subroutine bin_int
-
-  subroutine bin_i8(c, v, what)
-    type(cursor_t), intent(inout) :: c
-    integer(i8), intent(out) :: v
-    character(len=*), intent(in) :: what
-    v = 0
-    if (c%bad) return
-    if (c%pos + 7 > c%n) then
-      call fail_eof(c, what)
-      return
-    end if
-    v = transfer(c%buf(c%pos:c%pos+7), 0_int64)
-    c%pos = c%pos + 8
-  end subroutine bin_i8
-
-  subroutine bin_skip(c, nbytes, what)
+  !> Claim the next nbytes of a binary file: p is where they start, 0 after an
+  !> earlier error or when the file ends first (an error).
+  subroutine bin_take(c, nbytes, what, p)
     type(cursor_t), intent(inout) :: c
     integer(i8), intent(in) :: nbytes
     character(len=*), intent(in) :: what
+    integer(i8), intent(out) :: p
+    p = 0
     if (c%bad) return
     if (nbytes < 0 .or. nbytes > c%n - c%pos + 1) then
       call fail_eof(c, what)
       return
     end if
+    p = c%pos
     c%pos = c%pos + nbytes
-  end subroutine bin_skip
+  end subroutine bin_take
 
   ! ---- MSH 4.1 typed reads: ASCII token or binary value by file type
+
+  !> An integer field of nbytes (int_bytes or size_bytes) in a binary file.
+  subroutine rd_i8(c, v, nbytes, what)
+    type(cursor_t), intent(inout) :: c
+    integer(i8), intent(out) :: v
+    integer(i8), intent(in) :: nbytes
+    character(len=*), intent(in) :: what
+    integer(i8) :: p
+    if (.not. c%binary) then
+      call get_i8(c, v, what)
+      return
+    end if
+    v = 0
+    call bin_take(c, nbytes, what, p)
+    if (p == 0) return
+    if (nbytes == int_bytes) then
+      v = transfer(c%buf(p:p+3), 0_int32)
+    else
+      v = transfer(c%buf(p:p+7), 0_int64)
+    end if
+  end subroutine rd_i8
 
   !> size_t count (must be >= 0).
   subroutine rd_size(c, v, what)
     type(cursor_t), intent(inout) :: c
     integer(i8), intent(out) :: v
     character(len=*), intent(in) :: what
-    if (c%binary) then
-      call bin_i8(c, v, what)
-    else
-      call get_i8(c, v, what)
-    end if
+    call rd_i8(c, v, size_bytes, what)
     if (v < 0 .and. .not. c%bad) call fail(c, 'negative '//what//': '//itoa(v))
   end subroutine rd_size
 
@@ -1299,14 +1247,11 @@ contains
     integer, intent(out) :: v
     character(len=*), intent(in) :: what
     integer(i8) :: w
-    if (c%binary) then
-      call bin_int(c, v, what)
-      return
-    end if
-    call get_i8(c, w, what)
+    call rd_i8(c, w, int_bytes, what)
     v = 0
     if (c%bad) return
-    if (abs(w) > huge(1)) then
+    ! (a binary int32 is in range by construction)
+    if (.not. c%binary .and. abs(w) > huge(1)) then
       call fail(c, what//' out of range: '//itoa(w))
       return
     end if
@@ -1319,11 +1264,7 @@ contains
     integer, intent(out) :: v
     character(len=*), intent(in) :: what
     integer(i8) :: w
-    if (c%binary) then
-      call bin_i8(c, w, what)
-    else
-      call get_i8(c, w, what)
-    end if
+    call rd_i8(c, w, size_bytes, what)
     v = 0
     if (c%bad) return
     if (w < 1 .or. w > huge(1)) then
@@ -1333,57 +1274,69 @@ contains
     v = int(w)
   end subroutine rd_tag
 
+  subroutine rd_tags(c, v, what)
+    type(cursor_t), intent(inout) :: c
+    integer, intent(out) :: v(:)
+    character(len=*), intent(in) :: what
+    integer :: k
+    do k = 1, size(v)
+      call rd_tag(c, v(k), what)
+    end do
+  end subroutine rd_tags
+
   subroutine rd_real(c, x, what)
     type(cursor_t), intent(inout) :: c
     real(rk), intent(out) :: x
     character(len=*), intent(in) :: what
+    integer(i8) :: bits
     if (c%binary) then
-      x = 0.0_rk
-      if (c%bad) return
-      if (c%pos + 7 > c%n) then
-        call fail_eof(c, what)
-        return
-      end if
-      x = transfer(c%buf(c%pos:c%pos+7), 0.0_rk)
-      c%pos = c%pos + 8
+      call rd_i8(c, bits, real_bytes, what)    ! the 8 bytes as they are (0 on failure)
+      x = transfer(bits, 0.0_rk)
     else
       call get_real(c, x, what)
     end if
   end subroutine rd_real
 
-  subroutine skip_reals(c, k, what)
+  !> Head of a MSH 4.1 $Nodes or $Elements section (what: 'node', 'element'):
+  !> the numbers of blocks and of entries (the tag range is not needed).
+  subroutine rd_counts(c, what, nblocks, n)
     type(cursor_t), intent(inout) :: c
-    integer(i8), intent(in) :: k
     character(len=*), intent(in) :: what
-    call skip_values(c, k, 8_i8, what)
-  end subroutine skip_reals
+    integer(i8), intent(out) :: nblocks, n
+    integer(i8) :: tag
+    call rd_size(c, nblocks, 'number of '//what//' blocks')
+    call rd_size(c, n, 'number of '//what//'s')
+    call rd_size(c, tag, 'minimum '//what//' tag')
+    call rd_size(c, tag, 'maximum '//what//' tag')
+  end subroutine rd_counts
 
-  subroutine skip_ints(c, k, what)
+  !> Head of one entity block of such a section: entity dimension and tag,
+  !> one more int k (the parametric flag of nodes, the element type) and the
+  !> number of entries.
+  subroutine rd_block_head(c, what, k_what, edim, etag, k, nb)
     type(cursor_t), intent(inout) :: c
-    integer(i8), intent(in) :: k
-    character(len=*), intent(in) :: what
-    call skip_values(c, k, 4_i8, what)
-  end subroutine skip_ints
+    character(len=*), intent(in) :: what, k_what
+    integer, intent(out) :: edim, etag, k
+    integer(i8), intent(out) :: nb
+    call rd_int(c, edim, what//' block entity dimension')
+    call rd_int(c, etag, what//' block entity tag')
+    call rd_int(c, k, k_what)
+    call rd_size(c, nb, 'number of '//what//'s in block')
+  end subroutine rd_block_head
 
-  subroutine skip_sizes(c, k, what)
-    type(cursor_t), intent(inout) :: c
-    integer(i8), intent(in) :: k
-    character(len=*), intent(in) :: what
-    call skip_values(c, k, 8_i8, what)
-  end subroutine skip_sizes
-
+  !> Skip k values of nbytes each (binary) or k tokens (ASCII).
   subroutine skip_values(c, k, nbytes, what)
     type(cursor_t), intent(inout) :: c
     integer(i8), intent(in) :: k, nbytes
     character(len=*), intent(in) :: what
-    integer(i8) :: i
+    integer(i8) :: i, p
     if (c%bad) return
     if (k < 0 .or. k > c%n) then
       call fail(c, 'invalid count while skipping '//what)
       return
     end if
     if (c%binary) then
-      call bin_skip(c, k * nbytes, what)
+      call bin_take(c, k * nbytes, what, p)
     else
       do i = 1, k
         call skip_token(c, what)
@@ -1663,47 +1616,48 @@ contains
     call move_alloc(tmp, a)
   end subroutine grow_int
 
-  !> Make room for at least cap elements (tag, ref, nodes(nv,:)).
-  subroutine reserve(tag, ref, node, nv, cap)
-    integer, allocatable, intent(inout) :: tag(:), ref(:), node(:,:)
-    integer, intent(in) :: nv
+  !> Make room for at least cap elements in list.
+  subroutine reserve(list, cap)
+    type(elem_list_t), intent(inout) :: list
     integer(i8), intent(in) :: cap
     integer, allocatable :: t1(:), t2(:), t3(:,:)
     integer :: n, newcap
-    n = size_or_zero(tag)
+    n = size_or_zero(list%tag)
     if (cap <= n) return
     newcap = int(max(cap, 2_i8 * n))    ! geometric growth keeps appends O(1)
-    allocate(t1(newcap), t2(newcap), t3(nv, newcap))
+    allocate(t1(newcap), t2(newcap), t3(list%nv, newcap))
     if (n > 0) then
-      t1(1:n) = tag
-      t2(1:n) = ref
-      t3(:, 1:n) = node
+      t1(1:n) = list%tag
+      t2(1:n) = list%ref
+      t3(:, 1:n) = list%node
     end if
-    call move_alloc(t1, tag)
-    call move_alloc(t2, ref)
-    call move_alloc(t3, node)
+    call move_alloc(t1, list%tag)
+    call move_alloc(t2, list%ref)
+    call move_alloc(t3, list%node)
   end subroutine reserve
+
+  !> perm orders key ascending, stably; its first m entries then keep only the
+  !> first of equal keys.
+  subroutine sort_unique(key, perm, m)
+    integer(i8), intent(in) :: key(:)
+    integer, intent(out) :: perm(:)
+    integer, intent(out) :: m
+    integer :: i
+    call sort_perm(key, perm)
+    m = 0
+    do i = 1, size(key)
+      if (m > 0) then
+        if (key(perm(i)) == key(perm(m))) cycle
+      end if
+      m = m + 1
+      perm(m) = perm(i)
+    end do
+  end subroutine sort_unique
 
   pure integer function size_or_zero(a) result(n)
     integer, allocatable, intent(in) :: a(:)
     n = 0
     if (allocated(a)) n = size(a)
   end function size_or_zero
-
-  pure function itoa4(i) result(s)
-    integer(int32), intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=12) :: b
-    write(b, '(i0)') i
-    s = trim(b)
-  end function itoa4
-
-  pure function itoa8(i) result(s)
-    integer(int64), intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=21) :: b
-    write(b, '(i0)') i
-    s = trim(b)
-  end function itoa8
 
 end module udar_gmsh

@@ -14,7 +14,7 @@
 !> a string without its closing quote, text inside a group that is not part of
 !> an assignment.
 module udar_nml_scan
-  use udar_strings, only: nml_lower => to_lower, itoa, shorten, is_letter, is_digit
+  use udar_strings, only: nml_lower => to_lower, itoa, replace, shorten, is_letter, is_digit
   implicit none
   private
   public :: nml_assign_t, nml_group_t, nml_issue_t, nml_scan_t
@@ -403,11 +403,7 @@ contains
   pure function no_blanks(s) result(r)
     character(len=*), intent(in) :: s
     character(len=:), allocatable :: r
-    integer :: i
-    r = ''
-    do i = 1, len(s)
-      if (s(i:i) /= ' ' .and. s(i:i) /= lf) r = r//s(i:i)
-    end do
+    r = replace(replace(s, ' ', ''), lf, '')
   end function no_blanks
 
   !> Remove trailing blanks and line breaks.

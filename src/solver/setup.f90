@@ -5,6 +5,7 @@
 module udar_setup
   use udar_kinds, only: rk, i8, max_name_len
   use udar_ordering, only: morton_keys, stable_sort_permutation
+  use udar_strings, only: itoa, r2s
   use udar_config, only: config_t, bc_fixed, bc_symmetry, bc_rigid_wall
   use udar_gmsh, only: gmsh_mesh_t
   use udar_domain, only: domain_t, block_size
@@ -218,7 +219,7 @@ contains
       else if (cfg%boundaries(ib)%kind == bc_symmetry) then
         call plane_of_group(mesh, ig, normal, dev)
         if (dev > 1.0e-6_rk) call errs%add(where//": surface = '"//trim(cfg%boundaries(ib)%surface)// &
-          "' is not planar (relative deviation "//rtoa(dev)//'): a symmetry surface must be a plane')
+          "' is not planar (relative deviation "//r2s(dev)//'): a symmetry surface must be a plane')
       end if
     end do
   end subroutine
@@ -368,19 +369,4 @@ contains
     im = 0
   end function
 
-  function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write(buf, '(i0)') i
-    s = trim(buf)
-  end function
-
-  function rtoa(r) result(s)
-    real(rk), intent(in) :: r
-    character(len=:), allocatable :: s
-    character(len=24) :: buf
-    write(buf, '(es10.3)') r
-    s = trim(adjustl(buf))
-  end function
 end module udar_setup

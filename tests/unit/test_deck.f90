@@ -15,6 +15,7 @@ module test_deck_support
   use udar_config
   use udar_deck, only: deck_read, deck_write_resolved, deck_where
   use udar_input_errors, only: input_errors_t, input_errors_report
+  use udar_strings, only: itoa
   implicit none
   private
   public :: run_all
@@ -22,12 +23,36 @@ module test_deck_support
   character(len=:), allocatable :: dir, scratch
   integer :: nfail = 0
 
+  !> A deck with one mistake (see expect_one): the test name, the deck, how
+  !> many messages it gives, and fragments of the expected message.
+  type :: bad_deck_t
+    character(len=24) :: name
+    character(len=28) :: file
+    integer :: n_expected
+    character(len=32) :: frag_line
+    character(len=48) :: frag2, frag3
+  end type
+
+  type(bad_deck_t), parameter :: bad_decks(*) = [ &
+       bad_deck_t('unknown_variable', 'bad_unknown_variable.nml', 1, ':7:', "unknown variable 'youngs_modulos' in &material", "did you mean 'youngs_modulus'?"), &
+       bad_deck_t('bad_value', 'bad_value.nml', 1, ':6:', "&material #1 'copper': rho0 = 8.9x3", 'not a valid real number'), &
+       bad_deck_t('misspelled_group', 'bad_group_name.nml', 2, ':4:', 'unknown group &materail', '(did you mean &material?)'), &
+       bad_deck_t('missing_slash', 'bad_missing_slash.nml', 1, ':2:', '&run (line 2)', "no closing '/'"), &
+       bad_deck_t('missing_required_group', 'bad_missing_group.nml', 1, ': missing required group &part', '', ''), &
+       bad_deck_t('missing_mesh_file', 'bad_mesh_file.nml', 1, ':4:', "&mesh: file = 'no_such_mesh.msh'", 'not found'), &
+       bad_deck_t('unknown_part_material', 'bad_part_material.nml', 1, ':8:', "&part #1 'sphere': material = 'brass'", "(defined: 'copper', 'steel')"), &
+       bad_deck_t('negative_density', 'bad_negative_density.nml', 1, ':5:', "&material #1 'copper': rho0 = -8930", 'must be > 0'), &
+       bad_deck_t('poisson_out_of_range', 'bad_poisson.nml', 1, ':7:', 'poisson_ratio = 0.5', 'must be in (-1, 0.5)'), &
+       bad_deck_t('t_end_not_positive', 'bad_t_end.nml', 1, ':4:', '&run: t_end = 0', 'must be > 0'), &
+       bad_deck_t('bad_string_choice', 'bad_eos_choice.nml', 1, ':6:', "eos = 'mie'", "valid: 'linear', 'mie_gruneisen'") ]
+
 contains
 
   !> Run every test; returns the number of failures.
   subroutine run_all(deck_dir, scratch_file, failures)
     character(len=*), intent(in) :: deck_dir, scratch_file
     integer, intent(out) :: failures
+    integer :: k
 
     dir = deck_dir
     if (dir(len(dir):len(dir)) /= '/') dir = dir//'/'
@@ -37,29 +62,11 @@ contains
     call test_valid()
     call test_report_format()
     call test_missing_deck()
-  call expect_one('unknown_variable', 'bad_unknown_variable.nml', 1, &
-       ':7:', "unknown variable 'youngs_modulos' in &material", "did you mean 'youngs_modulus'?")
-  call expect_one('bad_value', 'bad_value.nml', 1, &
-       ':6:', "&material #1 'copper': rho0 = 8.9x3", 'not a valid real number')
-  call expect_one('misspelled_group', 'bad_group_name.nml', 2, &
-       ':4:', 'unknown group &materail', '(did you mean &material?)')
-  call expect_one('missing_slash', 'bad_missing_slash.nml', 1, &
-       ':2:', '&run (line 2)', "no closing '/'")
-  call expect_one('missing_required_group', 'bad_missing_group.nml', 1, &
-       ': missing required group &part', '', '')
-  call expect_one('missing_mesh_file', 'bad_mesh_file.nml', 1, &
-       ':4:', "&mesh: file = 'no_such_mesh.msh'", 'not found')
-  call expect_one('unknown_part_material', 'bad_part_material.nml', 1, &
-       ':8:', "&part #1 'sphere': material = 'brass'", "(defined: 'copper', 'steel')")
-  call expect_one('negative_density', 'bad_negative_density.nml', 1, &
-       ':5:', "&material #1 'copper': rho0 = -8930", 'must be > 0')
-  call expect_one('poisson_out_of_range', 'bad_poisson.nml', 1, &
-       ':7:', 'poisson_ratio = 0.5', 'must be in (-1, 0.5)')
-  call expect_one('t_end_not_positive', 'bad_t_end.nml', 1, &
-       ':4:', '&run: t_end = 0', 'must be > 0')
-  call expect_one('bad_string_choice', 'bad_eos_choice.nml', 1, &
-       ':6:', "eos = 'mie'", "valid: 'linear', 'mie_gruneisen'")
-  call test_several()
+    do k = 1, size(bad_decks)
+      call expect_one(trim(bad_decks(k)%name), trim(bad_decks(k)%file), bad_decks(k)%n_expected, &
+                      trim(bad_decks(k)%frag_line), trim(bad_decks(k)%frag2), trim(bad_decks(k)%frag3))
+    end do
+    call test_several()
 
     failures = nfail
   end subroutine run_all
@@ -191,7 +198,7 @@ contains
   !> The valid deck: no errors, the values as written, the derived ones filled
   !> in, and the resolved deck reading back to the same configuration.
   subroutine test_valid()
-    type(config_t) :: cfg, cfg2, cfg3
+    type(config_t) :: cfg
     type(input_errors_t) :: errs
     character(len=:), allocatable :: why, text, where
     integer :: before
@@ -243,37 +250,11 @@ contains
     call check(index(cfg%resolved_text, '(derived: rho0*c0**2)') > 0, '(derived) marker')
     if (nfail == before) call pass('resolved_text_markers')
 
-    ! round trip: the resolved deck reads back to the same configuration
-    call write_file(scratch, cfg%resolved_text)
-    call deck_read(scratch, cfg2, errs)
-    if (errs%count() /= 0) then
-      call fail('round_trip', 'the resolved deck does not read back:')
-      call dump(errs)
-      write(*, '(a)') cfg%resolved_text
-    else
-      why = config_difference(cfg, cfg2)
-      if (len(why) == 0) then
-        call pass('round_trip')
-      else
-        call fail('round_trip', 'differs in '//why)
-      end if
-    end if
-
-    ! the same for the public writer (default markers by value)
+    ! round trip: the resolved deck reads back to the same configuration,
+    ! also that of the public writer (default markers by value)
+    call round_trip('round_trip', cfg%resolved_text)
     call deck_write_resolved(cfg, text)
-    call write_file(scratch, text)
-    call deck_read(scratch, cfg3, errs)
-    if (errs%count() /= 0) then
-      call fail('round_trip_public_writer', 'does not read back')
-      call dump(errs)
-    else
-      why = config_difference(cfg, cfg3)
-      if (len(why) == 0) then
-        call pass('round_trip_public_writer')
-      else
-        call fail('round_trip_public_writer', 'differs in '//why)
-      end if
-    end if
+    call round_trip('round_trip_public_writer', text)
     open(newunit=before, file=scratch, status='old')
     close(before, status='delete')
 
@@ -293,6 +274,27 @@ contains
       if (.not. ok) call fail('valid_deck', what)
     end subroutine check
 
+    !> The resolved deck text must read back to cfg.
+    subroutine round_trip(name, text)
+      character(len=*), intent(in) :: name, text
+      type(config_t) :: cfg2
+      type(input_errors_t) :: errs2
+      call write_file(scratch, text)
+      call deck_read(scratch, cfg2, errs2)
+      if (errs2%count() /= 0) then
+        call fail(name, 'the resolved deck does not read back:')
+        call dump(errs2)
+        write(*, '(a)') text
+      else
+        why = config_difference(cfg, cfg2)
+        if (len(why) == 0) then
+          call pass(name)
+        else
+          call fail(name, 'differs in '//why)
+        end if
+      end if
+    end subroutine round_trip
+
   end subroutine test_valid
 
   subroutine write_file(path, text)
@@ -303,12 +305,21 @@ contains
     close(u)
   end subroutine write_file
 
-  !> '' if a and b agree in every deck value, else the first difference.
+  !> '' if a and b agree in every deck value, else a difference.
   function config_difference(a, b) result(why)
     type(config_t), intent(in) :: a, b
     character(len=:), allocatable :: why
     integer :: k
+    ! the numbers of instances first: the instances are compared one by one
     why = ''
+    if (size(a%materials) /= size(b%materials)) then
+      why = 'number of materials'
+    else if (size(a%parts) /= size(b%parts)) then
+      why = 'number of parts'
+    else if (size(a%boundaries) /= size(b%boundaries)) then
+      why = 'number of boundaries'
+    end if
+    if (len(why) > 0) return
     associate(r => a%run, s => b%run)
       if (r%title /= s%title) why = 'run%title'
       if (r%t_end /= s%t_end) why = 'run%t_end'
@@ -322,10 +333,6 @@ contains
     end associate
     if (a%mesh%file /= b%mesh%file) why = 'mesh%file'
     if (a%mesh%scale /= b%mesh%scale) why = 'mesh%scale'
-    if (size(a%materials) /= size(b%materials)) then
-      why = 'number of materials'
-      return
-    end if
     do k = 1, size(a%materials)
       associate(m => a%materials(k), n => b%materials(k))
         if (m%name /= n%name) why = 'material%name'
@@ -354,19 +361,11 @@ contains
         if (m%initial_temperature /= n%initial_temperature) why = 'material%initial_temperature'
       end associate
     end do
-    if (size(a%parts) /= size(b%parts)) then
-      why = 'number of parts'
-      return
-    end if
     do k = 1, size(a%parts)
       if (a%parts(k)%group /= b%parts(k)%group) why = 'part%group'
       if (a%parts(k)%material /= b%parts(k)%material) why = 'part%material'
       if (any(a%parts(k)%velocity /= b%parts(k)%velocity)) why = 'part%velocity'
     end do
-    if (size(a%boundaries) /= size(b%boundaries)) then
-      why = 'number of boundaries'
-      return
-    end if
     do k = 1, size(a%boundaries)
       associate(p => a%boundaries(k), q => b%boundaries(k))
         if (p%kind /= q%kind) why = 'boundary%kind'
@@ -384,14 +383,6 @@ contains
     if (a%output%dt_field /= b%output%dt_field) why = 'output%dt_field'
     if (a%output%dt_history /= b%output%dt_history) why = 'output%dt_history'
   end function config_difference
-
-  pure function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write(buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 
 end module test_deck_support
 

@@ -369,24 +369,37 @@ contains
     call h5dclose_f(did, err)
   end subroutine read_raw
 
+  !> Read the scalar attribute obj@name into the buffer at buf (memory type
+  !> mtype). found: it exists; ok: it was read.
+  subroutine read_attr(fid, obj, name, mtype, buf, found, ok)
+    integer(hid_t), intent(in) :: fid, mtype
+    character(len=*), intent(in) :: obj, name
+    type(c_ptr), intent(in) :: buf
+    logical, intent(out) :: found, ok
+    integer(hid_t) :: aid
+    integer :: err
+    type(c_ptr) :: p   ! h5aread_f wants a definable c_ptr
+
+    ok = .false.
+    call h5aopen_by_name_f(fid, obj, name, aid, err)
+    found = err >= 0
+    if (.not. found) return
+    p = buf
+    call h5aread_f(aid, mtype, p, err)
+    ok = err >= 0
+    call h5aclose_f(aid, err)
+  end subroutine read_attr
+
   integer function read_attr_int(fid, obj, name) result(v)
     integer(hid_t), intent(in) :: fid
     character(len=*), intent(in) :: obj, name
     integer(ik), target :: tmp
-    integer(hid_t) :: aid
-    integer :: err
-    type(c_ptr) :: p
+    logical :: found, ok
 
     v = -huge(1)
-    call h5aopen_by_name_f(fid, obj, name, aid, err)
-    if (err < 0) then
-      call fail('attr '//obj//'@'//name, 'missing')
-      return
-    end if
-    p = c_loc(tmp)
-    call h5aread_f(aid, h5kind_to_type(ik, H5_INTEGER_KIND), p, err)
-    if (err >= 0) v = tmp
-    call h5aclose_f(aid, err)
+    call read_attr(fid, obj, name, h5kind_to_type(ik, H5_INTEGER_KIND), c_loc(tmp), found, ok)
+    if (.not. found) call fail('attr '//obj//'@'//name, 'missing')
+    if (ok) v = tmp
   end function read_attr_int
 
   subroutine read_step_attrs(fid, grp, t, cyc)
@@ -396,23 +409,11 @@ contains
     integer(i8), intent(out) :: cyc
     real(rk), target :: tt
     integer(i8), target :: cc
-    integer(hid_t) :: aid
-    integer :: err
-    type(c_ptr) :: p
+    logical :: found, ok
 
     tt = -1; cc = -1
-    call h5aopen_by_name_f(fid, grp, 'time', aid, err)
-    if (err >= 0) then
-      p = c_loc(tt)
-      call h5aread_f(aid, h5kind_to_type(rk, H5_REAL_KIND), p, err)
-      call h5aclose_f(aid, err)
-    end if
-    call h5aopen_by_name_f(fid, grp, 'cycle', aid, err)
-    if (err >= 0) then
-      p = c_loc(cc)
-      call h5aread_f(aid, h5kind_to_type(i8, H5_INTEGER_KIND), p, err)
-      call h5aclose_f(aid, err)
-    end if
+    call read_attr(fid, grp, 'time', h5kind_to_type(rk, H5_REAL_KIND), c_loc(tt), found, ok)
+    call read_attr(fid, grp, 'cycle', h5kind_to_type(i8, H5_INTEGER_KIND), c_loc(cc), found, ok)
     t = tt; cyc = cc
   end subroutine read_step_attrs
 

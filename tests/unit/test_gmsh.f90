@@ -10,10 +10,14 @@ program test_gmsh
   use, intrinsic :: iso_fortran_env, only: error_unit
   use udar_kinds, only: rk, max_path_len
   use udar_gmsh, only: gmsh_mesh_t, gmsh_read
+  use udar_strings, only: itoa, r2s
   implicit none
 
   integer :: n_pass = 0, n_fail = 0
   character(len=max_path_len) :: mesh_dir, tmp_dir
+  !> The corners of the unit tetrahedron, as MSH 2.2 node lines.
+  character(len=*), parameter :: corner_nodes(4) = [character(len=7) :: &
+       '1 0 0 0', '2 1 0 0', '3 0 1 0', '4 0 0 1']
 
   if (command_argument_count() < 2) then
     write(error_unit, '(a)') 'usage: test_gmsh <mesh_dir> <tmp_dir>'
@@ -53,14 +57,6 @@ contains
     end if
   end subroutine check
 
-  function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: b
-    write(b, '(i0)') i
-    s = trim(b)
-  end function itoa
-
   function ivec(a) result(s)
     integer, intent(in) :: a(:)
     character(len=:), allocatable :: s
@@ -71,14 +67,6 @@ contains
     end do
     s = s//' ]'
   end function ivec
-
-  function rtoa(x) result(s)
-    real(rk), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: b
-    write(b, '(es24.16)') x
-    s = trim(adjustl(b))
-  end function rtoa
 
   !> Signed volume of tet i.
   real(rk) function tet_volume(m, i) result(v)
@@ -169,8 +157,8 @@ contains
       vol = vol + tet_volume(m, i)
     end do
     call check(t//'volumes_positive', tet_volume(m, 1) > 0.0_rk .and. tet_volume(m, 2) > 0.0_rk, &
-               'volumes '//rtoa(tet_volume(m, 1))//' '//rtoa(tet_volume(m, 2)))
-    call check(t//'total_volume', abs(vol - 0.5_rk) < 1.0e-14_rk, rtoa(vol))
+               'volumes '//r2s(tet_volume(m, 1))//' '//r2s(tet_volume(m, 2)))
+    call check(t//'total_volume', abs(vol - 0.5_rk) < 1.0e-14_rk, r2s(vol))
 
     gb = group_index(m, 2, 'bottom')
     g5 = group_index(m, 2, 'group_5')
@@ -190,13 +178,26 @@ contains
     end if
   end subroutine test_two_tets
 
+  !> Two meshes to compare (b read with scale_b): ok if both read; err is the
+  !> message of the second reading.
+  subroutine read_two(file_a, file_b, scale_b, a, b, ok, err)
+    character(len=*), intent(in) :: file_a, file_b
+    real(rk), intent(in) :: scale_b
+    type(gmsh_mesh_t), intent(out) :: a, b
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: err
+    logical :: oka, okb
+    call gmsh_read(trim(mesh_dir)//'/'//file_a, 1.0_rk, a, oka, err)
+    call gmsh_read(trim(mesh_dir)//'/'//file_b, scale_b, b, okb, err)
+    ok = oka .and. okb
+  end subroutine read_two
+
   subroutine test_formats_agree()
     type(gmsh_mesh_t) :: a, b
-    logical :: oka, okb
+    logical :: ok
     character(len=:), allocatable :: err
-    call gmsh_read(trim(mesh_dir)//'/two_tets_v41.msh', 1.0_rk, a, oka, err)
-    call gmsh_read(trim(mesh_dir)//'/two_tets_v22.msh', 1.0_rk, b, okb, err)
-    if (.not. (oka .and. okb)) then
+    call read_two('two_tets_v41.msh', 'two_tets_v22.msh', 1.0_rk, a, b, ok, err)
+    if (.not. ok) then
       call check('two_tets_v41_equals_v22', .false., 'a reading failed')
       return
     end if
@@ -209,15 +210,14 @@ contains
 
   subroutine test_scale()
     type(gmsh_mesh_t) :: a, b
-    logical :: oka, okb
+    logical :: ok
     character(len=:), allocatable :: err
-    call gmsh_read(trim(mesh_dir)//'/two_tets_v41.msh', 1.0_rk, a, oka, err)
-    call gmsh_read(trim(mesh_dir)//'/two_tets_v41.msh', 1.0e-3_rk, b, okb, err)
-    call check('scale_read', oka .and. okb, err)
-    if (.not. (oka .and. okb)) return
+    call read_two('two_tets_v41.msh', 'two_tets_v41.msh', 1.0e-3_rk, a, b, ok, err)
+    call check('scale_read', ok, err)
+    if (.not. ok) return
     call check('scale_applied', all(b%x == a%x * 1.0e-3_rk) .and. &
                all(b%x(5, :) == [1.0e-3_rk, 1.0e-3_rk, 1.0e-3_rk]), &
-               'x(99) = '//rtoa(b%x(5, 1)))
+               'x(99) = '//r2s(b%x(5, 1)))
     call check('scale_orientation', b%n_inverted == 1 .and. all(b%tet == a%tet), &
                'orientation changed with scale')
   end subroutine test_scale
@@ -244,79 +244,74 @@ contains
     call check('missing_file', .not. ok .and. contains_text(err, path), 'message: '//err)
   end subroutine test_missing
 
-  !> Damaged copies: cut the ASCII file in the element block, the binary file
-  !> in the node block.
-  subroutine test_truncated()
+  !> A bad mesh: text written to tmp_dir/file must be rejected with a message
+  !> holding frag ('' for any) and, if with_path, the file's path.
+  subroutine expect_rejected(name, file, text, frag, with_path)
+    character(len=*), intent(in) :: name, file, text, frag
+    logical, intent(in) :: with_path
     type(gmsh_mesh_t) :: m
     logical :: ok
-    character(len=:), allocatable :: err, text, path
+    character(len=:), allocatable :: err, path
+    path = trim(tmp_dir)//'/'//file
+    call write_text(path, text)
+    call gmsh_read(path, 1.0_rk, m, ok, err)
+    call check(name, .not. ok .and. contains_text(err, frag) .and. &
+               (contains_text(err, path) .or. .not. with_path), 'message: '//err)
+  end subroutine expect_rejected
+
+  !> Damaged copies of the ASCII file: cut in the element block, before its
+  !> end marker; and files that are no (supported) mesh at all.
+  subroutine test_truncated()
+    character(len=:), allocatable :: text
+    character(len=*), parameter :: lf = achar(10)
     text = read_bytes(trim(mesh_dir)//'/two_tets_v41.msh')
-    path = trim(tmp_dir)//'/truncated_v41.msh'
-    call write_text(path, text(1:index(text, '101 10 20') + 5))
-    call gmsh_read(path, 1.0_rk, m, ok, err)
-    call check('truncated_ascii', .not. ok .and. contains_text(err, path), 'message: '//err)
-
-    path = trim(tmp_dir)//'/bad_end.msh'
-    call write_text(path, text(1:index(text, '$EndElements') - 1))
-    call gmsh_read(path, 1.0_rk, m, ok, err)
-    call check('missing_end_section', .not. ok .and. contains_text(err, path) .and. &
-               contains_text(err, '$EndElements'), 'message: '//err)
-
-    path = trim(tmp_dir)//'/not_a_mesh.msh'
-    call write_text(path, 'hello'//achar(10))
-    call gmsh_read(path, 1.0_rk, m, ok, err)
-    call check('not_a_mesh', .not. ok .and. contains_text(err, 'MeshFormat'), 'message: '//err)
-
-    path = trim(tmp_dir)//'/v40.msh'
-    call write_text(path, '$MeshFormat'//achar(10)//'4 0 8'//achar(10)//'$EndMeshFormat'//achar(10))
-    call gmsh_read(path, 1.0_rk, m, ok, err)
-    call check('unsupported_version', .not. ok .and. contains_text(err, 'unsupported MSH format') &
-               .and. contains_text(err, path), 'message: '//err)
+    call expect_rejected('truncated_ascii', 'truncated_v41.msh', &
+                         text(1:index(text, '101 10 20') + 5), '', .true.)
+    call expect_rejected('missing_end_section', 'bad_end.msh', &
+                         text(1:index(text, '$EndElements') - 1), '$EndElements', .true.)
+    call expect_rejected('not_a_mesh', 'not_a_mesh.msh', 'hello'//lf, 'MeshFormat', .false.)
+    call expect_rejected('unsupported_version', 'v40.msh', &
+                         '$MeshFormat'//lf//'4 0 8'//lf//'$EndMeshFormat'//lf, &
+                         'unsupported MSH format', .true.)
   end subroutine test_truncated
 
   subroutine test_unknown_node()
-    type(gmsh_mesh_t) :: m
-    logical :: ok
-    character(len=:), allocatable :: err, text, path
+    character(len=:), allocatable :: text
     integer :: k
     text = read_bytes(trim(mesh_dir)//'/two_tets_v22.msh')
     k = index(text, '42 4 2 1 1 20 7 5 99')
     text = text(1:k-1)//'42 4 2 1 1 20 7 5 1234'//text(k+20:)
-    path = trim(tmp_dir)//'/unknown_node.msh'
-    call write_text(path, text)
-    call gmsh_read(path, 1.0_rk, m, ok, err)
-    call check('unknown_node_tag', .not. ok .and. contains_text(err, '1234') .and. &
-               contains_text(err, path), 'message: '//err)
+    call expect_rejected('unknown_node_tag', 'unknown_node.msh', text, '1234', .true.)
   end subroutine test_unknown_node
 
-  subroutine test_quadratic_only()
-    type(gmsh_mesh_t) :: m
-    logical :: ok
-    character(len=:), allocatable :: err, path
+  !> A MSH 2.2 ASCII file with these $Nodes and $Elements lines.
+  function msh22(nodes, elements) result(text)
+    character(len=*), intent(in) :: nodes(:), elements(:)
+    character(len=:), allocatable :: text
     character(len=*), parameter :: lf = achar(10)
-    path = trim(tmp_dir)//'/tet10.msh'
-    call write_text(path, '$MeshFormat'//lf//'2.2 0 8'//lf//'$EndMeshFormat'//lf// &
-      '$Nodes'//lf//'10'//lf//'1 0 0 0'//lf//'2 1 0 0'//lf//'3 0 1 0'//lf//'4 0 0 1'//lf// &
-      '5 0.5 0 0'//lf//'6 0.5 0.5 0'//lf//'7 0 0.5 0'//lf//'8 0 0 0.5'//lf//'9 0 0.5 0.5'//lf// &
-      '10 0.5 0 0.5'//lf//'$EndNodes'//lf//'$Elements'//lf//'1'//lf// &
-      '1 11 2 1 1 1 2 3 4 5 6 7 8 9 10'//lf//'$EndElements'//lf)
-    call gmsh_read(path, 1.0_rk, m, ok, err)
-    call check('quadratic_tets_rejected', .not. ok .and. &
-               contains_text(err, 'only linear tetrahedra'), 'message: '//err)
+    integer :: i
+    text = '$MeshFormat'//lf//'2.2 0 8'//lf//'$EndMeshFormat'//lf//'$Nodes'//lf//itoa(size(nodes))//lf
+    do i = 1, size(nodes)
+      text = text//trim(nodes(i))//lf
+    end do
+    text = text//'$EndNodes'//lf//'$Elements'//lf//itoa(size(elements))//lf
+    do i = 1, size(elements)
+      text = text//trim(elements(i))//lf
+    end do
+    text = text//'$EndElements'//lf
+  end function msh22
+
+  !> A 10-node tet (gmsh type 11) in a physical volume.
+  subroutine test_quadratic_only()
+    call expect_rejected('quadratic_tets_rejected', 'tet10.msh', msh22([character(len=12) :: &
+         corner_nodes, '5 0.5 0 0', '6 0.5 0.5 0', '7 0 0.5 0', '8 0 0 0.5', '9 0 0.5 0.5', &
+         '10 0.5 0 0.5'], ['1 11 2 1 1 1 2 3 4 5 6 7 8 9 10']), 'only linear tetrahedra', .false.)
   end subroutine test_quadratic_only
 
+  !> A linear tet in no physical group (its physical tag is 0).
   subroutine test_no_physical_volume()
-    type(gmsh_mesh_t) :: m
-    logical :: ok
-    character(len=:), allocatable :: err, path
-    character(len=*), parameter :: lf = achar(10)
-    path = trim(tmp_dir)//'/no_physical.msh'
-    call write_text(path, '$MeshFormat'//lf//'2.2 0 8'//lf//'$EndMeshFormat'//lf// &
-      '$Nodes'//lf//'4'//lf//'1 0 0 0'//lf//'2 1 0 0'//lf//'3 0 1 0'//lf//'4 0 0 1'//lf// &
-      '$EndNodes'//lf//'$Elements'//lf//'1'//lf//'1 4 2 0 1 1 2 3 4'//lf//'$EndElements'//lf)
-    call gmsh_read(path, 1.0_rk, m, ok, err)
-    call check('no_physical_volume', .not. ok .and. contains_text(err, 'physical volume'), &
-               'message: '//err)
+    call expect_rejected('no_physical_volume', 'no_physical.msh', &
+         msh22(corner_nodes, ['1 4 2 0 1 1 2 3 4']), 'physical volume', .false.)
   end subroutine test_no_physical_volume
 
   !> The same gmsh mesh written as MSH 4.1 binary, 4.1 ASCII and 2.2 ASCII
@@ -348,7 +343,7 @@ contains
       do i = 1, m(k)%n_tets
         vol(k) = vol(k) + tet_volume(m(k), i)
       end do
-      call check('cube_volume_'//trim(names(k)), abs(vol(k) - 1.0_rk) < 1.0e-12_rk, rtoa(vol(k)))
+      call check('cube_volume_'//trim(names(k)), abs(vol(k) - 1.0_rk) < 1.0e-12_rk, r2s(vol(k)))
       gz0 = group_index(m(k), 2, 'zmin')
       gz1 = group_index(m(k), 2, 'zmax')
       call check('cube_groups_'//trim(names(k)), gz0 > 0 .and. gz1 > 0 .and. &
@@ -365,7 +360,7 @@ contains
       end do
       call check('cube_surface_nodes_'//trim(names(k)), nz0(k) > 0 .and. nz1(k) > 0 .and. &
                  zerr < 1.0e-12_rk, 'zmin '//itoa(nz0(k))//' zmax '//itoa(nz1(k))// &
-                 ' max |z error| '//rtoa(zerr))
+                 ' max |z error| '//r2s(zerr))
     end do
     same = .true.
     nn = [(m(k)%n_nodes, k = 1, 3)]
@@ -384,10 +379,7 @@ contains
 
     ! a binary file cut in the middle must be rejected, not misread
     text = read_bytes(trim(tmp_dir)//'/cube_bin.msh')
-    out = trim(tmp_dir)//'/cube_bin_truncated.msh'
-    call write_text(out, text(1:len(text) / 2))
-    call gmsh_read(out, 1.0_rk, m(1), ok(1), err)
-    call check('truncated_binary', .not. ok(1) .and. contains_text(err, out), 'message: '//err)
+    call expect_rejected('truncated_binary', 'cube_bin_truncated.msh', text(1:len(text) / 2), '', .true.)
   end subroutine test_cube
 
 end program test_gmsh

@@ -2,6 +2,7 @@
 !> update, radial return, equations of state against hand-computed values.
 program test_kernels
   use udar_kinds, only: rk
+  use udar_strings, only: r2s
   use udar_config, only: material_cfg_t, strength_perfectly_plastic, strength_linear_hardening, &
       strength_johnson_cook, strength_elastic
   use udar_tet4, only: tet_volume, tet_gradients, tet_velocity_gradient
@@ -29,14 +30,6 @@ contains
       n_fail = n_fail + 1
     end if
   end subroutine
-
-  function r2s(x) result(s)
-    real(rk), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: b
-    write(b, '(es14.6)') x
-    s = trim(adjustl(b))
-  end function
 
   subroutine test_tet_geometry()
     real(rk) :: x(1,4,3), vol(1), grad(1,4,3), h(1), xr(4,3), id(3,3), err
