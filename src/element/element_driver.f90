@@ -28,7 +28,8 @@ contains
     end do
   end subroutine
 
-  !> Nodal volume: a quarter of each incident element (Bonet and Burton 1998).
+  !> Nodal volume ratio J_a = V_a / V0_a, V_a a quarter of each incident
+  !> element's volume (Bonet and Burton 1998).
   subroutine nodal_volumes(dom)
     type(domain_t), intent(inout) :: dom
     integer :: n, k
@@ -38,7 +39,7 @@ contains
       do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
         acc = acc + dom%el_vol(dom%nd_el(k))
       end do
-      dom%nd_vol(n) = 0.25_rk*acc
+      dom%nd_j(n) = 0.25_rk*acc/dom%nd_vol0(n)
     end do
   end subroutine
 
@@ -96,10 +97,8 @@ contains
       if (dom%anti_locking) then
         do i = 1, nb
           e = first + i - 1
-          j_new(i) = 0.25_rk*(dom%nd_vol(dom%el_conn(e,1))/dom%nd_vol0(dom%el_conn(e,1)) &
-                            + dom%nd_vol(dom%el_conn(e,2))/dom%nd_vol0(dom%el_conn(e,2)) &
-                            + dom%nd_vol(dom%el_conn(e,3))/dom%nd_vol0(dom%el_conn(e,3)) &
-                            + dom%nd_vol(dom%el_conn(e,4))/dom%nd_vol0(dom%el_conn(e,4)))
+          j_new(i) = 0.25_rk*(dom%nd_j(dom%el_conn(e,1)) + dom%nd_j(dom%el_conn(e,2)) &
+                            + dom%nd_j(dom%el_conn(e,3)) + dom%nd_j(dom%el_conn(e,4)))
         end do
       else
         j_new(1:nb) = vol(1:nb)/dom%el_vol0(first:last)

@@ -24,7 +24,7 @@ module udar_domain
     !> reads one cache line, not three.
     real(rk), allocatable :: nd_x0(:,:), nd_x(:,:), nd_v(:,:), nd_f(:,:)
     real(rk), allocatable :: nd_mass(:)         !< kg, lumped
-    real(rk), allocatable :: nd_vol0(:), nd_vol(:)   !< m3, nodal volumes (anti-locking)
+    real(rk), allocatable :: nd_vol0(:), nd_j(:)     !< m3, -: nodal reference volume and volume ratio (anti-locking)
     real(rk), allocatable :: nd_p(:)            !< Pa, nodal average pressure (anti-locking)
     ! node -> incident elements, each list ascending in element id (fixed assembly order)
     integer, allocatable :: nd_el_ptr(:), nd_el(:), nd_el_corner(:)

@@ -127,7 +127,7 @@ contains
       dom%nd_part(n) = dom%el_part(dom%nd_el(dom%nd_el_ptr(n)))
       dom%nd_v(:,n) = cfg%parts(dom%nd_part(n))%velocity
     end do
-    dom%nd_vol = dom%nd_vol0
+    dom%nd_j = 1.0_rk
     call build_blocks(dom)
     call build_conditions(cfg, mesh, node_new, dom)
     dom%anti_locking = cfg%numerics%anti_locking
@@ -140,7 +140,7 @@ contains
     integer :: nn, ne
     nn = dom%n_nodes; ne = dom%n_elems
     allocate(dom%nd_id(nn), dom%nd_part(nn), dom%nd_x0(3,nn), dom%nd_x(3,nn), dom%nd_v(3,nn), &
-             dom%nd_f(3,nn), dom%nd_mass(nn), dom%nd_vol0(nn), dom%nd_vol(nn), dom%nd_p(nn))
+             dom%nd_f(3,nn), dom%nd_mass(nn), dom%nd_vol0(nn), dom%nd_j(nn), dom%nd_p(nn))
     allocate(dom%el_id(ne), dom%el_part(ne), dom%el_mat(ne), dom%el_conn(ne,4), dom%el_vol0(ne), &
              dom%el_vol(ne), dom%el_mass(ne), dom%el_j(ne), dom%el_e(ne), dom%el_wp(ne), dom%el_p(ne), &
              dom%el_q(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_hard(ne), dom%el_soft(ne), &
