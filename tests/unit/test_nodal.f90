@@ -1,0 +1,72 @@
+!> Unit tests of the nodal conditions: a planar rigid wall (frictionless and
+!> sticking: landing exactly on the plane, impulse, wall work, release) and
+!> symmetry-plane velocity projection.
+program test_nodal
+  use udar_kinds, only: rk
+  use udar_strings, only: r2s
+  use udar_domain, only: domain_t
+  use udar_config, only: wall_frictionless, wall_sticking
+  use udar_nodal, only: apply_rigid_walls, apply_velocity_conditions, update_positions
+  implicit none
+  integer :: n_fail = 0
+  type(domain_t) :: dom
+  real(rk) :: work, dt
+
+  dt = 1.0e-6_rk
+  ! two nodes above a wall z = 0 (normal +z): node 1 would cross it, node 2 leaves it
+  call two_nodes(dom)
+  dom%walls(1)%wall_type = wall_frictionless
+  call apply_rigid_walls(dom, dt, dt, work)
+  call update_positions(dom, dt)
+  call check('frictionless_lands_on_wall', abs(dom%nd_x(3,1)) < 1e-18_rk, 'z = '//r2s(dom%nd_x(3,1))//' m')
+  call check('frictionless_keeps_tangential', dom%nd_v(1,1) == 3.0_rk .and. dom%nd_v(2,1) == -1.0_rk, &
+             'v_t = ('//r2s(dom%nd_v(1,1))//', '//r2s(dom%nd_v(2,1))//') m/s')
+  ! gap 2e-6 m, dt 1e-6 s: normal velocity -2 m/s (from -10), impulse 2 kg * 8 m/s
+  call check('wall_normal_velocity', abs(dom%nd_v(3,1) + 2.0_rk) < 1e-12_rk, 'v_n = '//r2s(dom%nd_v(3,1))//' m/s')
+  call check('wall_force_from_impulse', abs(dom%walls(1)%force - 16.0_rk/dt) < 1e-6_rk, &
+             'F = '//r2s(dom%walls(1)%force)//' N (impulse / dt = 1.6e7)')
+  call check('wall_work', abs(work - 2.0_rk*8.0_rk*(-2.0_rk)) < 1e-12_rk, 'W = '//r2s(work)//' J (impulse x v_n)')
+  call check('leaving_node_untouched', all(dom%nd_v(:,2) == [1.0_rk, 0.0_rk, 5.0_rk]), 'node 2 free')
+
+  call two_nodes(dom)
+  dom%walls(1)%wall_type = wall_sticking
+  call apply_rigid_walls(dom, dt, dt, work)
+  call check('sticking_stops_tangential', dom%nd_v(1,1) == 0.0_rk .and. dom%nd_v(2,1) == 0.0_rk &
+             .and. abs(dom%nd_v(3,1) + 2.0_rk) < 1e-12_rk, 'v = ('//r2s(dom%nd_v(1,1))//', '// &
+             r2s(dom%nd_v(2,1))//', '//r2s(dom%nd_v(3,1))//') m/s')
+
+  ! symmetry plane x = 0 and y = 0 at node 1, fixed node 2
+  call two_nodes(dom)
+  dom%sym_nodes = [1, 1]
+  dom%sym_normal = reshape([1.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk, 0.0_rk], [2, 3])   ! rows (1,0,0), (0,1,0)
+  dom%fixed_nodes = [2]
+  call apply_velocity_conditions(dom)
+  call check('symmetry_projection', all(dom%nd_v(:,1) == [0.0_rk, 0.0_rk, -10.0_rk]), &
+             'v = ('//r2s(dom%nd_v(1,1))//', '//r2s(dom%nd_v(2,1))//', '//r2s(dom%nd_v(3,1))//')')
+  call check('fixed_node', all(dom%nd_v(:,2) == 0.0_rk), 'node 2 at rest')
+  if (n_fail > 0) error stop 1
+
+contains
+
+  subroutine two_nodes(d)
+    type(domain_t), intent(out) :: d
+    d%n_nodes = 2
+    allocate(d%nd_x(3,2), d%nd_v(3,2), d%nd_mass(2), d%walls(1), d%sym_nodes(0), d%sym_normal(0,3), d%fixed_nodes(0))
+    d%nd_x(:,1) = [0.0_rk, 0.0_rk, 2.0e-6_rk]; d%nd_v(:,1) = [3.0_rk, -1.0_rk, -10.0_rk]
+    d%nd_x(:,2) = [1.0_rk, 0.0_rk, 0.0_rk];    d%nd_v(:,2) = [1.0_rk, 0.0_rk, 5.0_rk]
+    d%nd_mass = 2.0_rk
+    d%walls(1)%point = 0.0_rk
+    d%walls(1)%normal = [0.0_rk, 0.0_rk, 1.0_rk]
+  end subroutine
+
+  subroutine check(name, cond, detail)
+    character(len=*), intent(in) :: name, detail
+    logical, intent(in) :: cond
+    if (cond) then
+      print '(a)', 'PASS '//name//': '//detail
+    else
+      print '(a)', 'FAIL '//name//': '//detail
+      n_fail = n_fail + 1
+    end if
+  end subroutine
+end program test_nodal
