@@ -14,6 +14,9 @@ program udar
   use udar_domain, only: domain_t
   use udar_setup, only: build_domain
   use udar_run, only: run_simulation, run_result_t
+  use udar_partition, only: partition_elements, partition_stats_t
+  use udar_decomposition, only: rank_counts_t, decomposition_counts
+  use udar_strings, only: itoa
   implicit none
 
   type(config_t) :: cfg
@@ -25,13 +28,20 @@ program udar
   logical :: check_only, ok
   character(len=:), allocatable :: msg
   character(len=512) :: line
-  integer :: k
+  integer :: k, ios
+  integer :: preview_ranks = 0    !< --ranks N: show the partition for N ranks (with --check)
 
   call comms_init()
   check_only = .false.
   deck_path = ''
   do k = 1, command_argument_count()
     call get_command_argument(k, arg)
+    if (preview_ranks == -1) then     ! the value after --ranks
+      read(arg, *, iostat=ios) preview_ranks
+      if (ios /= 0 .or. preview_ranks < 1) call fatal(exit_input, '--ranks '//trim(arg)// &
+                                                       ': expected a positive number of ranks')
+      cycle
+    end if
     select case (trim(arg))
     case ('--help', '-h')
       call usage()
@@ -41,6 +51,9 @@ program udar
       call comms_finalize(); stop
     case ('--check')
       check_only = .true.
+    case ('--ranks')
+      if (k == command_argument_count()) call fatal(exit_input, '--ranks needs a number of ranks')
+      preview_ranks = -1
     case default
       if (arg(1:1) == '-') call fatal(exit_input, 'unknown option '//trim(arg)//' (see udar --help)')
       if (len_trim(deck_path) > 0) call fatal(exit_input, 'more than one deck given: '//trim(deck_path)// &
@@ -48,6 +61,8 @@ program udar
       deck_path = arg
     end select
   end do
+  if (preview_ranks > 0 .and. .not. check_only) call fatal(exit_input, '--ranks goes with --check '// &
+    '(this version runs on one rank)')
   if (len_trim(deck_path) == 0) then
     call usage()
     call fatal(exit_input, 'no input deck given')
@@ -75,6 +90,7 @@ program udar
 
   if (check_only) then
     if (comms_is_root()) write(output_unit, '(a)') cfg%resolved_text
+    if (preview_ranks > 0) call report_partition(dom, preview_ranks)
     call log_info('deck '//trim(deck_path)//' is valid')
     call comms_finalize()
     stop
@@ -93,10 +109,35 @@ program udar
 
 contains
 
+  !> The METIS partition of the elements over n ranks and what each rank
+  !> would own and hold as ghosts.
+  subroutine report_partition(dom, n)
+    type(domain_t), intent(in) :: dom
+    integer, intent(in) :: n
+    integer, allocatable :: part(:)
+    type(partition_stats_t) :: stats
+    type(rank_counts_t), allocatable :: counts(:)
+    integer :: r
+    allocate(part(dom%n_elems), counts(0:n-1))
+    call partition_elements(dom%n_nodes, dom%el_conn, n, part, stats, ok, msg)
+    if (.not. ok) call fatal(exit_input, 'partition for '//itoa(n)//' ranks: '//msg)
+    call decomposition_counts(dom%el_conn, dom%nd_el_ptr, dom%nd_el, part, n, counts)
+    write(line, '(a,i0,a,i0,a,f6.3)') 'partition for ', n, ' ranks (METIS k-way, element dual graph): edge cut ', &
+      stats%edge_cut, ' faces, load imbalance ', stats%imbalance
+    call log_info(line)
+    call log_info('  rank  owned_elems  owned_nodes  ghost_elems  ghost_nodes')
+    do r = 0, n - 1
+      write(line, '(i6,4i13)') r, counts(r)%owned_elems, counts(r)%owned_nodes, counts(r)%ghost_elems, &
+        counts(r)%ghost_nodes
+      call log_info(line)
+    end do
+  end subroutine
+
   subroutine usage()
-    call log_info('usage: udar [--check] DECK.nml | --help | --version')
+    call log_info('usage: udar [--check [--ranks N]] DECK.nml | --help | --version')
     call log_info('  DECK.nml     run the namelist input deck')
     call log_info('  --check      validate the deck and its mesh, print the resolved deck, run nothing')
+    call log_info('  --ranks N    with --check: show how the mesh would be split over N MPI ranks')
     call log_info('  --help       this text;  --version  the program version')
     call log_info('Exit codes: 0 done, 1 input error, 2 the run went bad (physics), 3 I/O error.')
   end subroutine

@@ -11,7 +11,7 @@ ok()   { echo "PASS $1"; }
 bad()  { echo "FAIL $1"; fails=$((fails+1)); }
 expect() {  # name, expected exit code, pattern in stderr, deck
   local name=$1 code=$2 pat=$3 deck=$4 rc
-  (cd "$W" && "$EXE" "$deck") > "$W/out.txt" 2> "$W/err.txt"; rc=$?
+  (cd "$W" && "$EXE" $deck) > "$W/out.txt" 2> "$W/err.txt"; rc=$?
   if [ $rc -eq "$code" ] && grep -qiE -- "$pat" "$W/err.txt"; then ok "$name (exit $rc)"
   else bad "$name: exit $rc, stderr:"; sed 's/^/      /' "$W/err.txt"; fi
 }
@@ -39,6 +39,11 @@ expect missing_deck 1 'missing.nml' missing.nml
 (cd "$W" && "$EXE" --check good.nml) > "$W/check.txt" 2>&1; rc=$?
 if [ $rc -eq 0 ] && grep -q 'rho0' "$W/check.txt" && grep -q 'default' "$W/check.txt" && [ ! -e "$W/out/good.h5" ]
 then ok "check_prints_resolved_deck"; else bad "check_prints_resolved_deck (exit $rc)"; cat "$W/check.txt"; fi
+(cd "$W" && "$EXE" --check --ranks 3 good.nml) > "$W/ranks.txt" 2>&1; rc=$?
+if [ $rc -eq 0 ] && grep -q 'partition for 3 ranks.*edge cut' "$W/ranks.txt" && \
+   [ "$(grep -cE '^ +[0-2] +[0-9]+ +[0-9]+ +[0-9]+ +[0-9]+$' "$W/ranks.txt")" -eq 3 ]
+then ok "check_ranks_partition_report"; else bad "check_ranks_partition_report (exit $rc)"; cat "$W/ranks.txt"; fi
+expect ranks_without_check 1 'ranks goes with --check' "--ranks 2 good.nml"
 "$EXE" --help > "$W/help.txt" 2>&1 && grep -q usage "$W/help.txt" && ok help || bad help
 "$EXE" --version 2>&1 | grep -qE '^udar [0-9]' && ok version || bad version
 [ $fails -eq 0 ]
