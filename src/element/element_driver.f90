@@ -162,7 +162,7 @@ contains
       call gather_block(dom, dom%nd_x, first, nb, xe)
       call tet_gradients(ld, nb, xe, vol, grad, h)
       h(1:nb) = 1.0_rk/sqrt(h(1:nb))
-      call dilatational_speed2(dom%mat(dom%el_mat(first)), ld, nb, dom%el_j(first:last), dom%el_p(first:last), &
+      call dilatational_speed2(dom%mat(dom%el_mat(first)), nb, dom%el_j(first:last), dom%el_p(first:last), &
                                dom%el_mass(first:last), vol, c2)
       dt_stable = min(dt_stable, minval(h(1:nb)/sqrt(c2(1:nb))))
     end do

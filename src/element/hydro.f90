@@ -23,11 +23,11 @@ contains
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: q_lin, q_quad, dt
     integer, intent(in) :: ld, nb
-    real(rk), intent(in) :: vol(ld), h(ld), trd(ld), mass(ld), j_old(ld), j_new(ld), w_dev(ld)
-    real(rk), intent(inout) :: e(ld), p(ld), q(ld), dt_min
+    real(rk), intent(in) :: vol(nb), h(nb), trd(nb), mass(nb), j_old(nb), j_new(nb), w_dev(nb)
+    real(rk), intent(inout) :: e(nb), p(nb), q(nb), dt_min
     real(rk) :: c2(ld), a(ld), b(ld), rho, c, eq, dv, e_star
     integer :: i
-    call dilatational_speed2(mat, ld, nb, j_old, p, mass, vol, c2)
+    call dilatational_speed2(mat, nb, j_old, p, mass, vol, c2)
     if (mat%eos == eos_mie_gruneisen) then
       do i = 1, nb
         call eos_mie_gruneisen_ab(mat%rho0, mat%c0, mat%s, mat%gamma0, j_new(i), a(i), b(i))
@@ -57,11 +57,11 @@ contains
 
   !> Square of the dilatational wave speed: bulk sound speed at (J, p) plus
   !> 4G/(3 rho) for materials with strength.
-  pure subroutine dilatational_speed2(mat, ld, nb, j, p, mass, vol, c2)
+  pure subroutine dilatational_speed2(mat, nb, j, p, mass, vol, c2)
     type(material_cfg_t), intent(in) :: mat
-    integer, intent(in) :: ld, nb
-    real(rk), intent(in) :: j(ld), p(ld), mass(ld), vol(ld)
-    real(rk), intent(inout) :: c2(ld)
+    integer, intent(in) :: nb
+    real(rk), intent(in) :: j(nb), p(nb), mass(nb), vol(nb)
+    real(rk), intent(inout) :: c2(nb)
     real(rk) :: g43
     integer :: i
     if (mat%eos == eos_mie_gruneisen) then

@@ -1,6 +1,9 @@
 !> Kernels of the 4-node constant-strain tetrahedron. Pure, block-wise: each
-!> routine works on the first nb elements of block arrays with leading
-!> dimension ld (element index innermost, so the loops vectorize).
+!> routine works on the first nb elements of a block, element index
+!> innermost so the loops vectorize. Convention of all block kernels:
+!> multi-dimensional arrays have leading dimension ld (block_size), 1-D
+!> arrays are sized nb, so a contiguous section of a domain array can be
+!> passed without a copy.
 module udar_tet4
   use udar_kinds, only: rk
   implicit none
@@ -23,7 +26,7 @@ contains
   pure subroutine tet_gradients(ld, nb, x, vol, grad, g2max)
     integer, intent(in) :: ld, nb
     real(rk), intent(in) :: x(ld,4,3)
-    real(rk), intent(inout) :: vol(ld), grad(ld,4,3), g2max(ld)
+    real(rk), intent(inout) :: vol(nb), grad(ld,4,3), g2max(nb)
     real(rk) :: d1x, d1y, d1z, d2x, d2y, d2z, d3x, d3y, d3z, six_v, r, g2, gmax
     integer :: i, a
     do i = 1, nb
@@ -75,7 +78,7 @@ contains
   !> sigma = s - p I, s deviatoric (xx,yy,zz,xy,yz,zx), p the applied pressure.
   pure subroutine tet_internal_forces(ld, nb, vol, grad, s, p, f)
     integer, intent(in) :: ld, nb
-    real(rk), intent(in) :: vol(ld), grad(ld,4,3), s(ld,6), p(ld)
+    real(rk), intent(in) :: vol(nb), grad(ld,4,3), s(ld,6), p(nb)
     real(rk), intent(inout) :: f(ld,4,3)
     real(rk) :: sxx, syy, szz
     integer :: i, a

@@ -47,9 +47,9 @@ contains
   pure subroutine strength_block(mat, ld, nb, dt, d, w, soft, hard, s, eps_p, w_dev, w_plastic)
     type(material_cfg_t), intent(in) :: mat
     integer, intent(in) :: ld, nb
-    real(rk), intent(in) :: dt, d(ld,6), w(ld,3), soft(ld)
-    real(rk), intent(inout) :: hard(ld), s(ld,6), eps_p(ld)
-    real(rk), intent(inout) :: w_dev(ld), w_plastic(ld)
+    real(rk), intent(in) :: dt, d(ld,6), w(ld,3), soft(nb)
+    real(rk), intent(inout) :: hard(nb), s(ld,6), eps_p(nb)
+    real(rk), intent(inout) :: w_dev(nb), w_plastic(nb)
     real(rk) :: q_trial(ld), rate(ld), rot_work(ld), trial_work(ld), scale(ld), d_eps(ld), sy(ld)
     real(rk) :: a, b, cc, c, r11, r12, r13, r21, r22, r23, r31, r32, r33
     real(rk) :: t11, t12, t13, t21, t22, t23, t31, t32, t33, x(6), dd(6), tr3, g2dt, factor
