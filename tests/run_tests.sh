@@ -45,10 +45,12 @@ done
 # ---- deck errors through the real program
 run_test "cli/deck_errors" tests/cli/deck_errors.sh bin/udar-debug
 run_test "cli/run_goes_bad" tests/cli/run_goes_bad.sh bin/udar-debug
+run_test "cli/repeatable" tests/cli/repeatable.sh bin/udar-debug
 # ---- regressions against analytic and experimental references
 run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
 run_test "regression/plate_impact" regression plate_impact bin/udar-debug
 run_test "regression/taylor_wg" regression taylor_wg bin/udar
+run_test "regression/taylor_ofhc_baseline" regression taylor_ofhc_baseline bin/udar
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -1,0 +1,20 @@
+"""OFHC copper Taylor bar (Johnson-Cook + Mie-Grueneisen), coarse mesh.
+A BASELINE test: it compares with udar's own earlier result (make validate,
+doc/validation/taylor.csv: ofhc, 0.6 mm, anti-locking on) to catch
+unintended changes in the Johnson-Cook, thermal and EOS paths; it proves
+nothing by itself. The experimental comparison (Johnson and Cook 1983:
+16.21 mm, 13.56 mm) is printed, not asserted: see doc/validation.md."""
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', 'tools'))
+import checks  # noqa: E402
+import taylor  # noqa: E402
+
+m = taylor.measure_file(os.path.join(sys.argv[1], 'out', 'taylor_ofhc_baseline.h5'), axis=2, wall=0.0)[0]
+print('MEASURED ' + taylor.human_line(m))
+print('MEASURED against the experiment: length %+.1f %%, footprint diameter %+.1f %%'
+      % (100 * (m['length_m'] / 16.21e-3 - 1), 100 * (m['footprint_diameter_m'] / 13.56e-3 - 1)))
+checks.compare('baseline_final_length', m['length_m'], 17.339e-3, 0.005, 'm')
+checks.compare('baseline_footprint_diameter', m['footprint_diameter_m'], 14.492e-3, 0.005, 'm')
+checks.finish()
