@@ -74,9 +74,10 @@ contains
     real(rk) :: vol(ld), h(ld), d(ld,6), w(ld,3), s(ld,6), p_app(ld), trd(ld), j_new(ld), &
                 w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld)
     real(rk) :: t_old
-    integer :: b, i, e, nb, first, last, k
+    integer :: b, i, e, nb, first, last, k, bad_j
     dt_stable = huge(1.0_rk)
     bad_elem = 0
+    bad_j = 0
     do b = 1, dom%n_blocks
       first = dom%blk_first(b)
       last = dom%blk_last(b)
@@ -102,6 +103,14 @@ contains
         end do
       else
         j_new(1:nb) = vol(1:nb)/dom%el_vol0(first:last)
+      end if
+      if (any(j_new(1:nb) <= 0.0_rk)) then
+        ! a neighbour inverted and took the nodal average with it: stop after
+        ! this cycle, keeping the EOS finite meanwhile
+        do i = 1, nb
+          if (j_new(i) <= 0.0_rk .and. bad_j == 0) bad_j = first + i - 1
+        end do
+        where (j_new(1:nb) <= 0.0_rk) j_new(1:nb) = dom%el_j(first:last)
       end if
       do k = 1, 6
         s(1:nb,k) = dom%el_s(first:last,k)
@@ -145,6 +154,8 @@ contains
         call store_forces(dom, first, nb, fe)
       end if
     end do
+    ! an element itself inverted names the failure; else one whose nodal average did
+    if (bad_elem == 0) bad_elem = bad_j
   end subroutine
 
   !> Stable step of the current state without advancing it (start-up).

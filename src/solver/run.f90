@@ -118,7 +118,8 @@ contains
       if (bad /= 0) then
         call write_fields(fw, dom, t, cycle, work_svm, work_rho)
         call fw_close(fw); call history_close(hist)
-        write(line, '(a,i0,a,i0,a,es14.7,a)') 'element ', dom%el_id(bad), ' inverted (volume <= 0) at cycle ', &
+        write(line, '(a,i0,a,i0,a,es14.7,a)') 'element ', dom%el_id(bad), ' (part '''// &
+          trim(dom%part_name(dom%el_part(bad)))//''') inverted (volume <= 0) at cycle ', &
           cycle, ', time ', t, ' s; last state written to '//trim(res%field_file)
         call fatal(exit_physics, line)
       end if

@@ -30,4 +30,9 @@ last = f['steps/%06d' % (n - 1)]
 sys.exit(0 if n == 2 and int(last.attrs['cycle']) == 1 and 'pressure' in last else 1)
 PY
 then echo "PASS last state written (step at cycle 1)"; else echo "FAIL no last state in out/bad.h5"; fails=1; fi
+# a far larger step inverts elements in the first cycle: named with its part
+sed 's/dt_initial = 2e-6/dt_initial = 5e-5/' "$W/bad.nml" > "$W/inv.nml"
+(cd "$W" && "$EXE" inv.nml) > "$W/out.txt" 2> "$W/err.txt"; rc=$?
+if [ $rc -eq 2 ] && grep -qE "element [0-9]+ \(part 'bar'\) inverted .* at cycle 1, time" "$W/err.txt"
+then echo "PASS inverted element named (exit 2)"; else echo "FAIL inverted element: exit $rc"; cat "$W/err.txt"; fails=1; fi
 [ $fails -eq 0 ]
