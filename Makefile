@@ -93,9 +93,14 @@ $(EXE): $(OBJ) $(MAIN_OBJ)
 debug:
 	@$(MAKE) --no-print-directory BUILD=debug bin/udar-debug
 
-$(BDIR)/tests/%: tests/unit/%.f90 $(OBJ)
+TEST_SUPPORT := $(BDIR)/tests/unit_checks.o
+$(TEST_SUPPORT): tests/unit/support/unit_checks.f90
 	@mkdir -p $(dir $@)
-	$(FC) $(FFLAGS) -I$(BDIR)/mod $< $(OBJ) $(LIBS) -o $@
+	$(FC) $(FFLAGS) -J$(BDIR)/tests -c $< -o $@
+
+$(BDIR)/tests/%: tests/unit/%.f90 $(OBJ) $(TEST_SUPPORT)
+	@mkdir -p $(dir $@)
+	$(FC) $(FFLAGS) -I$(BDIR)/mod -I$(BDIR)/tests $< $(OBJ) $(TEST_SUPPORT) $(LIBS) -o $@
 
 # ---- meshes: gmsh .geo -> .msh beside it
 GEO := $(wildcard input/*/*.geo tests/regression/*/*.geo)

@@ -70,7 +70,7 @@ contains
     real(rk), intent(out) :: dt_stable
     integer, intent(out) :: bad_elem
     integer, parameter :: ld = block_size
-    real(rk) :: xe(ld,4,3), ve(ld,4,3), grad(ld,4,3), fe(ld,4,3)
+    real(rk) :: ve(ld,4,3), grad(ld,4,3), fe(ld,4,3)
     real(rk) :: vol(ld), h(ld), d(ld,6), w(ld,3), s(ld,6), p_app(ld), trd(ld), j_new(ld), &
                 w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld)
     real(rk) :: t_old
@@ -79,12 +79,8 @@ contains
     bad_elem = 0
     bad_j = 0
     do b = 1, dom%n_blocks
-      first = dom%blk_first(b)
-      last = dom%blk_last(b)
-      nb = last - first + 1
-      call gather_block(dom, dom%nd_x, first, nb, xe)
+      call block_geometry(dom, b, first, last, nb, vol, grad, h)
       call gather_block(dom, dom%nd_v, first, nb, ve)
-      call tet_gradients(ld, nb, xe, vol, grad, h)
       h(1:nb) = 1.0_rk/sqrt(h(1:nb))      ! smallest altitude
       if (any(vol(1:nb) <= 0.0_rk)) then
         ! stop after this cycle; keep the arithmetic finite meanwhile
@@ -163,15 +159,11 @@ contains
     type(domain_t), intent(in) :: dom
     real(rk), intent(out) :: dt_stable
     integer, parameter :: ld = block_size
-    real(rk) :: xe(ld,4,3), grad(ld,4,3), vol(ld), h(ld), c2(ld)
+    real(rk) :: grad(ld,4,3), vol(ld), h(ld), c2(ld)
     integer :: b, nb, first, last
     dt_stable = huge(1.0_rk)
     do b = 1, dom%n_blocks
-      first = dom%blk_first(b)
-      last = dom%blk_last(b)
-      nb = last - first + 1
-      call gather_block(dom, dom%nd_x, first, nb, xe)
-      call tet_gradients(ld, nb, xe, vol, grad, h)
+      call block_geometry(dom, b, first, last, nb, vol, grad, h)
       h(1:nb) = 1.0_rk/sqrt(h(1:nb))
       call dilatational_speed2(dom%mat(dom%el_mat(first)), nb, dom%el_j(first:last), dom%el_p(first:last), &
                                dom%el_mass(first:last), vol, c2)
@@ -185,14 +177,10 @@ contains
   subroutine element_forces_averaged(dom)
     type(domain_t), intent(inout) :: dom
     integer, parameter :: ld = block_size
-    real(rk) :: xe(ld,4,3), p_app(ld), fe(ld,4,3), vol(ld), grad(ld,4,3), h(ld), sb(ld,6)
+    real(rk) :: p_app(ld), fe(ld,4,3), vol(ld), grad(ld,4,3), h(ld), sb(ld,6)
     integer :: b, i, e, nb, first, last, k
     do b = 1, dom%n_blocks
-      first = dom%blk_first(b)
-      last = dom%blk_last(b)
-      nb = last - first + 1
-      call gather_block(dom, dom%nd_x, first, nb, xe)
-      call tet_gradients(ld, nb, xe, vol, grad, h)
+      call block_geometry(dom, b, first, last, nb, vol, grad, h)
       do i = 1, nb
         e = first + i - 1
         p_app(i) = 0.25_rk*(dom%nd_p(dom%el_conn(e,1)) + dom%nd_p(dom%el_conn(e,2)) &
@@ -204,6 +192,21 @@ contains
       call tet_internal_forces(ld, nb, vol, grad, sb, p_app, fe)
       call store_forces(dom, first, nb, fe)
     end do
+  end subroutine
+
+  !> Element range of block b and its geometry at the current coordinates:
+  !> volumes, shape-function gradients and g2max (see tet_gradients).
+  subroutine block_geometry(dom, b, first, last, nb, vol, grad, g2max)
+    type(domain_t), intent(in) :: dom
+    integer, intent(in) :: b
+    integer, intent(out) :: first, last, nb
+    real(rk), intent(inout) :: vol(block_size), grad(block_size,4,3), g2max(block_size)
+    real(rk) :: xe(block_size,4,3)
+    first = dom%blk_first(b)
+    last = dom%blk_last(b)
+    nb = last - first + 1
+    call gather_block(dom, dom%nd_x, first, nb, xe)
+    call tet_gradients(block_size, nb, xe, vol, grad, g2max)
   end subroutine
 
   !> Nodal vectors a(3,n) of the nb elements from first on, into a block (ld,4,3).

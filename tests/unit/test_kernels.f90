@@ -8,28 +8,18 @@ program test_kernels
   use udar_tet4, only: tet_volume, tet_gradients, tet_velocity_gradient
   use udar_strength, only: strength_block, von_mises, yield_stress, thermal_softening, power_ratio
   use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
+  use unit_checks, only: check, check_summary
   implicit none
-  integer :: n_fail = 0
   real(rk) :: w_test(3) = 0.0_rk   ! spin seen by one_step
 
   call test_tet_geometry()
   call test_rigid_rotation()
   call test_radial_return()
   call test_eos()
-  if (n_fail > 0) error stop 1
+  call check_summary()
 
 contains
 
-  subroutine check(name, cond, detail)
-    character(len=*), intent(in) :: name, detail
-    logical, intent(in) :: cond
-    if (cond) then
-      print '(a)', 'PASS '//name//': '//detail
-    else
-      print '(a)', 'FAIL '//name//': '//detail
-      n_fail = n_fail + 1
-    end if
-  end subroutine
 
   subroutine test_tet_geometry()
     real(rk) :: x(1,4,3), vol(1), grad(1,4,3), h(1), xr(4,3), id(3,3), err

@@ -7,8 +7,8 @@ program test_nodal
   use udar_domain, only: domain_t
   use udar_config, only: wall_frictionless, wall_sticking
   use udar_nodal, only: apply_rigid_walls, apply_velocity_conditions, update_positions
+  use unit_checks, only: check, check_summary
   implicit none
-  integer :: n_fail = 0
   type(domain_t) :: dom
   real(rk) :: work, dt
 
@@ -44,7 +44,7 @@ program test_nodal
   call check('symmetry_projection', all(dom%nd_v(:,1) == [0.0_rk, 0.0_rk, -10.0_rk]), &
              'v = ('//r2s(dom%nd_v(1,1))//', '//r2s(dom%nd_v(2,1))//', '//r2s(dom%nd_v(3,1))//')')
   call check('fixed_node', all(dom%nd_v(:,2) == 0.0_rk), 'node 2 at rest')
-  if (n_fail > 0) error stop 1
+  call check_summary()
 
 contains
 
@@ -59,14 +59,4 @@ contains
     d%walls(1)%normal = [0.0_rk, 0.0_rk, 1.0_rk]
   end subroutine
 
-  subroutine check(name, cond, detail)
-    character(len=*), intent(in) :: name, detail
-    logical, intent(in) :: cond
-    if (cond) then
-      print '(a)', 'PASS '//name//': '//detail
-    else
-      print '(a)', 'FAIL '//name//': '//detail
-      n_fail = n_fail + 1
-    end if
-  end subroutine
 end program test_nodal
