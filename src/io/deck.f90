@@ -26,7 +26,8 @@ module udar_deck
   use udar_config, only: config_t, run_cfg_t, mesh_cfg_t, material_cfg_t, part_cfg_t, &
        boundary_cfg_t, numerics_cfg_t, output_cfg_t, eos_linear, eos_mie_gruneisen, &
        strength_none, strength_elastic, strength_perfectly_plastic, strength_linear_hardening, &
-       strength_johnson_cook, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking
+       strength_johnson_cook, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
+       jc_rate_total, jc_rate_plastic
   use udar_input_errors, only: input_errors_t
   use udar_nml_scan, only: nml_scan_t, nml_group_t, nml_scan_file
   use udar_strings, only: itoa, r2s, to_lower, replace, shorten, dir_name, base_name
@@ -68,6 +69,8 @@ module udar_deck
   character(len=20), parameter :: kind_words(3) = [character(len=20) :: 'fixed', 'symmetry', 'rigid_wall']
   integer, parameter :: kind_codes(3) = [bc_fixed, bc_symmetry, bc_rigid_wall]
   character(len=20), parameter :: wall_words(2) = [character(len=20) :: 'frictionless', 'sticking']
+  character(len=20), parameter :: rate_words(2) = [character(len=20) :: 'total', 'plastic']
+  integer, parameter :: rate_codes(2) = [jc_rate_total, jc_rate_plastic]
   integer, parameter :: wall_codes(2) = [wall_frictionless, wall_sticking]
 
   ! ------------------------------------------------------ the variable table
@@ -115,6 +118,7 @@ module udar_deck
        var_t('material', 'jc_c', 'r', 1, 0, '-', '>= 0'), &
        var_t('material', 'jc_m', 'r', 1, 0, '-', '> 0'), &
        var_t('material', 'jc_rate0', 'r', 1, 0, '1/s', '> 0'), &
+       var_t('material', 'jc_rate_form', 'c', 1, code_len, '', ''), &
        var_t('material', 't_melt', 'r', 1, 0, 'K', '> 0'), &
        var_t('material', 't_room', 'r', 1, 0, 'K', '> 0'), &
        var_t('material', 'specific_heat', 'r', 1, 0, 'J/(kg K)', '> 0'), &
@@ -168,6 +172,7 @@ module udar_deck
     character(len=code_len) :: strength = 'elastic'
     character(len=code_len) :: kind = ''
     character(len=code_len) :: wall_type = 'frictionless'
+    character(len=code_len) :: jc_rate_form = 'total'
   end type
 
   !> One assignment as the deck wrote it.
@@ -253,7 +258,7 @@ contains
     type(values_t) :: v
     character(len=512) :: msg
     character(len=:), allocatable :: text
-    character(len=code_len), allocatable :: eos_txt(:), str_txt(:), kind_txt(:), wall_txt(:)
+    character(len=code_len), allocatable :: eos_txt(:), str_txt(:), kind_txt(:), wall_txt(:), rate_txt(:)
     integer :: ios, k, j, ig, gk, first(n_group_kinds), cnt(n_group_kinds), nread(n_group_kinds)
     logical :: misspelled(n_group_kinds)
 
@@ -309,7 +314,7 @@ contains
 
     allocate(cfg%materials(cnt(g_material)), cfg%parts(cnt(g_part)), &
              cfg%boundaries(cnt(g_boundary)))
-    allocate(eos_txt(cnt(g_material)), str_txt(cnt(g_material)), kind_txt(cnt(g_boundary)), &
+    allocate(eos_txt(cnt(g_material)), str_txt(cnt(g_material)), rate_txt(cnt(g_material)), kind_txt(cnt(g_boundary)), &
              wall_txt(cnt(g_boundary)))
     do gk = 1, n_group_kinds
       if (group_once(gk)) then
@@ -340,6 +345,7 @@ contains
         cfg%materials(k) = v%mat
         eos_txt(k) = v%eos
         str_txt(k) = v%strength
+        rate_txt(k) = v%jc_rate_form
       case (g_part)
         cfg%parts(k) = v%part
       case (g_boundary)
@@ -360,7 +366,7 @@ contains
       if (runs(1)%line > 0) call check_run(ctx, runs(1), cfg)
       if (meshes(1)%line > 0) call check_mesh(ctx, meshes(1), cfg%mesh, trim(path))
       do k = 1, size(mats)
-        call check_material(ctx, mats(k), cfg, k, eos_txt(k), str_txt(k), mats(1:k-1))
+        call check_material(ctx, mats(k), cfg, k, eos_txt(k), str_txt(k), rate_txt(k), mats(1:k-1))
       end do
       do k = 1, size(parts)
         call check_part(ctx, parts(k), cfg, k, parts(1:k-1))
@@ -536,7 +542,7 @@ contains
       associate(m => v%mat)
         call material_nml(m%name, m%rho0, v%eos, m%bulk_modulus, m%c0, m%s, m%gamma0, &
              v%strength, m%shear_modulus, m%youngs_modulus, m%poisson_ratio, m%yield_stress, &
-             m%hardening_modulus, m%jc_a, m%jc_b, m%jc_n, m%jc_c, m%jc_m, m%jc_rate0, &
+             m%hardening_modulus, m%jc_a, m%jc_b, m%jc_n, m%jc_c, m%jc_m, m%jc_rate0, v%jc_rate_form, &
              m%t_melt, m%t_room, m%specific_heat, m%taylor_quinney, m%initial_temperature)
       end associate
     case ('part')
@@ -573,15 +579,15 @@ contains
 
     subroutine material_nml(name, rho0, eos, bulk_modulus, c0, s, gamma0, strength, shear_modulus, &
                             youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
-                            jc_b, jc_n, jc_c, jc_m, jc_rate0, t_melt, t_room, specific_heat, &
+                            jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, t_melt, t_room, specific_heat, &
                             taylor_quinney, initial_temperature)
-      character(len=*), intent(inout) :: name, eos, strength
+      character(len=*), intent(inout) :: name, eos, strength, jc_rate_form
       real(rk), intent(inout) :: rho0, bulk_modulus, c0, s, gamma0, shear_modulus, youngs_modulus, &
            poisson_ratio, yield_stress, hardening_modulus, jc_a, jc_b, jc_n, jc_c, jc_m, jc_rate0, &
            t_melt, t_room, specific_heat, taylor_quinney, initial_temperature
       namelist /material/ name, rho0, eos, bulk_modulus, c0, s, gamma0, strength, shear_modulus, &
                           youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
-                          jc_b, jc_n, jc_c, jc_m, jc_rate0, t_melt, t_room, specific_heat, &
+                          jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, t_melt, t_room, specific_heat, &
                           taylor_quinney, initial_temperature
       read(text, nml=material, iostat=ios, iomsg=msg)
     end subroutine material_nml
@@ -660,15 +666,15 @@ contains
 
   !> Material models: ranges, what each EOS / strength model needs, parameters
   !> set for a model that is not selected, and the derived elastic moduli.
-  subroutine check_material(ctx, inst, cfg, k, eos_txt, str_txt, earlier_inst)
+  subroutine check_material(ctx, inst, cfg, k, eos_txt, str_txt, rate_txt, earlier_inst)
     type(ctx_t), intent(inout) :: ctx
     type(inst_t), intent(in) :: inst
     type(config_t), intent(inout) :: cfg
     integer, intent(in) :: k
-    character(len=*), intent(in) :: eos_txt, str_txt
+    character(len=*), intent(in) :: eos_txt, str_txt, rate_txt
     type(inst_t), intent(in) :: earlier_inst(:)    !< of materials 1 .. k-1
 
-    logical :: eos_ok, str_ok, e_set, nu_set, en_ok, plastic, elastic_needed
+    logical :: eos_ok, str_ok, rate_ok, e_set, nu_set, en_ok, plastic, elastic_needed
     real(rk) :: k_en, g_en, k_mg
     character(len=:), allocatable :: sname
     integer :: j
@@ -689,6 +695,7 @@ contains
 
       eos_ok = choice(ctx, inst, 'eos', eos_txt, eos_words, eos_codes, m%eos)
       str_ok = choice(ctx, inst, 'strength', str_txt, strength_words, strength_codes, m%strength)
+      rate_ok = choice(ctx, inst, 'jc_rate_form', rate_txt, rate_words, rate_codes, m%jc_rate_form)
 
       ! Young's modulus and Poisson's ratio: optional, but only as a pair
       ! (an unreadable value counts as given: it has been reported already)
@@ -1242,7 +1249,7 @@ contains
                 val(m%shear_modulus, 'youngs_modulus, poisson_ratio'), val(m%youngs_modulus), &
                 val(m%poisson_ratio), val(m%yield_stress), val(m%hardening_modulus), val(m%jc_a), &
                 val(m%jc_b), val(m%jc_n), val(m%jc_c), val(m%jc_m), val(m%jc_rate0), &
-                val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), &
+                choice_val(m%jc_rate_form, rate_words, rate_codes), val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), &
                 val(m%initial_temperature)]
       end associate
     case (g_part)

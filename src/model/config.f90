@@ -9,7 +9,8 @@ module udar_config
             numerics_cfg_t, output_cfg_t, config_t
   public :: eos_linear, eos_mie_gruneisen, strength_none, strength_elastic, &
             strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
-            bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking
+            bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
+            jc_rate_total, jc_rate_plastic
 
   ! integer codes the kernels dispatch on (strings stay in the deck)
   integer, parameter :: eos_linear = 1, eos_mie_gruneisen = 2
@@ -17,6 +18,7 @@ module udar_config
                         strength_linear_hardening = 3, strength_johnson_cook = 4
   integer, parameter :: bc_fixed = 1, bc_symmetry = 2, bc_rigid_wall = 3
   integer, parameter :: wall_frictionless = 1, wall_sticking = 2
+  integer, parameter :: jc_rate_total = 1, jc_rate_plastic = 2
 
   type :: run_cfg_t
     character(len=256) :: title = 'udar run'
@@ -49,6 +51,7 @@ module udar_config
     real(rk) :: hardening_modulus = 0.0_rk     !< Pa, plastic modulus d(sigma_y)/d(eps_p)
     real(rk) :: jc_a = -1.0_rk, jc_b = 0.0_rk, jc_n = 1.0_rk, jc_c = 0.0_rk, jc_m = 1.0_rk  !< Pa, Pa, -, -, -
     real(rk) :: jc_rate0 = 1.0_rk              !< 1/s
+    integer  :: jc_rate_form = jc_rate_total   !< strain rate in the rate term: total or plastic
     real(rk) :: t_melt = -1.0_rk               !< K
     real(rk) :: t_room = 294.0_rk              !< K
     real(rk) :: specific_heat = -1.0_rk        !< J/(kg K)

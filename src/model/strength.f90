@@ -4,7 +4,7 @@
 module udar_strength
   use udar_kinds, only: rk
   use udar_config, only: material_cfg_t, strength_none, strength_elastic, &
-      strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook
+      strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, jc_rate_plastic
   implicit none
   private
   public :: strength_block, yield_stress, von_mises, thermal_softening, thermal_softening_update, &
@@ -106,6 +106,10 @@ contains
         d_eps(i) = 0.0_rk
         sy(i) = soft(i)*hard(i)
         if (q_trial(i) <= sy(i)) cycle          ! the rate factor is >= 1: elastic
+        if (mat%jc_rate_form == jc_rate_plastic) then
+          call jc_return_plastic_rate(mat, dt, q_trial(i), eps_p(i), soft(i), d_eps(i), sy(i), hard(i))
+          cycle
+        end if
         factor = jc_rate_factor(mat, rate(i))*soft(i)
         sy(i) = factor*hard(i)
         if (q_trial(i) > sy(i)) call jc_return(mat, q_trial(i), eps_p(i), factor, d_eps(i), sy(i), hard(i))
@@ -231,6 +235,65 @@ contains
     ! on the yield surface by construction of the return
     sy = q_trial - g3*de
     hard = sy/factor
+  end subroutine
+
+  !> The return with the rate term driven by the plastic strain rate of the
+  !> step, de/dt (Johnson and Cook 1983 define it so): solves
+  !>   q_trial - 3 G de = soft (A + B (eps_p + de)^n) (1 + C ln max(de/(dt rate0), 1))
+  !> by bracketed Newton. The residual decreases monotonically in de and is
+  !> <= 0 at the no-hardening, no-rate return, which bounds the bracket.
+  pure subroutine jc_return_plastic_rate(mat, dt, q_trial, eps_p, soft, de, sy, hard)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: dt, q_trial, eps_p, soft
+    real(rk), intent(inout) :: de, sy, hard
+    real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, h, r, de_new, slope, de_rate1
+    integer :: it
+    g3 = 3.0_rk*mat%shear_modulus
+    if (soft <= 0.0_rk) then    ! melted: no strength left
+      de = q_trial/g3; sy = 0.0_rk
+      return
+    end if
+    pw0 = 0.0_rk
+    if (mat%jc_b > 0.0_rk) pw0 = max(hard - mat%jc_a, 0.0_rk)/mat%jc_b
+    de_rate1 = dt*mat%jc_rate0            ! below this increment the rate factor is 1
+    lo = 0.0_rk
+    hi = (q_trial - soft*mat%jc_a)/g3
+    slope = 0.0_rk
+    if (eps_p > 0.0_rk) slope = soft*mat%jc_b*mat%jc_n*pw0/eps_p
+    de = min((q_trial - sy)/(g3 + slope), hi)
+    do it = 1, 80
+      e = eps_p + de
+      if (eps_p > 0.0_rk) then
+        pw = pw0*power_ratio(de/eps_p, mat%jc_n)
+      else
+        pw = e**mat%jc_n
+      end if
+      h = mat%jc_a + mat%jc_b*pw
+      r = 1.0_rk
+      if (de > de_rate1) r = 1.0_rk + mat%jc_c*log(de/de_rate1)
+      f = q_trial - g3*de - soft*h*r
+      if (abs(f) <= 1.0e-13_rk*q_trial) exit
+      if (f > 0.0_rk) then
+        lo = de
+      else
+        hi = de
+      end if
+      fp = -g3 - soft*mat%jc_b*mat%jc_n*pw/e*r
+      if (de > de_rate1) fp = fp - soft*h*mat%jc_c/de
+      de_new = de - f/fp
+      if (de_new <= lo .or. de_new >= hi) de_new = 0.5_rk*(lo + hi)
+      if (abs(de_new - de) <= 1.0e-13_rk*de_new) then
+        de = de_new
+        exit
+      end if
+      de = de_new
+    end do
+    sy = q_trial - g3*de
+    if (eps_p > 0.0_rk) then
+      hard = mat%jc_a + mat%jc_b*pw0*power_ratio(de/eps_p, mat%jc_n)
+    else
+      hard = mat%jc_a + mat%jc_b*(eps_p + de)**mat%jc_n
+    end if
   end subroutine
 
   !> (1 + x)^n for x > -1: the binomial series to x^6 where |x| < 0.02

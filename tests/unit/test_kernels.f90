@@ -4,7 +4,7 @@ program test_kernels
   use udar_kinds, only: rk
   use udar_strings, only: r2s
   use udar_config, only: material_cfg_t, strength_perfectly_plastic, strength_linear_hardening, &
-      strength_johnson_cook, strength_elastic
+      strength_johnson_cook, strength_elastic, jc_rate_plastic, jc_rate_total
   use udar_tet4, only: tet_volume, tet_gradients, tet_velocity_gradient
   use udar_strength, only: strength_block, von_mises, yield_stress, thermal_softening, power_ratio
   use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
@@ -113,6 +113,16 @@ contains
     end do
     call check('radial_return_johnson_cook', abs(von_mises(s)/yield_stress(mat, eps, rate_of(d), 400.0_rk) - 1) &
                < 1e-9_rk, 'q = '//r2s(von_mises(s))//' Pa, eps_p = '//r2s(eps))
+    ! plastic-rate form: on the surface at the rate de/dt of the step itself
+    mat%jc_rate_form = jc_rate_plastic
+    s = 0; eps = 0
+    do k = 1, 50
+      call one_step(mat, dt, d, 294.0_rk, s, eps, de, wd, wp)
+    end do
+    call check('radial_return_johnson_cook_plastic_rate', abs(von_mises(s)/((90e6_rk + 292e6_rk*eps**0.31_rk) &
+               *(1 + 0.025_rk*log(de/dt))) - 1) < 1e-9_rk .and. de/dt > 1, 'q = '//r2s(von_mises(s))// &
+               ' Pa at plastic rate '//r2s(de/dt)//' 1/s')
+    mat%jc_rate_form = jc_rate_total
     ! hand value of the JC flow stress: eps_p = 0.5, rate 1e3/s, T = 500 K
     call check('johnson_cook_hand_value', abs(yield_stress(mat, 0.5_rk, 1.0e3_rk, 500.0_rk) &
                - (90e6_rk + 292e6_rk*0.5_rk**0.31_rk)*(1 + 0.025_rk*log(1.0e3_rk))*(1 - (206.0_rk/1062.0_rk)**1.09_rk)) &
