@@ -27,6 +27,7 @@ module udar_deck
        boundary_cfg_t, numerics_cfg_t, output_cfg_t, eos_linear, eos_mie_gruneisen, &
        strength_none, strength_elastic, strength_perfectly_plastic, strength_linear_hardening, &
        strength_johnson_cook, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
+       wall_coulomb, &
        jc_rate_total, jc_rate_plastic
   use udar_input_errors, only: input_errors_t
   use udar_nml_scan, only: nml_scan_t, nml_group_t, nml_scan_file
@@ -68,10 +69,10 @@ module udar_deck
        strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook]
   character(len=20), parameter :: kind_words(3) = [character(len=20) :: 'fixed', 'symmetry', 'rigid_wall']
   integer, parameter :: kind_codes(3) = [bc_fixed, bc_symmetry, bc_rigid_wall]
-  character(len=20), parameter :: wall_words(2) = [character(len=20) :: 'frictionless', 'sticking']
+  character(len=20), parameter :: wall_words(3) = [character(len=20) :: 'frictionless', 'sticking', 'coulomb']
   character(len=20), parameter :: rate_words(2) = [character(len=20) :: 'total', 'plastic']
   integer, parameter :: rate_codes(2) = [jc_rate_total, jc_rate_plastic]
-  integer, parameter :: wall_codes(2) = [wall_frictionless, wall_sticking]
+  integer, parameter :: wall_codes(3) = [wall_frictionless, wall_sticking, wall_coulomb]
 
   ! ------------------------------------------------------ the variable table
   !> One deck variable: for unknown-name suggestions, read-failure
@@ -132,6 +133,7 @@ module udar_deck
        var_t('boundary', 'point', 'r', 3, 0, 'm', 'finite numbers'), &
        var_t('boundary', 'normal', 'r', 3, 0, '-', 'finite numbers'), &
        var_t('boundary', 'wall_type', 'c', 1, code_len, '', ''), &
+       var_t('boundary', 'friction', 'r', 1, 0, '-', '>= 0'), &
        var_t('numerics', 'anti_locking', 'l', 1, 0, '', ''), &
        var_t('numerics', 'q_linear', 'r', 1, 0, '-', '>= 0'), &
        var_t('numerics', 'q_quadratic', 'r', 1, 0, '-', '>= 0'), &
@@ -548,7 +550,7 @@ contains
     case ('part')
       call part_nml(v%part%group, v%part%material, v%part%velocity)
     case ('boundary')
-      call boundary_nml(v%kind, v%bnd%surface, v%bnd%point, v%bnd%normal, v%wall_type)
+      call boundary_nml(v%kind, v%bnd%surface, v%bnd%point, v%bnd%normal, v%wall_type, v%bnd%friction)
     case ('numerics')
       call numerics_nml(v%num%anti_locking, v%num%q_linear, v%num%q_quadratic)
     case ('output')
@@ -599,10 +601,11 @@ contains
       read(text, nml=part, iostat=ios, iomsg=msg)
     end subroutine part_nml
 
-    subroutine boundary_nml(kind, surface, point, normal, wall_type)
+    subroutine boundary_nml(kind, surface, point, normal, wall_type, friction)
       character(len=*), intent(inout) :: kind, surface, wall_type
+      real(rk), intent(inout) :: friction
       real(rk), intent(inout) :: point(3), normal(3)
-      namelist /boundary/ kind, surface, point, normal, wall_type
+      namelist /boundary/ kind, surface, point, normal, wall_type, friction
       read(text, nml=boundary, iostat=ios, iomsg=msg)
     end subroutine boundary_nml
 
@@ -903,8 +906,10 @@ contains
         if (len_trim(b%surface) == 0) call need(ctx, inst, 'surface', .false., &
              "the name of a physical surface group in the mesh, for kind = '"//trim(kind_txt)//"'")
         if (wall_ok) call unused(ctx, inst, cfg_vals(cfg, g_boundary, k), default_vals(g_boundary), &
-             'wall_type', "kind = 'rigid_wall'")
+             'wall_type friction', "kind = 'rigid_wall'")
       case (bc_rigid_wall)
+        if (wall_ok .and. b%wall_type /= wall_coulomb) call unused(ctx, inst, cfg_vals(cfg, g_boundary, k), &
+             default_vals(g_boundary), 'friction', "wall_type = 'coulomb'")
         if (all(ieee_is_finite(b%normal)) .and. .not. is_bad(inst, 'normal')) then
           nrm = norm2(b%normal)
           if (nrm > 0) then
@@ -1259,7 +1264,7 @@ contains
     case (g_boundary)
       associate(b => cfg%boundaries(k))
         vals = [choice_val(b%kind, kind_words, kind_codes), val_t(c=b%surface), val(b%point), &
-                val(b%normal), choice_val(b%wall_type, wall_words, wall_codes)]
+                val(b%normal), choice_val(b%wall_type, wall_words, wall_codes), val(b%friction)]
       end associate
     case (g_numerics)
       vals = [val_t(l=cfg%numerics%anti_locking), val(cfg%numerics%q_linear), &

@@ -9,7 +9,7 @@ module udar_config
             numerics_cfg_t, output_cfg_t, config_t
   public :: eos_linear, eos_mie_gruneisen, strength_none, strength_elastic, &
             strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
-            bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
+            bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, wall_coulomb, &
             jc_rate_total, jc_rate_plastic
 
   ! integer codes the kernels dispatch on (strings stay in the deck)
@@ -17,7 +17,7 @@ module udar_config
   integer, parameter :: strength_none = 0, strength_elastic = 1, strength_perfectly_plastic = 2, &
                         strength_linear_hardening = 3, strength_johnson_cook = 4
   integer, parameter :: bc_fixed = 1, bc_symmetry = 2, bc_rigid_wall = 3
-  integer, parameter :: wall_frictionless = 1, wall_sticking = 2
+  integer, parameter :: wall_frictionless = 1, wall_sticking = 2, wall_coulomb = 3
   integer, parameter :: jc_rate_total = 1, jc_rate_plastic = 2
 
   type :: run_cfg_t
@@ -71,6 +71,7 @@ module udar_config
     real(rk) :: point(3) = 0.0_rk                 !< m, a point on the rigid wall
     real(rk) :: normal(3) = 0.0_rk                !< -, wall normal pointing towards the bodies
     integer  :: wall_type = wall_frictionless
+    real(rk) :: friction = 0.0_rk                 !< -, Coulomb coefficient of a 'coulomb' wall
   end type
 
   type :: numerics_cfg_t

@@ -12,6 +12,7 @@ module udar_domain
   type :: wall_t
     real(rk) :: point(3) = 0.0_rk, normal(3) = 0.0_rk
     integer :: wall_type = 1
+    real(rk) :: friction = 0.0_rk     !< -, Coulomb coefficient (wall_coulomb)
     real(rk) :: force = 0.0_rk        !< N, normal force of the last cycle
   end type
 

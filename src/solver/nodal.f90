@@ -4,7 +4,7 @@
 module udar_nodal
   use udar_kinds, only: rk
   use udar_domain, only: domain_t
-  use udar_config, only: wall_sticking
+  use udar_config, only: wall_sticking, wall_coulomb
   implicit none
   private
   public :: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions
@@ -50,7 +50,7 @@ contains
     real(rk), intent(in) :: dt, dt_v   !< the coming step, and the interval the velocity update spans
     real(rk), intent(out) :: wall_work
     integer :: iw, n
-    real(rk) :: gap, vn, vn_new, impulse
+    real(rk) :: gap, vn, vn_new, impulse, vt(3), dvt(3), vt_mag
     wall_work = 0.0_rk
     do iw = 1, size(dom%walls)
       associate (wall => dom%walls(iw))
@@ -61,13 +61,25 @@ contains
           if (gap + dt*vn >= 0.0_rk) cycle
           ! lands on the wall at the end of the step (a node found behind it is put back)
           vn_new = -gap/dt
-          if (wall%wall_type == wall_sticking) then
-            dom%nd_v(:,n) = vn_new*wall%normal
-          else
-            dom%nd_v(:,n) = dom%nd_v(:,n) + (vn_new - vn)*wall%normal
-          end if
+          vt = dom%nd_v(:,n) - vn*wall%normal
+          select case (wall%wall_type)
+          case (wall_sticking)
+            dvt = -vt
+          case (wall_coulomb)
+            ! tangential impulse at most friction x normal impulse: stick or slide
+            vt_mag = norm2(vt)
+            if (vt_mag <= wall%friction*(vn_new - vn)) then
+              dvt = -vt
+            else
+              dvt = -(wall%friction*(vn_new - vn)/vt_mag)*vt
+            end if
+          case default
+            dvt = 0.0_rk
+          end select
+          dom%nd_v(:,n) = vt + dvt + vn_new*wall%normal
           impulse = impulse + dom%nd_mass(n)*(vn_new - vn)
-          wall_work = wall_work + dom%nd_mass(n)*(vn_new - vn)*vn_new
+          ! work of the wall's normal and tangential impulses over the node's motion
+          wall_work = wall_work + dom%nd_mass(n)*((vn_new - vn)*vn_new + dot_product(dvt, vt + dvt))
         end do
         ! the correction is part of the velocity update, so it spans dt_v
         wall%force = impulse/dt_v

@@ -246,6 +246,7 @@ contains
           dom%walls(iw)%point = cfg%boundaries(ib)%point
           dom%walls(iw)%normal = cfg%boundaries(ib)%normal/norm2(cfg%boundaries(ib)%normal)
           dom%walls(iw)%wall_type = cfg%boundaries(ib)%wall_type
+          dom%walls(iw)%friction = cfg%boundaries(ib)%friction
         case (bc_fixed)
           ig = find_group(mesh, cfg%boundaries(ib)%surface, 2)
           call group_nodes(mesh, ig, node_new, nodes)

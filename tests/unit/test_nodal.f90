@@ -5,7 +5,7 @@ program test_nodal
   use udar_kinds, only: rk
   use udar_strings, only: r2s
   use udar_domain, only: domain_t
-  use udar_config, only: wall_frictionless, wall_sticking
+  use udar_config, only: wall_frictionless, wall_sticking, wall_coulomb
   use udar_nodal, only: apply_rigid_walls, apply_velocity_conditions, update_positions
   use unit_checks, only: check, check_summary
   implicit none
@@ -34,6 +34,23 @@ program test_nodal
   call check('sticking_stops_tangential', dom%nd_v(1,1) == 0.0_rk .and. dom%nd_v(2,1) == 0.0_rk &
              .and. abs(dom%nd_v(3,1) + 2.0_rk) < 1e-12_rk, 'v = ('//r2s(dom%nd_v(1,1))//', '// &
              r2s(dom%nd_v(2,1))//', '//r2s(dom%nd_v(3,1))//') m/s')
+
+  ! Coulomb wall: normal change 8 m/s; mu = 0.2 allows 1.6 m/s of the 3.16 m/s
+  ! tangential speed to be removed (slip), mu = 1 stops it (stick)
+  call two_nodes(dom)
+  dom%walls(1)%wall_type = wall_coulomb
+  dom%walls(1)%friction = 0.2_rk
+  call apply_rigid_walls(dom, dt, dt, work)
+  call check('coulomb_slip', abs(norm2(dom%nd_v(1:2,1)) - (sqrt(10.0_rk) - 1.6_rk)) < 1e-12_rk .and. &
+             abs(dom%nd_v(1,1)/dom%nd_v(2,1) + 3.0_rk) < 1e-12_rk, '|v_t| = '//r2s(norm2(dom%nd_v(1:2,1)))// &
+             ' m/s (sqrt(10) - 0.2 x 8), direction kept')
+  call check('coulomb_friction_work', abs(work - (2.0_rk*8.0_rk*(-2.0_rk) - 2.0_rk*1.6_rk*(sqrt(10.0_rk) - 1.6_rk))) &
+             < 1e-9_rk, 'W = '//r2s(work)//' J (normal + friction)')
+  call two_nodes(dom)
+  dom%walls(1)%wall_type = wall_coulomb
+  dom%walls(1)%friction = 1.0_rk
+  call apply_rigid_walls(dom, dt, dt, work)
+  call check('coulomb_stick', all(dom%nd_v(1:2,1) == 0.0_rk), 'tangential velocity removed')
 
   ! symmetry plane x = 0 and y = 0 at node 1, fixed node 2
   call two_nodes(dom)
