@@ -12,7 +12,7 @@ program udar
   use udar_deck, only: deck_read
   use udar_gmsh, only: gmsh_mesh_t, gmsh_read
   use udar_domain, only: domain_t
-  use udar_setup, only: build_domain
+  use udar_setup, only: build_domain, count_bodies
   use udar_run, only: run_simulation, run_result_t
   use udar_partition, only: partition_elements, partition_stats_t
   use udar_decomposition, only: rank_counts_t, decomposition_counts
@@ -28,7 +28,7 @@ program udar
   logical :: check_only, ok
   character(len=:), allocatable :: msg
   character(len=512) :: line
-  integer :: k, ios
+  integer :: k, ios, n_bodies
   integer :: preview_ranks = 0    !< --ranks N: show the partition for N ranks (with --check)
 
   call comms_init()
@@ -87,6 +87,12 @@ program udar
   write(line, '(a,i0,a,i0,a,i0,a)') 'mesh '//trim(cfg%mesh%file)//': ', mesh%n_nodes, ' nodes, ', mesh%n_tets, &
     ' tetrahedra, ', mesh%n_inverted, ' reoriented at read time'
   call log_info(line)
+  n_bodies = count_bodies(dom)
+  if (n_bodies > 1) then
+    write(line, '(a,i0,a)') 'the mesh holds ', n_bodies, ' separate bodies; this version has no contact '// &
+      'between bodies (next issues), so they will pass through each other'
+    call log_warn(line)
+  end if
 
   if (check_only) then
     if (comms_is_root()) write(output_unit, '(a)') cfg%resolved_text

@@ -14,7 +14,7 @@ module udar_setup
   use udar_strength, only: initial_hardening, thermal_softening
   implicit none
   private
-  public :: build_domain
+  public :: build_domain, count_bodies
 
 contains
 
@@ -323,6 +323,36 @@ contains
       end do
     end do
   end subroutine
+
+  !> Number of separate bodies: connected components of the mesh, two
+  !> elements being connected when they share a node (union-find).
+  integer function count_bodies(dom) result(n_bodies)
+    type(domain_t), intent(in) :: dom
+    integer, allocatable :: parent(:)
+    integer :: e, a, r1, r2, n
+    allocate(parent(dom%n_nodes))
+    parent = [(n, n = 1, dom%n_nodes)]
+    do e = 1, dom%n_elems
+      r1 = root(dom%el_conn(e,1))
+      do a = 2, 4
+        r2 = root(dom%el_conn(e,a))
+        if (r2 /= r1) parent(r2) = r1
+      end do
+    end do
+    n_bodies = 0
+    do n = 1, dom%n_nodes
+      if (root(n) == n) n_bodies = n_bodies + 1
+    end do
+  contains
+    integer function root(i)
+      integer, intent(in) :: i
+      root = i
+      do while (parent(root) /= root)
+        parent(root) = parent(parent(root))   ! path halving
+        root = parent(root)
+      end do
+    end function
+  end function
 
   !> rows of a (n,3) table with n_new copies of row r appended
   function append_rows(table, r, n_new) result(out)

@@ -44,6 +44,22 @@ if [ $rc -eq 0 ] && grep -q 'partition for 3 ranks.*edge cut' "$W/ranks.txt" && 
    [ "$(grep -cE '^ +[0-2] +[0-9]+ +[0-9]+ +[0-9]+ +[0-9]+$' "$W/ranks.txt")" -eq 3 ]
 then ok "check_ranks_partition_report"; else bad "check_ranks_partition_report (exit $rc)"; cat "$W/ranks.txt"; fi
 expect ranks_without_check 1 'ranks goes with --check' "--ranks 2 good.nml"
+# two separate bodies: warned that there is no contact yet
+cat > "$W/two.geo" <<'GEO'
+SetFactory("OpenCASCADE");
+Box(1) = {0,0,0, 1,1,1};
+Box(2) = {0,0,2, 1,1,1};
+Physical Volume("a") = {1};
+Physical Volume("b") = {2};
+Mesh.CharacteristicLengthMax = 0.5;
+GEO
+gmsh -3 -v 0 "$W/two.geo" -o "$W/two.msh"
+printf '%s\n' '&run t_end = 1e-6 /' "&mesh file = 'two.msh' /" \
+  "&material name = 'steel', rho0 = 7850, youngs_modulus = 200e9, poisson_ratio = 0.3 /" \
+  "&part group = 'a', material = 'steel' /" "&part group = 'b', material = 'steel' /" > "$W/two.nml"
+(cd "$W" && "$EXE" --check two.nml) > "$W/two.txt" 2>&1; rc=$?
+if [ $rc -eq 0 ] && grep -q 'warning: the mesh holds 2 separate bodies' "$W/two.txt"; then ok "two_bodies_warned"
+else bad "two_bodies_warned (exit $rc)"; cat "$W/two.txt"; fi
 "$EXE" --help > "$W/help.txt" 2>&1 && grep -q usage "$W/help.txt" && ok help || bad help
 "$EXE" --version 2>&1 | grep -qE '^udar [0-9]' && ok version || bad version
 [ $fails -eq 0 ]
