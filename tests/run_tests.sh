@@ -49,6 +49,7 @@ run_test "cli/repeatable" tests/cli/repeatable.sh bin/udar-debug
 # ---- regressions against analytic and experimental references
 run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
 run_test "regression/plate_impact" regression plate_impact bin/udar-debug
+run_test "regression/coulomb_wall" regression coulomb_wall bin/udar-debug
 run_test "regression/taylor_wg" regression taylor_wg bin/udar
 run_test "regression/taylor_ofhc_baseline" regression taylor_ofhc_baseline bin/udar
 
