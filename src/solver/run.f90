@@ -48,8 +48,8 @@ contains
     type(balance_t) :: bal
     real(rk), allocatable :: work_svm(:), work_rho(:), row(:), work_node(:,:)
     real(rk) :: t, dt, dt_old, dt_stable, dt_v, e0, e_ref, wall_step_work, wall_work, t_next_field, &
-                t_next_hist, wall0, elapsed, loop0
-    integer :: cycle, bad
+                t_next_hist, wall0, elapsed, loop0, last_print_wall, left
+    integer :: cycle, bad, last_print_cycle
     logical :: ok, done, history_due, print_due
     integer, parameter :: balance_interval = 10
     character(len=:), allocatable :: errmsg, base
@@ -88,6 +88,8 @@ contains
 
     done = .false.
     loop0 = comms_wtime()
+    last_print_wall = loop0
+    last_print_cycle = 0
     do while (.not. done)
       ! ---- time step: the stable one, or what is left to t_end
       if (cycle == 0 .and. cfg%run%dt_initial > 0.0_rk) then
@@ -159,9 +161,14 @@ contains
         end do
       end if
       if (print_due) then
-        elapsed = comms_wtime() - wall0
+        ! wall time left at the current step size and the recent cost of a cycle
+        ! (the step shrinks as elements distort, so an average over the run says too little)
+        elapsed = comms_wtime()
+        left = (elapsed - last_print_wall)/max(cycle - last_print_cycle, 1)*max(cfg%run%t_end - t, 0.0_rk)/dt
+        last_print_wall = elapsed
+        last_print_cycle = cycle
         write(line, '(a,i8,a,es11.4,a,es10.3,a,es10.2,a,f9.1,a)') 'cycle', cycle, '  t ', t, ' s  dt ', dt, &
-          ' s  energy error ', bal%error, '  wall left ', elapsed*max(cfg%run%t_end - t, 0.0_rk)/t, ' s'
+          ' s  energy error ', bal%error, '  wall left ', left, ' s'
         call log_info(line)
       end if
     end do
