@@ -107,12 +107,13 @@ contains
         sy(i) = soft(i)*hard(i)
         if (q_trial(i) <= sy(i)) cycle          ! the rate factor is >= 1: elastic
         if (mat%jc_rate_form == jc_rate_plastic) then
-          call jc_return_plastic_rate(mat, dt, q_trial(i), eps_p(i), soft(i), d_eps(i), sy(i), hard(i))
-          cycle
+          call jc_return(mat, dt, q_trial(i), eps_p(i), soft(i), 1.0_rk, .true., d_eps(i), sy(i), hard(i))
+        else
+          factor = jc_rate_factor(mat, rate(i))
+          sy(i) = soft(i)*factor*hard(i)
+          if (q_trial(i) > sy(i)) &
+            call jc_return(mat, dt, q_trial(i), eps_p(i), soft(i), factor, .false., d_eps(i), sy(i), hard(i))
         end if
-        factor = jc_rate_factor(mat, rate(i))*soft(i)
-        sy(i) = factor*hard(i)
-        if (q_trial(i) > sy(i)) call jc_return(mat, q_trial(i), eps_p(i), factor, d_eps(i), sy(i), hard(i))
       end do
     case default
       d_eps(1:nb) = 0.0_rk
@@ -181,85 +182,40 @@ contains
     end if
   end function
 
-  !> Solves q_trial - 3 G de = factor (A + B (eps_p + de)^n) for de > 0 by
-  !> Newton's method kept inside a shrinking bracket (the power law has an
-  !> infinite slope at zero plastic strain), started from the return with
-  !> the hardening slope of the current state. hard = A + B eps_p^n is the
-  !> cached state, so (eps_p + de)^n = eps_p^n (1 + de/eps_p)^n needs no
-  !> power for the small increments of a flowing element (power_ratio).
-  !> sy enters with the flow stress at eps_p and leaves with the one at
-  !> eps_p + de; hard is updated.
-  pure subroutine jc_return(mat, q_trial, eps_p, factor, de, sy, hard)
+  !> The Johnson-Cook return: solves for de > 0
+  !>   q_trial - 3 G de = soft (A + B (eps_p + de)^n) R,
+  !> with R = rate_factor fixed (rate term from the total strain rate), or,
+  !> when plastic_rate, R = 1 + C ln max(de/(dt rate0), 1) (Johnson and
+  !> Cook's plastic strain rate: the rate term depends on the unknown). The
+  !> left side decreases strictly in de and is <= 0 at the no-hardening,
+  !> no-rate return, which bounds the bracket of a safeguarded Newton
+  !> iteration started from the return with the current hardening slope.
+  !> hard = A + B eps_p^n is the cached state, so (eps_p + de)^n =
+  !> eps_p^n (1 + de/eps_p)^n needs no power for the small increments of a
+  !> flowing element (power_ratio). sy enters with the flow stress at the
+  !> start and leaves with the one at eps_p + de; hard is updated.
+  pure subroutine jc_return(mat, dt, q_trial, eps_p, soft, rate_factor, plastic_rate, de, sy, hard)
     type(material_cfg_t), intent(in) :: mat
-    real(rk), intent(in) :: q_trial, eps_p, factor
-    real(rk), intent(inout) :: de, sy, hard
-    real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, de_new, slope
-    integer :: it
-    g3 = 3.0_rk*mat%shear_modulus
-    if (factor <= 0.0_rk .or. mat%jc_b <= 0.0_rk) then   ! melted, or no hardening: closed form
-      de = max(q_trial - sy, 0.0_rk)/g3
-      sy = q_trial - g3*de
-      return
-    end if
-    pw0 = max(hard - mat%jc_a, 0.0_rk)/mat%jc_b          ! eps_p^n
-    lo = 0.0_rk
-    hi = (q_trial - factor*mat%jc_a)/g3     ! the return with no hardening at all
-    slope = 0.0_rk
-    if (eps_p > 0.0_rk) slope = factor*mat%jc_b*mat%jc_n*pw0/eps_p
-    de = min((q_trial - sy)/(g3 + slope), hi)
-    do it = 1, 60
-      e = eps_p + de
-      if (eps_p > 0.0_rk) then
-        pw = pw0*power_ratio(de/eps_p, mat%jc_n)
-      else
-        pw = e**mat%jc_n
-      end if
-      f = q_trial - g3*de - factor*(mat%jc_a + mat%jc_b*pw)
-      ! converged to round-off of the residual (a relative step test alone
-      ! never ends for tiny increments, whose residual noise dominates)
-      if (abs(f) <= 1.0e-13_rk*q_trial) exit
-      if (f > 0.0_rk) then
-        lo = de
-      else
-        hi = de
-      end if
-      fp = -g3 - factor*mat%jc_b*mat%jc_n*pw/e
-      de_new = de - f/fp
-      if (de_new <= lo .or. de_new >= hi) de_new = 0.5_rk*(lo + hi)
-      if (abs(de_new - de) <= 1.0e-12_rk*de_new) then
-        de = de_new
-        exit
-      end if
-      de = de_new
-    end do
-    ! on the yield surface by construction of the return
-    sy = q_trial - g3*de
-    hard = sy/factor
-  end subroutine
-
-  !> The return with the rate term driven by the plastic strain rate of the
-  !> step, de/dt (Johnson and Cook 1983 define it so): solves
-  !>   q_trial - 3 G de = soft (A + B (eps_p + de)^n) (1 + C ln max(de/(dt rate0), 1))
-  !> by bracketed Newton. The residual decreases monotonically in de and is
-  !> <= 0 at the no-hardening, no-rate return, which bounds the bracket.
-  pure subroutine jc_return_plastic_rate(mat, dt, q_trial, eps_p, soft, de, sy, hard)
-    type(material_cfg_t), intent(in) :: mat
-    real(rk), intent(in) :: dt, q_trial, eps_p, soft
+    real(rk), intent(in) :: dt, q_trial, eps_p, soft, rate_factor
+    logical, intent(in) :: plastic_rate
     real(rk), intent(inout) :: de, sy, hard
     real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, h, r, de_new, slope, de_rate1
     integer :: it
     g3 = 3.0_rk*mat%shear_modulus
-    if (soft <= 0.0_rk) then    ! melted: no strength left
-      de = q_trial/g3; sy = 0.0_rk
+    r = rate_factor
+    if (soft <= 0.0_rk .or. (mat%jc_b <= 0.0_rk .and. .not. plastic_rate)) then
+      ! melted, or no hardening with a fixed rate factor: closed form
+      de = max(q_trial - sy, 0.0_rk)/g3
+      sy = q_trial - g3*de
       return
     end if
     pw0 = 0.0_rk
-    if (mat%jc_b > 0.0_rk) pw0 = max(hard - mat%jc_a, 0.0_rk)/mat%jc_b
-    de_rate1 = dt*mat%jc_rate0            ! below this increment the rate factor is 1
+    if (mat%jc_b > 0.0_rk) pw0 = max(hard - mat%jc_a, 0.0_rk)/mat%jc_b     ! eps_p^n
+    de_rate1 = dt*mat%jc_rate0          ! below this increment the plastic-rate factor is 1
     lo = 0.0_rk
-    hi = (q_trial - soft*mat%jc_a)/g3
+    hi = (q_trial - soft*r*mat%jc_a)/g3
     slope = 0.0_rk
-    if (eps_p > 0.0_rk) slope = soft*mat%jc_b*mat%jc_n*pw0/eps_p
+    if (eps_p > 0.0_rk) slope = soft*r*mat%jc_b*mat%jc_n*pw0/eps_p
     de = min((q_trial - sy)/(g3 + slope), hi)
     do it = 1, 80
       e = eps_p + de
@@ -269,25 +225,30 @@ contains
         pw = e**mat%jc_n
       end if
       h = mat%jc_a + mat%jc_b*pw
-      r = 1.0_rk
-      if (de > de_rate1) r = 1.0_rk + mat%jc_c*log(de/de_rate1)
+      if (plastic_rate) then
+        r = 1.0_rk
+        if (de > de_rate1) r = 1.0_rk + mat%jc_c*log(de/de_rate1)
+      end if
       f = q_trial - g3*de - soft*h*r
+      ! converged to round-off of the residual (a relative step test alone
+      ! never ends for tiny increments, whose residual noise dominates)
       if (abs(f) <= 1.0e-13_rk*q_trial) exit
       if (f > 0.0_rk) then
         lo = de
       else
         hi = de
       end if
-      fp = -g3 - soft*mat%jc_b*mat%jc_n*pw/e*r
-      if (de > de_rate1) fp = fp - soft*h*mat%jc_c/de
+      fp = -g3 - soft*r*mat%jc_b*mat%jc_n*pw/e
+      if (plastic_rate .and. de > de_rate1) fp = fp - soft*h*mat%jc_c/de
       de_new = de - f/fp
       if (de_new <= lo .or. de_new >= hi) de_new = 0.5_rk*(lo + hi)
-      if (abs(de_new - de) <= 1.0e-13_rk*de_new) then
+      if (abs(de_new - de) <= 1.0e-12_rk*de_new) then
         de = de_new
         exit
       end if
       de = de_new
     end do
+    ! on the yield surface by construction of the return
     sy = q_trial - g3*de
     if (eps_p > 0.0_rk) then
       hard = mat%jc_a + mat%jc_b*pw0*power_ratio(de/eps_p, mat%jc_n)
