@@ -1,14 +1,7 @@
 #!/usr/bin/env bash
 # The program's own handling of bad input: exit code 1, a message naming the
 # file, group and variable, nothing written or destroyed; --check, --help.
-set -u
-EXE=$(realpath "$1")
-ROOT=$(cd "$(dirname "$0")/../.." && pwd)
-W=$(mktemp -d)
-trap 'rm -rf "$W"' EXIT
-fails=0
-ok()   { echo "PASS $1"; }
-bad()  { echo "FAIL $1"; fails=$((fails+1)); }
+source "$(dirname "$0")/common.sh" "$1"
 expect() {  # name, expected exit code, pattern in stderr, deck
   local name=$1 code=$2 pat=$3 deck=$4 rc
   (cd "$W" && "$EXE" $deck) > "$W/out.txt" 2> "$W/err.txt"; rc=$?

@@ -2,12 +2,7 @@
 # The same deck run twice gives bitwise identical history and field data
 # (the foundation of rank-count independence: no uninitialised data, no
 # order that depends on anything but the input).
-set -u
-EXE=$(realpath "$1")
-ROOT=$(cd "$(dirname "$0")/../.." && pwd)
-PYTHON=${PYTHON:-/usr/bin/python3}
-W=$(mktemp -d)
-trap 'rm -rf "$W"' EXIT
+source "$(dirname "$0")/common.sh" "$1"
 cp "$ROOT/tests/regression/plate_impact/plate_impact.msh" "$ROOT/tests/regression/plate_impact/plate_impact.nml" "$W/"
 sed -i 's/&numerics anti_locking = .false. \//\&numerics anti_locking = .true. \//' "$W/plate_impact.nml"
 for k in 1 2; do

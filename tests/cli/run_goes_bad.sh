@@ -2,12 +2,7 @@
 # A run that goes bad (a time step far above the stable one) must stop with
 # exit code 2, name the element, cycle and time, and leave its last state in
 # the field file (a committed step at the failing cycle).
-set -u
-EXE=$(realpath "$1")
-ROOT=$(cd "$(dirname "$0")/../.." && pwd)
-PYTHON=${PYTHON:-/usr/bin/python3}
-W=$(mktemp -d)
-trap 'rm -rf "$W"' EXIT
+source "$(dirname "$0")/common.sh" "$1"
 cp "$ROOT/tests/regression/elastic_bar/elastic_bar.msh" "$W/bar.msh"
 cat > "$W/bad.nml" <<'DECK'
 &run t_end = 1e-4, dt_initial = 2e-6 /
