@@ -218,13 +218,14 @@ contains
                'mesh file made absolute')
     call check(cfg%mesh%scale == 0.001_rk, 'scale')
     call check(size(cfg%materials) == 2 .and. size(cfg%parts) == 2 .and. &
-               size(cfg%boundaries) == 2, 'group counts')
+               size(cfg%boundaries) == 3, 'group counts')
     associate(cu => cfg%materials(1), st => cfg%materials(2))
       call check(cu%name == 'copper' .and. cu%eos == eos_mie_gruneisen .and. &
                  cu%strength == strength_johnson_cook, 'copper models')
       call check(cu%bulk_modulus == 8930.0_rk * 3940.0_rk**2, 'copper K = rho0 c0^2')
       call check(cu%shear_modulus == 124e9_rk / (2 * 1.34_rk), 'copper G from E, nu')
       call check(cu%jc_n == 0.31_rk .and. cu%t_melt == 1356.0_rk, 'copper JC values')
+      call check(cu%jc_rate_form == jc_rate_plastic, 'copper JC plastic-rate form')
       call check(st%name == 'Steel' .and. st%eos == eos_linear .and. &
                  st%strength == strength_perfectly_plastic, 'steel models')
       call check(st%bulk_modulus == 166.7e9_rk .and. st%shear_modulus == 76.9e9_rk, 'steel K, G')
@@ -237,6 +238,8 @@ contains
     call check(all(cfg%boundaries(1)%normal == [0.0_rk, 0.0_rk, 1.0_rk]), 'normal normalised')
     call check(cfg%boundaries(2)%kind == bc_symmetry .and. cfg%boundaries(2)%surface == 'x0', &
                'symmetry')
+    call check(cfg%boundaries(3)%wall_type == wall_coulomb .and. cfg%boundaries(3)%friction == 0.2_rk, &
+               'coulomb wall with friction')
     call check(.not. cfg%numerics%anti_locking .and. cfg%numerics%q_linear == 0.1_rk, 'numerics')
     call check(cfg%output%directory == 'out/run 1' .and. cfg%output%case_name == 'valid', &
                'output, default case_name')
@@ -354,6 +357,7 @@ contains
         if (m%jc_c /= n%jc_c) why = 'material%jc_c'
         if (m%jc_m /= n%jc_m) why = 'material%jc_m'
         if (m%jc_rate0 /= n%jc_rate0) why = 'material%jc_rate0'
+        if (m%jc_rate_form /= n%jc_rate_form) why = 'material%jc_rate_form'
         if (m%t_melt /= n%t_melt) why = 'material%t_melt'
         if (m%t_room /= n%t_room) why = 'material%t_room'
         if (m%specific_heat /= n%specific_heat) why = 'material%specific_heat'
@@ -373,6 +377,7 @@ contains
         if (any(p%point /= q%point)) why = 'boundary%point'
         if (any(p%normal /= q%normal)) why = 'boundary%normal'
         if (p%wall_type /= q%wall_type) why = 'boundary%wall_type'
+        if (p%friction /= q%friction) why = 'boundary%friction'
       end associate
     end do
     if (a%numerics%anti_locking .neqv. b%numerics%anti_locking) why = 'numerics%anti_locking'
