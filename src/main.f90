@@ -2,9 +2,11 @@
 !> init -> run -> finalize.
 program udar
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
-  use udar_kinds, only: rk, max_path_len
-  use udar_comms, only: comms_init, comms_finalize, comms_is_root, comms_size
-  use udar_fatal, only: fatal, exit_input
+  use udar_kinds, only: rk, i8, max_path_len
+  use udar_comms, only: comms_init, comms_finalize, comms_is_root, comms_size, comms_rank, comms_bcast_int, &
+      halo_t, comms_max_int
+  use udar_distribution, only: distribute_domain
+  use udar_fatal, only: fatal_all, exit_input
   use udar_log, only: log_info, log_warn
   use udar_version, only: program_version
   use udar_config, only: config_t
@@ -14,6 +16,7 @@ program udar
   use udar_domain, only: domain_t
   use udar_setup, only: build_domain, count_bodies
   use udar_run, only: run_simulation, run_result_t
+  use udar_checkpoint, only: checkpoint_model_hash, checkpoint_mesh_hash, checkpoint_latest
   use udar_partition, only: partition_elements, partition_stats_t
   use udar_decomposition, only: rank_counts_t, decomposition_counts
   use udar_strings, only: itoa
@@ -22,7 +25,8 @@ program udar
   type(config_t) :: cfg
   type(input_errors_t) :: errs
   type(gmsh_mesh_t) :: mesh
-  type(domain_t) :: dom
+  type(domain_t) :: dom, local
+  type(halo_t) :: halo
   type(run_result_t) :: res
   character(len=max_path_len) :: arg, deck_path
   logical :: check_only, ok
@@ -30,16 +34,31 @@ program udar
   character(len=512) :: line
   integer :: k, ios, n_bodies
   integer :: preview_ranks = 0    !< --ranks N: show the partition for N ranks (with --check)
+  character(len=max_path_len) :: restart_arg = ''   !< --restart CHECKPOINT | auto
+  real(rk) :: wall_limit_arg = 0.0_rk               !< --wall-limit S: overrides &run wall_limit
+  character(len=:), allocatable :: pending, restart_path
+  integer(i8) :: model_hash, mesh_hash
 
   call comms_init()
   check_only = .false.
   deck_path = ''
+  pending = ''
   do k = 1, command_argument_count()
     call get_command_argument(k, arg)
-    if (preview_ranks == -1) then     ! the value after --ranks
-      read(arg, *, iostat=ios) preview_ranks
-      if (ios /= 0 .or. preview_ranks < 1) call fatal(exit_input, '--ranks '//trim(arg)// &
-                                                       ': expected a positive number of ranks')
+    if (len(pending) > 0) then     ! the value of the option before
+      select case (pending)
+      case ('--ranks')
+        read(arg, *, iostat=ios) preview_ranks
+        if (ios /= 0 .or. preview_ranks < 1) call fatal_all(exit_input, '--ranks '//trim(arg)// &
+                                                         ': expected a positive number of ranks')
+      case ('--restart')
+        restart_arg = arg
+      case ('--wall-limit')
+        read(arg, *, iostat=ios) wall_limit_arg
+        if (ios /= 0 .or. wall_limit_arg <= 0.0_rk) call fatal_all(exit_input, '--wall-limit '//trim(arg)// &
+                                                                 ': expected a positive number of seconds')
+      end select
+      pending = ''
       cycle
     end if
     select case (trim(arg))
@@ -51,21 +70,21 @@ program udar
       call comms_finalize(); stop
     case ('--check')
       check_only = .true.
-    case ('--ranks')
-      if (k == command_argument_count()) call fatal(exit_input, '--ranks needs a number of ranks')
-      preview_ranks = -1
+    case ('--ranks', '--restart', '--wall-limit')
+      if (k == command_argument_count()) call fatal_all(exit_input, trim(arg)//' needs a value (see udar --help)')
+      pending = trim(arg)
     case default
-      if (arg(1:1) == '-') call fatal(exit_input, 'unknown option '//trim(arg)//' (see udar --help)')
-      if (len_trim(deck_path) > 0) call fatal(exit_input, 'more than one deck given: '//trim(deck_path)// &
+      if (arg(1:1) == '-') call fatal_all(exit_input, 'unknown option '//trim(arg)//' (see udar --help)')
+      if (len_trim(deck_path) > 0) call fatal_all(exit_input, 'more than one deck given: '//trim(deck_path)// &
                                               ' and '//trim(arg))
       deck_path = arg
     end select
   end do
-  if (preview_ranks > 0 .and. .not. check_only) call fatal(exit_input, '--ranks goes with --check '// &
-    '(this version runs on one rank)')
+  if (preview_ranks > 0 .and. .not. check_only) call fatal_all(exit_input, '--ranks goes with --check '// &
+    '(a run uses the ranks mpirun gives it)')
   if (len_trim(deck_path) == 0) then
     call usage()
-    call fatal(exit_input, 'no input deck given')
+    call fatal_all(exit_input, 'no input deck given')
   end if
 
   ! ---- input: every mistake in the deck and its mesh reported at once
@@ -80,10 +99,8 @@ program udar
   end if
   if (errs%count() > 0) then
     if (comms_is_root()) call input_errors_report(errs, error_unit)
-    call fatal(exit_input, 'input deck '//trim(deck_path)//' has errors; nothing was run or written')
+    call fatal_all(exit_input, 'input deck '//trim(deck_path)//' has errors; nothing was run or written')
   end if
-  if (comms_size() > 1) call fatal(exit_input, 'this build runs on one MPI rank only '// &
-                                   '(domain decomposition is not implemented yet)')
   write(line, '(a,i0,a,i0,a,i0,a)') 'mesh '//trim(cfg%mesh%file)//': ', mesh%n_nodes, ' nodes, ', mesh%n_tets, &
     ' tetrahedra, ', mesh%n_inverted, ' reoriented at read time'
   call log_info(line)
@@ -102,10 +119,19 @@ program udar
     stop
   end if
 
-  if (cfg%run%wall_limit > 0.0_rk) call log_warn('&run wall_limit is not active yet: it needs checkpoint/restart '// &
-                                                 '(to come with the domain-decomposition issue); the run ignores it')
+  if (wall_limit_arg > 0.0_rk) cfg%run%wall_limit = wall_limit_arg
   call log_info('udar '//program_version//': '//trim(cfg%run%title))
-  call run_simulation(cfg, dom, res)
+  model_hash = checkpoint_model_hash(cfg%resolved_text)
+  mesh_hash = checkpoint_mesh_hash(dom)
+  restart_path = trim(restart_arg)
+  if (restart_path == 'auto') then
+    ! the newest readable checkpoint of this deck's case, or a fresh start
+    restart_path = checkpoint_latest(trim(cfg%output%directory)//'/'//trim(cfg%output%case_name), &
+                                     max(cfg%output%checkpoint_keep, 1))
+    if (len(restart_path) == 0) call log_info('--restart auto: no checkpoint of this case yet; starting at t = 0')
+  end if
+  call decompose(dom, local, halo)
+  call run_simulation(cfg, local, halo, restart_path, model_hash, mesh_hash, res)
   write(line, '(a,i0,a,es12.5,a,es10.3,a,f0.2,a,f0.1,a)') 'udar: done: ', res%cycles, ' cycles to t = ', &
     res%time, ' s, energy error ', res%energy_error, ', ', res%wall_seconds, ' s wall (', &
     res%ns_per_element_cycle, ' ns per element-cycle); fields '// &
@@ -114,6 +140,47 @@ program udar
   call comms_finalize()
 
 contains
+
+  !> METIS partition on rank 0 (one answer for all), the local domain and
+  !> halo of this rank, and the partition report. The global domain is freed.
+  subroutine decompose(glob, loc, halo)
+    type(domain_t), intent(inout) :: glob
+    type(domain_t), intent(out) :: loc
+    type(halo_t), intent(out) :: halo
+    integer, allocatable :: part(:)
+    type(partition_stats_t) :: stats
+    type(rank_counts_t), allocatable :: counts(:)
+    integer :: n, r, bad
+    msg = ''
+    n = comms_size()
+    allocate(part(glob%n_elems), source=0)
+    bad = 0
+    if (n > 1) then
+      if (comms_is_root()) then
+        call partition_elements(glob%n_nodes, glob%el_conn, n, part, stats, ok, msg)
+        if (.not. ok) bad = 1
+      end if
+      if (comms_max_int(bad) /= 0) call fatal_all(exit_input, 'partition for '//itoa(n)//' ranks: '//msg)
+      call comms_bcast_int(part)
+    end if
+    call distribute_domain(glob, part, comms_rank(), loc, halo)
+    if (n > 1 .and. comms_is_root()) then
+      allocate(counts(0:n-1))
+      call decomposition_counts(glob%el_conn, glob%nd_el_ptr, glob%nd_el, part, n, counts)
+      write(line, '(a,i0,a,i0,a,f6.3)') 'partition over ', n, ' ranks (METIS k-way, element dual graph): '// &
+        'edge cut ', stats%edge_cut, ' faces, load imbalance ', stats%imbalance
+      call log_info(line)
+      call log_info('  rank  owned_elems  owned_nodes  ghost_elems  ghost_nodes')
+      do r = 0, n - 1
+        write(line, '(i6,4i13)') r, counts(r)%owned_elems, counts(r)%owned_nodes, counts(r)%ghost_elems, &
+          counts(r)%ghost_nodes
+        call log_info(line)
+      end do
+      if (any(counts%owned_elems == 0)) call log_warn('some ranks own no element (more ranks than the mesh '// &
+        'can use); they only take part in the collective steps')
+    end if
+    glob = domain_t()
+  end subroutine
 
   !> The METIS partition of the elements over n ranks and what each rank
   !> would own and hold as ghosts.
@@ -126,7 +193,7 @@ contains
     integer :: r
     allocate(part(dom%n_elems), counts(0:n-1))
     call partition_elements(dom%n_nodes, dom%el_conn, n, part, stats, ok, msg)
-    if (.not. ok) call fatal(exit_input, 'partition for '//itoa(n)//' ranks: '//msg)
+    if (.not. ok) call fatal_all(exit_input, 'partition for '//itoa(n)//' ranks: '//msg)
     call decomposition_counts(dom%el_conn, dom%nd_el_ptr, dom%nd_el, part, n, counts)
     write(line, '(a,i0,a,i0,a,f6.3)') 'partition for ', n, ' ranks (METIS k-way, element dual graph): edge cut ', &
       stats%edge_cut, ' faces, load imbalance ', stats%imbalance
@@ -140,11 +207,17 @@ contains
   end subroutine
 
   subroutine usage()
-    call log_info('usage: udar [--check [--ranks N]] DECK.nml | --help | --version')
-    call log_info('  DECK.nml     run the namelist input deck')
-    call log_info('  --check      validate the deck and its mesh, print the resolved deck, run nothing')
-    call log_info('  --ranks N    with --check: show how the mesh would be split over N MPI ranks')
-    call log_info('  --help       this text;  --version  the program version')
-    call log_info('Exit codes: 0 done, 1 input error, 2 the run went bad (physics), 3 I/O error.')
+    call log_info('usage: [mpirun -np N] udar [--restart CKPT|auto] [--wall-limit S] DECK.nml')
+    call log_info('       udar --check [--ranks N] DECK.nml | --help | --version')
+    call log_info('  DECK.nml          run the namelist input deck (on as many MPI ranks as mpirun gives)')
+    call log_info('  --restart CKPT    continue from checkpoint CKPT (any number of ranks); with "auto",')
+    call log_info('                    from the newest checkpoint of the deck''s case, or from t = 0 if none')
+    call log_info('  --wall-limit S    checkpoint and stop before S seconds of wall time (overrides &run wall_limit)')
+    call log_info('  --check           validate the deck and its mesh, print the resolved deck, run nothing')
+    call log_info('  --ranks N         with --check: show how the mesh would be split over N MPI ranks')
+    call log_info('  --help            this text;  --version  the program version')
+    call log_info('SIGTERM or SIGUSR1 make a run checkpoint and stop (exit 0), as a wall-time limit does.')
+    call log_info('Exit codes: 0 done (or stopped with a checkpoint), 1 input error, 2 the run went bad')
+    call log_info('(physics), 3 I/O error (including a missing, damaged or foreign checkpoint).')
   end subroutine
 end program udar

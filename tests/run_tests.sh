@@ -46,6 +46,14 @@ done
 run_test "cli/deck_errors" tests/cli/deck_errors.sh bin/udar-debug
 run_test "cli/run_goes_bad" tests/cli/run_goes_bad.sh bin/udar-debug
 run_test "cli/repeatable" tests/cli/repeatable.sh bin/udar-debug
+# ---- parallel: one file from any number of writers; bitwise the same results
+# on 1, 2, 3 and 4 ranks; checkpoint/restart on another rank count
+run_test "cli/field_output_ranks" tests/cli/field_output_ranks.sh build/debug/tests/test_field_output_mpi "$WORK/field_output_ranks"
+run_test "cli/ranks_elastic_bar" tests/cli/rank_invariance.sh bin/udar elastic_bar
+run_test "cli/ranks_coulomb_wall" tests/cli/rank_invariance.sh bin/udar coulomb_wall
+run_test "cli/ranks_plate_impact" tests/cli/rank_invariance.sh bin/udar plate_impact
+run_test "cli/ranks_taylor_ofhc" tests/cli/rank_invariance.sh bin/udar taylor_ofhc_baseline 30.0e-6
+run_test "cli/restart" tests/cli/restart.sh bin/udar
 # ---- regressions against analytic and experimental references
 run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
 run_test "regression/plate_impact" regression plate_impact bin/udar-debug

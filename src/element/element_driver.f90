@@ -1,7 +1,9 @@
 !> Element passes of one cycle, over vectorized blocks: gather nodal data,
 !> call the pure kernels, keep element state. Nodal averages (anti-locking)
 !> and force assembly run over the node->element lists in ascending element
-!> id, so every sum has one fixed order whatever the partition.
+!> id, so every sum has one fixed order whatever the partition. Element
+!> passes cover every local element (owned and ghost); nodal passes the
+!> owned nodes, whose element lists are complete.
 module udar_element_driver
   use udar_kinds, only: rk
   use udar_domain, only: domain_t, block_size
@@ -34,7 +36,7 @@ contains
     type(domain_t), intent(inout) :: dom
     integer :: n, k
     real(rk) :: acc
-    do n = 1, dom%n_nodes
+    do n = 1, dom%n_owned_nodes
       acc = 0.0_rk
       do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
         acc = acc + dom%el_vol(dom%nd_el(k))
@@ -50,7 +52,7 @@ contains
     type(domain_t), intent(inout) :: dom
     integer :: n, k, e
     real(rk) :: acc
-    do n = 1, dom%n_nodes
+    do n = 1, dom%n_owned_nodes
       acc = 0.0_rk
       do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
         e = dom%nd_el(k)
@@ -62,19 +64,20 @@ contains
 
   !> Stress update of every element over dt with the velocities v(n+1/2) on
   !> the geometry x(n+1); forces too unless anti-locking needs the nodal
-  !> pressures first. Returns the smallest stable time step and the first
-  !> element (lowest id) with a non-positive volume, or 0.
-  subroutine element_update(dom, dt, dt_stable, bad_elem)
+  !> pressures first. Returns the smallest stable time step, the first
+  !> element (lowest id) with a non-positive volume and the first whose
+  !> nodal-averaged volume ratio is non-positive (a neighbour inverted), or 0.
+  subroutine element_update(dom, dt, dt_stable, bad_elem, bad_j)
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
     real(rk), intent(out) :: dt_stable
-    integer, intent(out) :: bad_elem
+    integer, intent(out) :: bad_elem, bad_j
     integer, parameter :: ld = block_size
     real(rk) :: ve(ld,4,3), grad(ld,4,3), fe(ld,4,3)
     real(rk) :: vol(ld), h(ld), d(ld,6), w(ld,3), s(ld,6), p_app(ld), trd(ld), j_new(ld), &
                 w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld)
     real(rk) :: t_old
-    integer :: b, i, e, nb, first, last, k, bad_j
+    integer :: b, i, e, nb, first, last, k
     dt_stable = huge(1.0_rk)
     bad_elem = 0
     bad_j = 0
@@ -150,8 +153,6 @@ contains
         call store_forces(dom, first, nb, fe)
       end if
     end do
-    ! an element itself inverted names the failure; else one whose nodal average did
-    if (bad_elem == 0) bad_elem = bad_j
   end subroutine
 
   !> Stable step of the current state without advancing it (start-up).
@@ -244,7 +245,7 @@ contains
     type(domain_t), intent(inout) :: dom
     integer :: n, k, c, e
     real(rk) :: fx, fy, fz
-    do n = 1, dom%n_nodes
+    do n = 1, dom%n_owned_nodes
       fx = 0.0_rk; fy = 0.0_rk; fz = 0.0_rk
       do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
         c = 3*dom%nd_el_corner(k)

@@ -140,7 +140,9 @@ module udar_deck
        var_t('output', 'directory', 'c', 1, max_path_len, '', ''), &
        var_t('output', 'case_name', 'c', 1, max_name_len, '', ''), &
        var_t('output', 'dt_field', 'r', 1, 0, 's', '>= 0'), &
-       var_t('output', 'dt_history', 'r', 1, 0, 's', '>= 0') ]
+       var_t('output', 'dt_history', 'r', 1, 0, 's', '>= 0'), &
+       var_t('output', 'dt_checkpoint', 'r', 1, 0, 's', '>= 0'), &
+       var_t('output', 'checkpoint_keep', 'i', 1, 0, '-', '>= 1') ]
 
   !> The value of one variable, whatever its type: what lets one piece of code
   !> write, compare and check the variables of every group. Reals are made by
@@ -554,7 +556,8 @@ contains
     case ('numerics')
       call numerics_nml(v%num%anti_locking, v%num%q_linear, v%num%q_quadratic)
     case ('output')
-      call output_nml(v%out%directory, v%out%case_name, v%out%dt_field, v%out%dt_history)
+      call output_nml(v%out%directory, v%out%case_name, v%out%dt_field, v%out%dt_history, v%out%dt_checkpoint, &
+                      v%out%checkpoint_keep)
     end select
 
   contains
@@ -616,10 +619,11 @@ contains
       read(text, nml=numerics, iostat=ios, iomsg=msg)
     end subroutine numerics_nml
 
-    subroutine output_nml(directory, case_name, dt_field, dt_history)
+    subroutine output_nml(directory, case_name, dt_field, dt_history, dt_checkpoint, checkpoint_keep)
       character(len=*), intent(inout) :: directory, case_name
-      real(rk), intent(inout) :: dt_field, dt_history
-      namelist /output/ directory, case_name, dt_field, dt_history
+      real(rk), intent(inout) :: dt_field, dt_history, dt_checkpoint
+      integer, intent(inout) :: checkpoint_keep
+      namelist /output/ directory, case_name, dt_field, dt_history, dt_checkpoint, checkpoint_keep
       read(text, nml=output, iostat=ios, iomsg=msg)
     end subroutine output_nml
 
@@ -1272,7 +1276,7 @@ contains
     case default
       associate(o => cfg%output)
         vals = [val_t(c=o%directory), val_t(c=o%case_name, from='the deck file name'), &
-                val(o%dt_field), val(o%dt_history)]
+                val(o%dt_field), val(o%dt_history), val(o%dt_checkpoint), val_t(i=o%checkpoint_keep)]
       end associate
     end select
     vals%var = vars(group_rows(group_names(gk)))

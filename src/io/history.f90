@@ -2,9 +2,10 @@
 !> history time, every value with 17 significant digits (round-trip exact).
 module udar_history
   use udar_kinds, only: rk, max_path_len
+  use udar_files, only: rename_file
   implicit none
   private
-  public :: history_t, history_open, history_write, history_close
+  public :: history_t, history_open, history_reopen, history_write, history_close
 
   type :: history_t
     integer :: unit = -1
@@ -35,6 +36,82 @@ contains
       write(h%unit, '(a)', advance='no') trim(columns(k))
     end do
     write(h%unit, '(a)') ''
+  end subroutine
+
+  !> Continue an existing history at a restart: keep the header (it must
+  !> name the same columns) and the rows up to cycle last_cycle, drop the
+  !> rest (written after the checkpoint), append from there. The kept part
+  !> is written to a temporary file and renamed over the old one.
+  subroutine history_reopen(h, path, columns, last_cycle, ok, errmsg)
+    type(history_t), intent(out) :: h
+    character(len=*), intent(in) :: path, columns(:)
+    integer, intent(in) :: last_cycle
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: errmsg
+    integer :: uin, uout, ios, k, c1, c2, cyc
+    character(len=:), allocatable :: header, line
+    character(len=256) :: iomsg
+    ok = .false.
+    header = trim(columns(1))
+    do k = 2, size(columns)
+      header = header//','//trim(columns(k))
+    end do
+    open(newunit=uin, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      errmsg = 'cannot open the history file '//trim(path)//' to continue it: '//trim(iomsg)
+      return
+    end if
+    call read_line(uin, line, ios)
+    if (ios /= 0 .or. line /= header) then
+      close(uin)
+      errmsg = 'history file '//trim(path)//' has other columns than this run writes'
+      return
+    end if
+    open(newunit=uout, file=path//'.tmp', status='replace', action='write', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      close(uin)
+      errmsg = 'cannot write '//trim(path)//'.tmp: '//trim(iomsg)
+      return
+    end if
+    write(uout, '(a)') header
+    do
+      call read_line(uin, line, ios)
+      if (ios /= 0) exit
+      ! the cycle is the second column
+      c1 = index(line, ',')
+      c2 = c1 + index(line(c1+1:), ',')
+      read(line(c1+1:c2-1), *, iostat=ios) cyc
+      if (ios /= 0 .or. cyc > last_cycle) exit
+      write(uout, '(a)') line
+    end do
+    close(uin)
+    close(uout)
+    if (.not. rename_file(path//'.tmp', path)) then
+      errmsg = 'cannot replace '//trim(path)//' by its truncated copy '//trim(path)//'.tmp'
+      return
+    end if
+    h%path = path
+    h%n_columns = size(columns)
+    open(newunit=h%unit, file=path, status='old', position='append', action='write', iostat=ios, iomsg=iomsg)
+    ok = (ios == 0)
+    errmsg = ''
+    if (.not. ok) errmsg = 'cannot append to the history file '//trim(path)//': '//trim(iomsg)
+  end subroutine
+
+  !> One line of any length.
+  subroutine read_line(u, line, ios)
+    integer, intent(in) :: u
+    character(len=:), allocatable, intent(out) :: line
+    integer, intent(out) :: ios
+    character(len=4096) :: buf
+    integer :: n
+    line = ''
+    do
+      read(u, '(a)', advance='no', iostat=ios, size=n) buf
+      line = line//buf(1:n)
+      if (ios /= 0) exit
+    end do
+    if (is_iostat_eor(ios)) ios = 0
   end subroutine
 
   !> values(2) is the cycle number and is written as an integer.

@@ -29,7 +29,7 @@ module udar_config
     integer  :: max_cycles = huge(1)       !< -
     integer  :: cycle_print = 100          !< -, stdout progress line every N cycles
     real(rk) :: energy_error_limit = 0.2_rk !< -, |energy error| above this stops the run
-    real(rk) :: wall_limit = 0.0_rk        !< s of wall time, 0 = none (issue 3)
+    real(rk) :: wall_limit = 0.0_rk        !< s of wall time, 0 = none: checkpoint and stop before it
   end type
 
   type :: mesh_cfg_t
@@ -85,6 +85,8 @@ module udar_config
     character(len=max_name_len) :: case_name = ''    !< default: deck file name without .nml
     real(rk) :: dt_field = 0.0_rk      !< s, 0 = first and last state only
     real(rk) :: dt_history = 0.0_rk    !< s, 0 = every cycle
+    real(rk) :: dt_checkpoint = 0.0_rk !< s, 0 = none (a wall_limit or signal stop still writes one)
+    integer  :: checkpoint_keep = 2    !< -, newest checkpoints kept
   end type
 
   type :: config_t

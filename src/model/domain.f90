@@ -1,5 +1,9 @@
-!> The mesh and state of one rank, structure of arrays. Arrays are indexed in
-!> global order (mesh-file tags ascending); nd_ = node, el_ = element.
+!> The mesh and state of one rank, structure of arrays; nd_ = node, el_ =
+!> element. Global order is the mesh's space-filling-curve numbering (the
+!> same on every rank). On a rank, nodes are its owned ones (1..n_owned_nodes)
+!> then its ghosts, each ascending in global index; elements are ascending in
+!> global index, owned and ghost interleaved (el_owned). With one rank the
+!> local and global numberings coincide.
 module udar_domain
   use udar_kinds, only: rk, max_name_len
   use udar_config, only: material_cfg_t
@@ -13,10 +17,15 @@ module udar_domain
     real(rk) :: point(3) = 0.0_rk, normal(3) = 0.0_rk
     integer :: wall_type = 1
     real(rk) :: friction = 0.0_rk     !< -, Coulomb coefficient (wall_coulomb)
-    real(rk) :: force = 0.0_rk        !< N, normal force of the last cycle
   end type
 
   type :: domain_t
+    ! ---- distribution
+    integer :: n_global_nodes = 0, n_global_elems = 0
+    integer :: n_owned_nodes = 0                 !< nodes whose update this rank computes
+    integer, allocatable :: nd_gidx(:), el_gidx(:)   !< 1-based global index of each local node / element
+    logical, allocatable :: el_owned(:)
+    integer, allocatable :: el_owned_list(:)     !< local indices of the owned elements, ascending
     ! ---- nodes
     integer :: n_nodes = 0
     integer, allocatable :: nd_id(:)            !< mesh-file node tag

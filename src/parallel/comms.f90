@@ -3,10 +3,27 @@
 module udar_comms
   use mpi_f08
   use udar_kinds, only: rk, i8
+  use udar_exact_sum, only: exact_limbs, exact_normalize
   implicit none
   private
-  public :: comms_init, comms_finalize, comms_abort, comms_rank, comms_size, &
-            comms_is_root, comms_barrier, comms_min, comms_max, comms_wtime
+  public :: comms_init, comms_finalize, comms_abort, comms_exit, comms_rank, comms_size, &
+            comms_is_root, comms_barrier, comms_min, comms_max, comms_wtime, &
+            comms_min_int, comms_max_int, comms_sum_int, comms_sum_exact, comms_alltoall_counts, &
+            comms_alltoallv_int, comms_bcast_int, comms_halo_exchange, comms_halo_exchange_scalar, &
+            comms_halo_bytes, comms_world_handle, comms_info_null_handle
+
+  !> A halo: which local nodes go to and come from which neighbour rank.
+  !> Built once (udar_halo); the exchange itself allocates nothing.
+  type, public :: halo_t
+    integer :: n_neighbors = 0
+    integer, allocatable :: neighbor(:)                !< ranks
+    integer, allocatable :: send_ptr(:), send_idx(:)   !< CSR over neighbours: local nodes sent
+    integer, allocatable :: recv_ptr(:), recv_idx(:)   !< local nodes received (ghosts)
+    real(rk), allocatable :: send_buf(:), recv_buf(:)  !< room for 6 reals per node
+    type(MPI_Request), allocatable :: requests(:)
+  end type
+
+  integer, parameter, public :: halo_max_components = 6
 
   integer :: my_rank = 0, n_ranks = 1
   logical :: initialised = .false.
@@ -34,6 +51,25 @@ contains
     if (initialised .and. n_ranks > 1) call MPI_Abort(MPI_COMM_WORLD, code, ierr)
     if (initialised) call MPI_Finalize(ierr)
     select case (code)
+    case (1); error stop 1
+    case (2); error stop 2
+    case (3); error stop 3
+    case default; error stop 4
+    end select
+  end subroutine
+
+  !> Every rank calls this with the same code (a collective decision): all
+  !> finalize and exit with it, no MPI_Abort needed.
+  subroutine comms_exit(code)
+    integer, intent(in) :: code
+    integer :: ierr
+    if (initialised) then
+      call MPI_Barrier(MPI_COMM_WORLD, ierr)
+      call MPI_Finalize(ierr)
+    end if
+    initialised = .false.
+    select case (code)
+    case (0); stop
     case (1); error stop 1
     case (2); error stop 2
     case (3); error stop 3
@@ -71,7 +107,146 @@ contains
     call MPI_Allreduce(a, comms_max, 1, MPI_DOUBLE_PRECISION, MPI_MAX, MPI_COMM_WORLD, ierr)
   end function
 
+  integer function comms_min_int(a)
+    integer, intent(in) :: a
+    integer :: ierr
+    call MPI_Allreduce(a, comms_min_int, 1, MPI_INTEGER, MPI_MIN, MPI_COMM_WORLD, ierr)
+  end function
+
+  integer function comms_max_int(a)
+    integer, intent(in) :: a
+    integer :: ierr
+    call MPI_Allreduce(a, comms_max_int, 1, MPI_INTEGER, MPI_MAX, MPI_COMM_WORLD, ierr)
+  end function
+
+  !> Integer sums are exact, so any reduction order gives the same result.
+  integer(i8) function comms_sum_int(a)
+    integer(i8), intent(in) :: a
+    integer :: ierr
+    call MPI_Allreduce(a, comms_sum_int, 1, MPI_INTEGER8, MPI_SUM, MPI_COMM_WORLD, ierr)
+  end function
+
+  !> Global sum of exact accumulators (udar_exact_sum), one per column: the
+  !> limbs are normalized, summed as integers (exact, order independent)
+  !> and normalized again. Every rank gets the result.
+  subroutine comms_sum_exact(acc)
+    integer(i8), intent(inout) :: acc(0:, :)
+    integer :: ierr, j
+    do j = 1, size(acc, 2)
+      call exact_normalize(acc(:,j))
+    end do
+    if (n_ranks > 1) call MPI_Allreduce(MPI_IN_PLACE, acc, size(acc), MPI_INTEGER8, MPI_SUM, MPI_COMM_WORLD, ierr)
+    do j = 1, size(acc, 2)
+      call exact_normalize(acc(:,j))
+    end do
+    if (size(acc, 1) /= exact_limbs + 1) call comms_abort(4)
+  end subroutine
+
+  !> recv_counts(q) = what rank q puts in send_counts(me), for every q.
+  subroutine comms_alltoall_counts(send_counts, recv_counts)
+    integer, intent(in) :: send_counts(0:)
+    integer, intent(out) :: recv_counts(0:)
+    integer :: ierr
+    call MPI_Alltoall(send_counts, 1, MPI_INTEGER, recv_counts, 1, MPI_INTEGER, MPI_COMM_WORLD, ierr)
+  end subroutine
+
+  !> Personalized exchange of integers; displacements are the prefix sums of the counts.
+  subroutine comms_alltoallv_int(send, send_counts, recv, recv_counts)
+    integer, intent(in) :: send(:), send_counts(0:), recv_counts(0:)
+    integer, intent(out) :: recv(:)
+    integer :: sdisp(0:n_ranks-1), rdisp(0:n_ranks-1), q, ierr
+    sdisp(0) = 0; rdisp(0) = 0
+    do q = 1, n_ranks - 1
+      sdisp(q) = sdisp(q-1) + send_counts(q-1)
+      rdisp(q) = rdisp(q-1) + recv_counts(q-1)
+    end do
+    call MPI_Alltoallv(send, send_counts, sdisp, MPI_INTEGER, recv, recv_counts, rdisp, MPI_INTEGER, &
+                       MPI_COMM_WORLD, ierr)
+  end subroutine
+
+  !> Rank 0's array to every rank.
+  subroutine comms_bcast_int(a)
+    integer, intent(inout) :: a(:)
+    integer :: ierr
+    if (n_ranks > 1) call MPI_Bcast(a, size(a), MPI_INTEGER, 0, MPI_COMM_WORLD, ierr)
+  end subroutine
+
+  !> Owners' values of a(nc,:) (nc <= 6 components per node) and, if given,
+  !> b(nc,:) into the ghost entries of every rank. Values are copied, never
+  !> summed, so the result cannot depend on message order.
+  subroutine comms_halo_exchange(h, a, b)
+    type(halo_t), intent(inout) :: h
+    real(rk), intent(inout) :: a(:,:)
+    real(rk), intent(inout), optional :: b(:,:)
+    integer :: nc, na, i, k, c, off, ierr
+    if (h%n_neighbors == 0) return
+    na = size(a, 1)
+    nc = na
+    if (present(b)) nc = na + size(b, 1)
+    do i = 1, h%n_neighbors
+      off = nc*(h%recv_ptr(i) - 1)
+      call MPI_Irecv(h%recv_buf(off+1), nc*(h%recv_ptr(i+1) - h%recv_ptr(i)), MPI_DOUBLE_PRECISION, &
+                     h%neighbor(i), 71, MPI_COMM_WORLD, h%requests(i), ierr)
+    end do
+    do k = 1, h%send_ptr(h%n_neighbors+1) - 1
+      off = nc*(k - 1)
+      do c = 1, na
+        h%send_buf(off + c) = a(c, h%send_idx(k))
+      end do
+      if (present(b)) then
+        do c = 1, nc - na
+          h%send_buf(off + na + c) = b(c, h%send_idx(k))
+        end do
+      end if
+    end do
+    do i = 1, h%n_neighbors
+      off = nc*(h%send_ptr(i) - 1)
+      call MPI_Isend(h%send_buf(off+1), nc*(h%send_ptr(i+1) - h%send_ptr(i)), MPI_DOUBLE_PRECISION, &
+                     h%neighbor(i), 71, MPI_COMM_WORLD, h%requests(h%n_neighbors + i), ierr)
+    end do
+    call MPI_Waitall(2*h%n_neighbors, h%requests, MPI_STATUSES_IGNORE, ierr)
+    do k = 1, h%recv_ptr(h%n_neighbors+1) - 1
+      off = nc*(k - 1)
+      do c = 1, na
+        a(c, h%recv_idx(k)) = h%recv_buf(off + c)
+      end do
+      if (present(b)) then
+        do c = 1, nc - na
+          b(c, h%recv_idx(k)) = h%recv_buf(off + na + c)
+        end do
+      end if
+    end do
+  end subroutine
+
+  !> comms_halo_exchange for one value per node.
+  subroutine comms_halo_exchange_scalar(h, s)
+    type(halo_t), intent(inout) :: h
+    real(rk), intent(inout), target :: s(:)
+    real(rk), pointer :: s2(:,:)
+    s2(1:1, 1:size(s)) => s
+    call comms_halo_exchange(h, s2)
+  end subroutine
+
+  !> Bytes a halo exchange of nc reals per node sends from this rank.
+  integer(i8) function comms_halo_bytes(h, nc)
+    type(halo_t), intent(in) :: h
+    integer, intent(in) :: nc
+    comms_halo_bytes = 0
+    if (h%n_neighbors > 0) comms_halo_bytes = int(8*nc, i8)*(h%send_ptr(h%n_neighbors+1) - 1)
+  end function
+
   real(rk) function comms_wtime()
     comms_wtime = MPI_Wtime()
+  end function
+
+  !> MPI_COMM_WORLD as a default integer handle, for the HDF5 Fortran API
+  !> (h5pset_fapl_mpio_f) that does not take mpi_f08 types.
+  integer function comms_world_handle()
+    comms_world_handle = MPI_COMM_WORLD%MPI_VAL
+  end function
+
+  !> MPI_INFO_NULL as a default integer handle (see comms_world_handle).
+  integer function comms_info_null_handle()
+    comms_info_null_handle = MPI_INFO_NULL%MPI_VAL
   end function
 end module udar_comms

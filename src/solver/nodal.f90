@@ -1,10 +1,13 @@
 !> Nodal half of the cycle: explicit central-difference update of velocities
 !> and positions, velocity conditions (fixed, symmetry planes) and planar
-!> rigid walls.
+!> rigid walls. Each rank updates its owned nodes (1..n_owned_nodes); the
+!> halo brings the ghosts.
 module udar_nodal
   use udar_kinds, only: rk
   use udar_domain, only: domain_t
   use udar_config, only: wall_sticking, wall_coulomb
+  use udar_exact_sum, only: exact_limbs, exact_add
+  use udar_kinds, only: i8
   implicit none
   private
   public :: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions
@@ -17,7 +20,7 @@ contains
     real(rk), intent(in) :: dt_v
     integer :: n
     real(rk) :: r
-    do n = 1, dom%n_nodes
+    do n = 1, dom%n_owned_nodes
       r = dt_v/dom%nd_mass(n)
       dom%nd_v(1,n) = dom%nd_v(1,n) + r*dom%nd_f(1,n)
       dom%nd_v(2,n) = dom%nd_v(2,n) + r*dom%nd_f(2,n)
@@ -45,17 +48,18 @@ contains
   !> the velocity the node moves with over the step (zero for a node resting
   !> on a fixed wall), so the kinetic energy a node loses when it is stopped
   !> dead stays visible in the energy balance as the discrete impact loss.
-  subroutine apply_rigid_walls(dom, dt, dt_v, wall_work)
+  !> Work and normal impulse are added exactly (udar_exact_sum) so that
+  !> their global sums do not depend on the partition.
+  subroutine apply_rigid_walls(dom, dt, work_acc, impulse_acc)
     type(domain_t), intent(inout) :: dom
-    real(rk), intent(in) :: dt, dt_v   !< the coming step, and the interval the velocity update spans
-    real(rk), intent(out) :: wall_work
+    real(rk), intent(in) :: dt      !< the coming step
+    integer(i8), intent(inout) :: work_acc(0:exact_limbs)           !< J, wall work (all walls)
+    integer(i8), intent(inout) :: impulse_acc(0:exact_limbs, size(dom%walls))  !< N s, normal impulse per wall
     integer :: iw, n
-    real(rk) :: gap, vn, vn_new, impulse, vt(3), dvt(3), vt_mag
-    wall_work = 0.0_rk
+    real(rk) :: gap, vn, vn_new, vt(3), dvt(3), vt_mag
     do iw = 1, size(dom%walls)
       associate (wall => dom%walls(iw))
-        impulse = 0.0_rk
-        do n = 1, dom%n_nodes
+        do n = 1, dom%n_owned_nodes
           gap = dot_product(dom%nd_x(:,n) - wall%point, wall%normal)
           vn = dot_product(dom%nd_v(:,n), wall%normal)
           if (gap + dt*vn >= 0.0_rk) cycle
@@ -77,12 +81,10 @@ contains
             dvt = 0.0_rk
           end select
           dom%nd_v(:,n) = vt + dvt + vn_new*wall%normal
-          impulse = impulse + dom%nd_mass(n)*(vn_new - vn)
+          call exact_add(impulse_acc(:,iw), dom%nd_mass(n)*(vn_new - vn))
           ! work of the wall's normal and tangential impulses over the node's motion
-          wall_work = wall_work + dom%nd_mass(n)*((vn_new - vn)*vn_new + dot_product(dvt, vt + dvt))
+          call exact_add(work_acc, dom%nd_mass(n)*((vn_new - vn)*vn_new + dot_product(dvt, vt + dvt)))
         end do
-        ! the correction is part of the velocity update, so it spans dt_v
-        wall%force = impulse/dt_v
       end associate
     end do
   end subroutine
@@ -91,7 +93,7 @@ contains
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
     integer :: n
-    do n = 1, dom%n_nodes
+    do n = 1, dom%n_owned_nodes
       dom%nd_x(1,n) = dom%nd_x(1,n) + dt*dom%nd_v(1,n)
       dom%nd_x(2,n) = dom%nd_x(2,n) + dt*dom%nd_v(2,n)
       dom%nd_x(3,n) = dom%nd_x(3,n) + dt*dom%nd_v(3,n)

@@ -1,23 +1,35 @@
 !> The time loop: explicit central difference in EPIC order (nodes, walls,
 !> elements, forces), with output, energy balance and the checks that stop a
 !> run that has gone bad (inverted element, NaN, energy blow-up) after
-!> leaving a last field dump.
+!> leaving a last field dump. Distributed: every rank advances its local
+!> domain; halo exchanges bring the ghosts' kinematics and nodal averages,
+!> and every global sum is exact, so the run is bitwise the same on any
+!> number of ranks.
 module udar_run
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use udar_kinds, only: rk, max_path_len
   use udar_config, only: config_t
   use udar_domain, only: domain_t
-  use udar_comms, only: comms_wtime, comms_size, comms_min
-  use udar_fatal, only: fatal, exit_physics, exit_io
+  use udar_kinds, only: i8
+  use udar_comms, only: comms_barrier, comms_wtime, comms_size, comms_min, comms_max, comms_min_int, comms_max_int, comms_is_root, &
+      comms_sum_exact, halo_t, comms_halo_exchange, comms_halo_exchange_scalar
+  use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_value
+  use udar_fatal, only: fatal, fatal_all, fatal_unless_all_ok, exit_physics, exit_io
   use udar_log, only: log_info
   use udar_element_driver, only: element_volumes, nodal_volumes, element_update, nodal_pressures, &
       element_forces_averaged, assemble_forces, element_stable_dt
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions
   use udar_strength, only: von_mises
-  use udar_history, only: history_t, history_open, history_write, history_close
-  use udar_field_output, only: field_writer_t, fw_open, fw_begin_step, fw_node_vector, fw_elem_scalar, &
+  use udar_history, only: history_t, history_open, history_reopen, history_write, history_close
+  use udar_field_output, only: field_writer_t, fw_open, fw_reopen, fw_begin_step, fw_node_vector, fw_elem_scalar, &
       fw_end_step, fw_close
   use udar_version, only: program_version
+  use udar_run_state, only: run_state_t
+  use udar_checkpoint, only: checkpoint_write, checkpoint_read
+  use udar_signals, only: signals_install, signal_received
+  use udar_hash, only: hash_hex
+  use udar_strings, only: itoa
+  use udar_files, only: rename_file
   implicit none
   private
   public :: run_simulation, run_result_t
@@ -27,208 +39,421 @@ module udar_run
     integer :: cycles = 0
     real(rk) :: time = 0.0_rk, energy_error = 0.0_rk, wall_seconds = 0.0_rk
     real(rk) :: ns_per_element_cycle = 0.0_rk   !< wall time of the cycle loop per element and cycle
+    logical :: stopped = .false.                !< stopped early (wall limit, signal) after a checkpoint
     character(len=max_path_len) :: field_file = '', history_file = ''
   end type
 
-  !> Energy and momentum balance at one instant.
+  !> Energy and momentum balance at one instant (global).
   type :: balance_t
     real(rk) :: kinetic = 0, internal = 0, plastic = 0, wall_work = 0, total = 0, error = 0
     real(rk) :: momentum(3) = 0, wall_force = 0
     real(rk), allocatable :: part_ke(:), part_com(:,:), part_mass(:)
+    integer(i8), allocatable :: acc(:,:)   !< exact accumulators, one column per summed quantity
+  end type
+
+  !> Exact accumulators of the rigid walls: work since the start (all walls)
+  !> and each wall's normal impulse of the current cycle; local to the rank
+  !> until a balance reduces them.
+  type :: wall_sums_t
+    integer(i8) :: work(0:exact_limbs) = 0
+    integer(i8), allocatable :: impulse(:,:)
+    real(rk) :: dt_v = 1                    !< s, interval of the last impulse
   end type
 
 contains
 
-  subroutine run_simulation(cfg, dom, res)
+  !> Runs the deck from t = 0, or from a checkpoint (restart_path not empty).
+  !> model_hash, mesh_hash: what a checkpoint must match to be accepted.
+  subroutine run_simulation(cfg, dom, halo, restart_path, model_hash, mesh_hash, res)
     type(config_t), intent(in) :: cfg
     type(domain_t), intent(inout) :: dom
+    type(halo_t), intent(inout) :: halo
+    character(len=*), intent(in) :: restart_path
+    integer(i8), intent(in) :: model_hash, mesh_hash
     type(run_result_t), intent(out) :: res
     type(field_writer_t) :: fw
     type(history_t) :: hist
     type(balance_t) :: bal
-    real(rk), allocatable :: work_svm(:), work_rho(:), row(:), work_node(:,:)
-    real(rk) :: t, dt, dt_old, dt_stable, dt_v, e0, e_ref, wall_step_work, wall_work, t_next_field, &
-                t_next_hist, wall0, elapsed, loop0, last_print_wall, left
-    integer :: cycle, bad, last_print_cycle
-    logical :: ok, done, history_due, print_due
+    type(wall_sums_t) :: walls
+    type(run_state_t) :: st
+    real(rk), allocatable :: work_svm(:), work_rho(:), row(:), work_node(:,:), work_elem(:)
+    real(rk) :: dt, dt_v, wall0, elapsed, loop0, last_print_wall, left, ckpt_seconds, cycle_seconds
+    integer :: bad, bad_avg, bad_gidx, bad_tag, bad_part, last_print_cycle, no, k, stop_code, cycles_run
+    logical :: ok, done, history_due, print_due, stopping
     integer, parameter :: balance_interval = 10
-    character(len=:), allocatable :: errmsg, base
+    character(len=:), allocatable :: errmsg, base, why
     character(len=256) :: line
 
     wall0 = comms_wtime()
-    allocate(work_svm(dom%n_elems), work_rho(dom%n_elems))
+    no = size(dom%el_owned_list)
+    allocate(work_svm(no), work_rho(no), work_elem(no))
     base = trim(cfg%output%directory)//'/'//trim(cfg%output%case_name)
     res%field_file = base//'.h5'
     res%history_file = base//'_history.csv'
-    call execute_command_line('mkdir -p "'//trim(cfg%output%directory)//'"')
-
-    allocate(work_node(dom%n_nodes,3))
-    work_node = transpose(dom%nd_x0)
-    call fw_open(fw, base//'.h5', base//'.xmf', dom%nd_id, dom%el_id, dom%el_conn, dom%el_part, work_node, &
-                 cfg%resolved_text, program_version, trim(cfg%run%title), comms_size(), ok, errmsg)
-    if (.not. ok) call fatal(exit_io, errmsg)
-    call history_open(hist, base//'_history.csv', history_columns(dom), ok, errmsg)
-    if (.not. ok) call fatal(exit_io, errmsg)
+    allocate(work_node(dom%n_owned_nodes,3))
     allocate(row(size(history_columns(dom))))
+    allocate(walls%impulse(0:exact_limbs, size(dom%walls)))
+    walls%impulse = 0
+    st%model_hash = model_hash
+    st%mesh_hash = mesh_hash
+    why = ''
 
-    t = 0.0_rk; cycle = 0; wall_work = 0.0_rk
-    call element_stable_dt(dom, dt_stable)
-    dt_stable = comms_min(dt_stable)
-    dt_old = 0.0_rk
-    call compute_balance(dom, wall_work, bal)
-    e0 = bal%kinetic + bal%internal
-    e_ref = max(abs(e0), tiny(1.0_rk))
-    call write_fields(fw, dom, t, cycle, work_svm, work_rho)
-    call write_history_row(hist, t, cycle, 0.0_rk, bal, row)
-    t_next_field = cfg%output%dt_field
-    t_next_hist = cfg%output%dt_history
-    write(line, '(a,i0,a,i0,a,es10.3,a)') 'start: ', dom%n_elems, ' elements, ', dom%n_nodes, &
-      ' nodes, stable step ', dt_stable, ' s'
+    if (len_trim(restart_path) > 0) then
+      ! ---- restart: the checkpoint is checked before any output is touched
+      call checkpoint_read(trim(restart_path), dom, st, ok, errmsg)
+      if (ok .and. st%model_hash /= model_hash) then
+        ok = .false.
+        errmsg = 'checkpoint '//trim(restart_path)//' belongs to another deck (model hash '// &
+          hash_hex(st%model_hash)//', this deck '//hash_hex(model_hash)//'; only &run and &output may '// &
+          'change between a run and its restart)'
+      else if (ok .and. st%mesh_hash /= mesh_hash) then
+        ok = .false.
+        errmsg = 'checkpoint '//trim(restart_path)//' belongs to another mesh (mesh hash '// &
+          hash_hex(st%mesh_hash)//', this mesh '//hash_hex(mesh_hash)//')'
+      end if
+      if (.not. ok) call fatal_all(exit_io, errmsg//'; nothing was written')
+      if (st%t >= cfg%run%t_end*(1.0_rk - 1.0e-12_rk)) then
+        write(line, '(a,es12.5,a,es12.5,a)') 'checkpoint '//trim(restart_path)//' is at t = ', st%t, &
+          ' s, the end of the run (t_end = ', cfg%run%t_end, ' s): nothing to do'
+        call log_info(line)
+        call write_status(base, 'complete', '')
+        res%time = st%t
+        res%cycles = st%cycle
+        return
+      end if
+      call reopen_outputs()
+      ! each rank's accumulator adds to the global sum: the saved total goes to one rank
+      walls%work = 0
+      if (comms_is_root()) walls%work = st%wall_work
+      write(line, '(a,i0,a,es12.5,a,i0,a)') 'restart from '//trim(restart_path)//' at cycle ', st%cycle, &
+        ', t = ', st%t, ' s, on ', comms_size(), ' ranks'
+      call log_info(line)
+    else
+      call open_outputs()
+      call element_stable_dt(dom, st%dt_stable)
+      st%dt_stable = comms_min(st%dt_stable)
+      call compute_balance(dom, walls, bal)
+      st%e0 = bal%kinetic + bal%internal
+      st%e_ref = max(abs(st%e0), tiny(1.0_rk))
+      call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
+      st%field_steps = st%field_steps + 1
+      if (comms_is_root()) call write_history_row(hist, st%t, st%cycle, 0.0_rk, bal, row)
+      st%t_next_field = cfg%output%dt_field
+      st%t_next_hist = cfg%output%dt_history
+      st%t_next_checkpoint = cfg%output%dt_checkpoint
+    end if
+    write(line, '(a,i0,a,i0,a,es10.3,a)') 'start: ', dom%n_global_elems, ' elements, ', dom%n_global_nodes, &
+      ' nodes, stable step ', st%dt_stable, ' s'
     call log_info(line)
+    call signals_install()
 
     done = .false.
+    stopping = .false.
     loop0 = comms_wtime()
     last_print_wall = loop0
-    last_print_cycle = 0
+    last_print_cycle = st%cycle
+    cycles_run = 0
+    ckpt_seconds = -1.0_rk      ! until measured: twice a field step's cost
     do while (.not. done)
       ! ---- time step: the stable one, or what is left to t_end
-      if (cycle == 0 .and. cfg%run%dt_initial > 0.0_rk) then
+      if (st%cycle == 0 .and. cfg%run%dt_initial > 0.0_rk) then
         dt = cfg%run%dt_initial
       else
-        dt = min(cfg%run%dt_safety*dt_stable, cfg%run%dt_max)
+        dt = min(cfg%run%dt_safety*st%dt_stable, cfg%run%dt_max)
       end if
-      if (t + dt >= cfg%run%t_end*(1.0_rk - 1.0e-12_rk)) then
-        dt = cfg%run%t_end - t
+      if (st%t + dt >= cfg%run%t_end*(1.0_rk - 1.0e-12_rk)) then
+        dt = cfg%run%t_end - st%t
         done = .true.
       end if
-      dt_v = 0.5_rk*(dt_old + dt)
-      ! ---- nodes: v(n+1/2), conditions, walls, x(n+1)
+      dt_v = 0.5_rk*(st%dt_old + dt)
+      ! ---- nodes: v(n+1/2), conditions, walls, x(n+1); then the ghosts' from their owners
       call update_velocities(dom, dt_v)
       call apply_velocity_conditions(dom)
-      call apply_rigid_walls(dom, dt, dt_v, wall_step_work)
-      wall_work = wall_work + wall_step_work
+      do k = 1, size(dom%walls)
+        call exact_clear(walls%impulse(:,k))
+      end do
+      call apply_rigid_walls(dom, dt, walls%work, walls%impulse)
+      walls%dt_v = dt_v
       call update_positions(dom, dt)
-      t = t + dt
-      cycle = cycle + 1
-      dt_old = dt
+      call comms_halo_exchange(halo, dom%nd_x, dom%nd_v)
+      st%t = st%t + dt
+      st%cycle = st%cycle + 1
+      cycles_run = cycles_run + 1
+      st%dt_old = dt
       ! ---- elements: stress(n+1), forces(n+1)
       if (dom%anti_locking) then
         call element_volumes(dom)
         call nodal_volumes(dom)
+        call comms_halo_exchange_scalar(halo, dom%nd_j)
       end if
-      call element_update(dom, dt, dt_stable, bad)
-      if (bad /= 0) then
-        call write_fields(fw, dom, t, cycle, work_svm, work_rho)
+      call element_update(dom, dt, st%dt_stable, bad, bad_avg)
+      ! the lowest global id that inverted itself, else the lowest whose nodal average did
+      bad_gidx = comms_min_int(merge(dom%el_gidx(max(bad, 1)), huge(1), bad /= 0))
+      if (bad_gidx == huge(1)) bad_gidx = comms_min_int(merge(dom%el_gidx(max(bad_avg, 1)), huge(1), bad_avg /= 0))
+      if (bad_gidx /= huge(1)) then
+        call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
         call fw_close(fw); call history_close(hist)
-        write(line, '(a,i0,a,i0,a,es14.7,a)') 'element ', dom%el_id(bad), ' (part '''// &
-          trim(dom%part_name(dom%el_part(bad)))//''') inverted (volume <= 0) at cycle ', &
-          cycle, ', time ', t, ' s; last state written to '//trim(res%field_file)
-        call fatal(exit_physics, line)
+        k = findloc(dom%el_gidx, bad_gidx, dim=1)
+        bad_tag = comms_min_int(merge(dom%el_id(max(k, 1)), huge(1), k /= 0))
+        bad_part = comms_min_int(merge(dom%el_part(max(k, 1)), huge(1), k /= 0))
+        write(line, '(a,i0,a,i0,a,es14.7,a)') 'element ', bad_tag, ' (part '''// &
+          trim(dom%part_name(bad_part))//''') inverted (volume <= 0) at cycle ', &
+          st%cycle, ', time ', st%t, ' s; last state written to '//trim(res%field_file)
+        call write_status(base, 'failed', line)
+        call fatal_all(exit_physics, line)
       end if
-      dt_stable = comms_min(dt_stable)
+      st%dt_stable = comms_min(st%dt_stable)
       if (dom%anti_locking) then
         call nodal_pressures(dom)
+        call comms_halo_exchange_scalar(halo, dom%nd_p)
         call element_forces_averaged(dom)
       end if
       call assemble_forces(dom)
-      if (cycle >= cfg%run%max_cycles) done = .true.
+      if (st%cycle >= cfg%run%max_cycles) done = .true.
 
       ! ---- balance, checks, output
-      history_due = done .or. t >= t_next_hist*(1.0_rk - 1.0e-12_rk)
-      print_due = mod(cycle, cfg%run%cycle_print) == 0 .or. done
+      history_due = done .or. st%t >= st%t_next_hist*(1.0_rk - 1.0e-12_rk)
+      print_due = mod(st%cycle, cfg%run%cycle_print) == 0 .or. done
       ! the balance costs a pass over the mesh: every few cycles is enough to catch a blow-up
-      if (history_due .or. print_due .or. mod(cycle, balance_interval) == 0) then
-        call compute_balance(dom, wall_work, bal)
-        bal%error = (bal%total - bal%wall_work - e0)/max(e_ref, bal%kinetic)
+      if (history_due .or. print_due .or. mod(st%cycle, balance_interval) == 0) then
+        call compute_balance(dom, walls, bal)
+        bal%error = (bal%total - bal%wall_work - st%e0)/max(st%e_ref, bal%kinetic)
       end if
       if (.not. ieee_is_finite(bal%total) .or. abs(bal%error) > cfg%run%energy_error_limit) then
-        call write_fields(fw, dom, t, cycle, work_svm, work_rho)
+        call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
         call fw_close(fw); call history_close(hist)
         write(line, '(a,es10.3,a,i0,a,es14.7,a)') 'energy balance lost (error ', bal%error, ') at cycle ', &
-          cycle, ', time ', t, ' s; '//hot_spot(dom)//'; last state written to '//trim(res%field_file)
-        call fatal(exit_physics, line)
+          st%cycle, ', time ', st%t, ' s; '//hot_spot(dom)//'; last state written to '//trim(res%field_file)
+        call write_status(base, 'failed', line)
+        call fatal_all(exit_physics, line)
       end if
       if (history_due) then
-        call write_history_row(hist, t, cycle, dt, bal, row)
-        do while (t_next_hist <= t*(1.0_rk + 1.0e-12_rk) .and. cfg%output%dt_history > 0.0_rk)
-          t_next_hist = t_next_hist + cfg%output%dt_history
-        end do
+        if (comms_is_root()) call write_history_row(hist, st%t, st%cycle, dt, bal, row)
+        call advance(st%t_next_hist, cfg%output%dt_history)
       end if
-      if (done .or. (cfg%output%dt_field > 0.0_rk .and. t >= t_next_field*(1.0_rk - 1.0e-12_rk))) then
-        call write_fields(fw, dom, t, cycle, work_svm, work_rho)
-        do while (t_next_field <= t*(1.0_rk + 1.0e-12_rk) .and. cfg%output%dt_field > 0.0_rk)
-          t_next_field = t_next_field + cfg%output%dt_field
-        end do
+      if (done .or. (cfg%output%dt_field > 0.0_rk .and. st%t >= st%t_next_field*(1.0_rk - 1.0e-12_rk))) then
+        elapsed = comms_wtime()
+        call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
+        st%field_steps = st%field_steps + 1
+        if (ckpt_seconds < 0.0_rk) ckpt_seconds = 2.0_rk*(comms_wtime() - elapsed)
+        call advance(st%t_next_field, cfg%output%dt_field)
       end if
-      if (print_due) then
+      ! ---- a wall-time limit or a batch system's signal: checkpoint and stop
+      ! (polled every few cycles; the ranks agree on the verdict)
+      if (mod(st%cycle, balance_interval) == 0 .and. .not. done) then
+        cycle_seconds = (comms_wtime() - loop0)/max(cycles_run, 1)
+        stop_code = 0
+        if (signal_received() /= 0) stop_code = 1
+        if (cfg%run%wall_limit > 0.0_rk) then
+          ! stop while there is time for the checkpoint and a few more cycles
+          if (comms_wtime() - wall0 + max(ckpt_seconds, 0.0_rk) + (balance_interval + 1)*cycle_seconds &
+              + 1.0_rk >= cfg%run%wall_limit) stop_code = max(stop_code, 2)
+        end if
+        stop_code = comms_max_int(stop_code)
+        if (stop_code > 0) then
+          stopping = .true.
+          done = .true.
+          why = merge('a termination signal', 'the wall-time limit ', stop_code == 1)
+        end if
+      end if
+      ! ---- checkpoints: at their interval, at the end and when stopping early
+      if (stopping .or. (cfg%output%dt_checkpoint > 0.0_rk .and. &
+          (done .or. st%t >= st%t_next_checkpoint*(1.0_rk - 1.0e-12_rk)))) then
+        call advance(st%t_next_checkpoint, cfg%output%dt_checkpoint)
+        call write_checkpoint()
+      end if
+      if (print_due .and. .not. stopping) then
         ! wall time left at the current step size and the recent cost of a cycle
         ! (the step shrinks as elements distort, so an average over the run says too little)
         elapsed = comms_wtime()
-        left = (elapsed - last_print_wall)/max(cycle - last_print_cycle, 1)*max(cfg%run%t_end - t, 0.0_rk)/dt
+        left = (elapsed - last_print_wall)/max(st%cycle - last_print_cycle, 1)*max(cfg%run%t_end - st%t, 0.0_rk)/dt
         last_print_wall = elapsed
-        last_print_cycle = cycle
-        write(line, '(a,i8,a,es11.4,a,es10.3,a,es10.2,a,f9.1,a)') 'cycle', cycle, '  t ', t, ' s  dt ', dt, &
+        last_print_cycle = st%cycle
+        write(line, '(a,i8,a,es11.4,a,es10.3,a,es10.2,a,f9.1,a)') 'cycle', st%cycle, '  t ', st%t, ' s  dt ', dt, &
           ' s  energy error ', bal%error, '  wall left ', left, ' s'
         call log_info(line)
       end if
     end do
     call fw_close(fw)
     call history_close(hist)
-    res%cycles = cycle
-    res%time = t
+    if (stopping) then
+      write(line, '(a,i0,a,es12.5,a)') 'stopped by '//trim(why)//' at cycle ', st%cycle, ', t = ', st%t, &
+        ' s; continue with: udar --restart '//checkpoint_path(st%checkpoints_written)//' DECK'
+      call log_info(line)
+      call write_status(base, 'checkpointed', checkpoint_path(st%checkpoints_written))
+    else if (st%t < cfg%run%t_end*(1.0_rk - 1.0e-12_rk)) then
+      call write_status(base, 'max_cycles', '')
+    else
+      call write_status(base, 'complete', '')
+    end if
+    res%stopped = stopping
+    res%cycles = st%cycle
+    res%time = st%t
     res%energy_error = bal%error
     res%wall_seconds = comms_wtime() - wall0
-    res%ns_per_element_cycle = 1.0e9_rk*(comms_wtime() - loop0)/(real(dom%n_elems, rk)*max(cycle, 1))
+    res%ns_per_element_cycle = 1.0e9_rk*(comms_wtime() - loop0)/(real(dom%n_global_elems, rk)*max(cycles_run, 1))
   contains
+    !> Next output time after t (several intervals may pass in one step).
+    subroutine advance(t_next, interval)
+      real(rk), intent(inout) :: t_next
+      real(rk), intent(in) :: interval
+      if (interval <= 0.0_rk) return
+      do while (t_next <= st%t*(1.0_rk + 1.0e-12_rk))
+        t_next = t_next + interval
+      end do
+    end subroutine
+
+    !> Rotating checkpoint slots 1..checkpoint_keep: the newest replaces the oldest.
+    function checkpoint_path(n_written) result(path)
+      integer, intent(in) :: n_written
+      character(len=:), allocatable :: path
+      path = base//'_ckpt'//itoa(mod(max(n_written, 1) - 1, cfg%output%checkpoint_keep) + 1)//'.h5'
+    end function
+
+    subroutine write_checkpoint()
+      real(rk) :: w0
+      integer(i8) :: acc(0:exact_limbs, 1)
+      w0 = comms_wtime()
+      acc(:,1) = walls%work
+      call comms_sum_exact(acc)
+      st%wall_work = acc(:,1)
+      st%checkpoints_written = st%checkpoints_written + 1
+      call checkpoint_write(checkpoint_path(st%checkpoints_written), dom, st, ok, errmsg)
+      if (.not. ok) call fatal_all(exit_io, errmsg)
+      ckpt_seconds = comms_wtime() - w0
+      write(line, '(a,i0,a,es12.5,a,f0.2,a)') 'checkpoint at cycle ', st%cycle, ', t = ', st%t, ' s: '// &
+        checkpoint_path(st%checkpoints_written)//' (', ckpt_seconds, ' s)'
+      call log_info(line)
+    end subroutine
+
+    subroutine open_outputs()
+      integer, allocatable :: conn_global(:,:)
+      if (comms_is_root()) call execute_command_line('mkdir -p "'//trim(cfg%output%directory)//'"')
+      call comms_barrier()
+      ! the field file gets each rank's owned nodes (1..n_owned_nodes) and elements
+      work_node = transpose(dom%nd_x0(:,1:dom%n_owned_nodes))
+      allocate(conn_global(no,4))
+      do k = 1, 4
+        conn_global(:,k) = dom%nd_gidx(dom%el_conn(dom%el_owned_list,k))
+      end do
+      call fw_open(fw, base//'.h5', base//'.xmf', dom%n_global_nodes, dom%n_global_elems, &
+                   dom%nd_gidx(1:dom%n_owned_nodes), dom%el_gidx(dom%el_owned_list), &
+                   dom%nd_id(1:dom%n_owned_nodes), dom%el_id(dom%el_owned_list), conn_global, &
+                   dom%el_part(dom%el_owned_list), work_node, &
+                   cfg%resolved_text, program_version, trim(cfg%run%title), comms_size(), ok, errmsg)
+      call fatal_unless_all_ok(exit_io, ok, errmsg)
+      if (comms_is_root()) then
+        call history_open(hist, base//'_history.csv', history_columns(dom), ok, errmsg)
+        if (.not. ok) call fatal(exit_io, errmsg)
+      end if
+    end subroutine
+
+    !> Continue the field file and the history of the run the checkpoint
+    !> came from, dropping what was written after it.
+    subroutine reopen_outputs()
+      integer :: bad_out
+      bad_out = 0
+      errmsg = ''
+      if (comms_is_root()) then
+        call history_reopen(hist, base//'_history.csv', history_columns(dom), st%cycle, ok, errmsg)
+        if (.not. ok) bad_out = 1
+      end if
+      if (comms_max_int(bad_out) /= 0) call fatal_all(exit_io, 'restart: '//errmsg)
+      call fw_reopen(fw, base//'.h5', base//'.xmf', dom%n_global_nodes, dom%n_global_elems, &
+                     dom%nd_gidx(1:dom%n_owned_nodes), dom%el_gidx(dom%el_owned_list), st%field_steps, &
+                     trim(cfg%run%title), ok, errmsg)
+      call fatal_unless_all_ok(exit_io, ok, 'restart: '//errmsg)
+    end subroutine
+
     subroutine write_fields(fw, dom, t, cycle, svm, rho)
       type(field_writer_t), intent(inout) :: fw
       type(domain_t), intent(in) :: dom
       real(rk), intent(in) :: t
       integer, intent(in) :: cycle
       real(rk), intent(inout) :: svm(:), rho(:)
-      integer :: e
+      integer :: i, e
       real(rk) :: s6(6)
       logical :: ok
       character(len=:), allocatable :: msg
-      do e = 1, dom%n_elems
+      do i = 1, size(dom%el_owned_list)
+        e = dom%el_owned_list(i)
         s6 = dom%el_s(e,:)
-        svm(e) = von_mises(s6)
-        rho(e) = dom%el_mass(e)/dom%el_vol(e)
+        svm(i) = von_mises(s6)
+        rho(i) = dom%el_mass(e)/dom%el_vol(e)
       end do
-      ! the field file holds (n,3) tables
-      work_node = transpose(dom%nd_x)
+      ! the field file holds (n,3) tables of the owned rows
+      work_node = transpose(dom%nd_x(:,1:dom%n_owned_nodes))
       call fw_begin_step(fw, t, cycle, work_node, ok, msg)
-      work_node = transpose(dom%nd_v)
+      work_node = transpose(dom%nd_v(:,1:dom%n_owned_nodes))
       if (ok) call fw_node_vector(fw, 'velocity', work_node, ok, msg)
-      if (ok) call fw_elem_scalar(fw, 'pressure', dom%el_p, ok, msg)
+      work_elem = dom%el_p(dom%el_owned_list)
+      if (ok) call fw_elem_scalar(fw, 'pressure', work_elem, ok, msg)
       if (ok) call fw_elem_scalar(fw, 'von_mises', svm, ok, msg)
-      if (ok) call fw_elem_scalar(fw, 'plastic_strain', dom%el_eps_p, ok, msg)
-      if (ok) call fw_elem_scalar(fw, 'temperature', dom%el_temp, ok, msg)
+      work_elem = dom%el_eps_p(dom%el_owned_list)
+      if (ok) call fw_elem_scalar(fw, 'plastic_strain', work_elem, ok, msg)
+      work_elem = dom%el_temp(dom%el_owned_list)
+      if (ok) call fw_elem_scalar(fw, 'temperature', work_elem, ok, msg)
       if (ok) call fw_elem_scalar(fw, 'density', rho, ok, msg)
       if (ok) call fw_end_step(fw, ok, msg)
-      if (.not. ok) call fatal(exit_io, msg)
+      call fatal_unless_all_ok(exit_io, ok, msg)
     end subroutine
   end subroutine
 
+  !> <case>.status, for batch scripts: 'complete', 'checkpointed' (with the
+  !> checkpoint to continue from), 'max_cycles' or 'failed' (with why).
+  !> Written whole to a temporary name and renamed (rank 0).
+  subroutine write_status(base, status, detail)
+    character(len=*), intent(in) :: base, status, detail
+    integer :: u, ios
+    if (.not. comms_is_root()) return
+    open(newunit=u, file=base//'.status.tmp', status='replace', action='write', iostat=ios)
+    if (ios /= 0) return
+    write(u, '(a)') 'status = '//status
+    if (len(detail) > 0) write(u, '(a)') 'detail = '//detail
+    close(u)
+    if (.not. rename_file(base//'.status.tmp', base//'.status')) return
+  end subroutine
+
   !> Where a run that lost its energy balance is worst: the element with the
-  !> largest specific internal energy and the fastest node (mesh-file ids).
+  !> largest specific internal energy and the fastest node (mesh-file ids;
+  !> a non-finite value counts as the largest). Collective.
   function hot_spot(dom) result(msg)
     type(domain_t), intent(in) :: dom
     character(len=:), allocatable :: msg
     character(len=200) :: buf
-    integer :: e, n
-    e = maxloc(abs(dom%el_e), dim=1, mask=ieee_is_finite(dom%el_e))
-    if (e == 0) e = 1
-    n = 1
-    do n = 1, dom%n_nodes
-      if (.not. ieee_is_finite(dom%nd_v(1,n) + dom%nd_v(2,n) + dom%nd_v(3,n))) exit
-    end do
-    if (n > dom%n_nodes) n = maxloc(dom%nd_v(1,:)**2 + dom%nd_v(2,:)**2 + dom%nd_v(3,:)**2, dim=1)
-    write(buf, '(a,i0,a,es10.3,a,i0,a,es10.3,a)') 'worst element ', dom%el_id(e), ' (specific internal energy ', &
-      dom%el_e(e), ' J/kg, part '''//trim(dom%part_name(dom%el_part(e)))//'''), fastest node ', dom%nd_id(n), &
-      ' (', norm2(dom%nd_v(:,n)), ' m/s)'
+    real(rk), allocatable :: e_abs(:), speed(:)
+    integer :: e_tag, n_tag
+    real(rk) :: e_val, n_val
+    e_abs = abs(dom%el_e)
+    where (.not. ieee_is_finite(e_abs)) e_abs = huge(1.0_rk)
+    speed = sqrt(dom%nd_v(1,:)**2 + dom%nd_v(2,:)**2 + dom%nd_v(3,:)**2)
+    where (.not. ieee_is_finite(speed)) speed = huge(1.0_rk)
+    call global_argmax(e_abs, dom%el_gidx, dom%el_id, e_val, e_tag)
+    call global_argmax(speed, dom%nd_gidx, dom%nd_id, n_val, n_tag)
+    write(buf, '(a,i0,a,es10.3,a,i0,a,es10.3,a)') 'worst element ', e_tag, ' (|specific internal energy| ', &
+      e_val, ' J/kg), fastest node ', n_tag, ' (', n_val, ' m/s)'
     msg = trim(buf)
   end function
+
+  !> The largest value over all ranks and the tag of the lowest global
+  !> index holding it.
+  subroutine global_argmax(values, gidx, tags, vmax, tag)
+    real(rk), intent(in) :: values(:)
+    integer, intent(in) :: gidx(:), tags(:)
+    real(rk), intent(out) :: vmax
+    integer, intent(out) :: tag
+    integer :: i, g
+    vmax = -huge(1.0_rk)
+    if (size(values) > 0) vmax = maxval(values)
+    vmax = comms_max(vmax)
+    g = huge(1)
+    do i = 1, size(values)
+      if (values(i) == vmax) g = min(g, gidx(i))
+    end do
+    g = comms_min_int(g)
+    i = findloc(gidx, g, dim=1)
+    tag = comms_min_int(merge(tags(max(i, 1)), huge(1), i /= 0))
+  end subroutine
 
   function history_columns(dom) result(cols)
     type(domain_t), intent(in) :: dom
@@ -263,36 +488,63 @@ contains
     call history_write(hist, row)
   end subroutine
 
-  !> Sums in ascending node / element id (fixed order).
-  subroutine compute_balance(dom, wall_work, bal)
+  !> Global sums over the owned nodes and elements, exact (udar_exact_sum),
+  !> hence the same for any partition. Collective.
+  subroutine compute_balance(dom, walls, bal)
     type(domain_t), intent(in) :: dom
-    real(rk), intent(in) :: wall_work
+    type(wall_sums_t), intent(in) :: walls
     type(balance_t), intent(inout) :: bal
-    integer :: n, e, ip
+    integer, parameter :: c_kin = 1, c_int = 2, c_pla = 3, c_mom = 4, c_work = 7, c_wall = 8
+    integer :: n, e, ip, i, np, nw, c_part
     real(rk) :: ke
-    if (.not. allocated(bal%part_ke)) allocate(bal%part_ke(dom%n_parts), bal%part_com(dom%n_parts,3), &
-                                               bal%part_mass(dom%n_parts))
-    bal%kinetic = 0; bal%internal = 0; bal%plastic = 0; bal%momentum = 0
-    bal%part_ke = 0; bal%part_com = 0; bal%part_mass = 0
-    do n = 1, dom%n_nodes
+    np = dom%n_parts
+    nw = size(dom%walls)
+    c_part = c_wall + nw            ! per part: ke, com x/y/z (mass moments), mass
+    if (.not. allocated(bal%part_ke)) allocate(bal%part_ke(np), bal%part_com(np,3), bal%part_mass(np), &
+                                               bal%acc(0:exact_limbs, c_part + 5*np - 1))
+    bal%acc = 0
+    do n = 1, dom%n_owned_nodes
       ke = 0.5_rk*dom%nd_mass(n)*(dom%nd_v(1,n)**2 + dom%nd_v(2,n)**2 + dom%nd_v(3,n)**2)
-      bal%kinetic = bal%kinetic + ke
-      bal%momentum = bal%momentum + dom%nd_mass(n)*dom%nd_v(:,n)
-      ip = dom%nd_part(n)
-      bal%part_ke(ip) = bal%part_ke(ip) + ke
-      bal%part_com(ip,:) = bal%part_com(ip,:) + dom%nd_mass(n)*dom%nd_x(:,n)
-      bal%part_mass(ip) = bal%part_mass(ip) + dom%nd_mass(n)
+      ip = c_part + 5*(dom%nd_part(n) - 1)
+      call exact_add(bal%acc(:,c_kin), ke)
+      call exact_add(bal%acc(:,ip), ke)
+      do i = 1, 3
+        call exact_add(bal%acc(:,c_mom+i-1), dom%nd_mass(n)*dom%nd_v(i,n))
+        call exact_add(bal%acc(:,ip+i), dom%nd_mass(n)*dom%nd_x(i,n))
+      end do
+      call exact_add(bal%acc(:,ip+4), dom%nd_mass(n))
     end do
-    do ip = 1, dom%n_parts
-      if (bal%part_mass(ip) > 0.0_rk) bal%part_com(ip,:) = bal%part_com(ip,:)/bal%part_mass(ip)
+    do i = 1, size(dom%el_owned_list)
+      e = dom%el_owned_list(i)
+      call exact_add(bal%acc(:,c_int), dom%el_mass(e)*dom%el_e(e))
+      call exact_add(bal%acc(:,c_pla), dom%el_mass(e)*dom%el_wp(e))
     end do
-    do e = 1, dom%n_elems
-      bal%internal = bal%internal + dom%el_mass(e)*dom%el_e(e)
-      bal%plastic = bal%plastic + dom%el_mass(e)*dom%el_wp(e)
+    bal%acc(:,c_work) = walls%work
+    do i = 1, nw
+      bal%acc(:,c_wall+i-1) = walls%impulse(:,i)
     end do
-    bal%wall_work = wall_work
-    bal%total = bal%kinetic + bal%internal
+    call comms_sum_exact(bal%acc)
+    bal%kinetic = exact_value(bal%acc(:,c_kin))
+    bal%internal = exact_value(bal%acc(:,c_int))
+    bal%plastic = exact_value(bal%acc(:,c_pla))
+    do i = 1, 3
+      bal%momentum(i) = exact_value(bal%acc(:,c_mom+i-1))
+    end do
+    bal%wall_work = exact_value(bal%acc(:,c_work))
+    ! the wall corrections are part of the velocity update, so they span dt_v
     bal%wall_force = 0.0_rk
-    if (allocated(dom%walls)) bal%wall_force = sum(dom%walls%force)
+    do i = 1, nw
+      bal%wall_force = bal%wall_force + exact_value(bal%acc(:,c_wall+i-1))/walls%dt_v
+    end do
+    do ip = 1, np
+      n = c_part + 5*(ip - 1)
+      bal%part_ke(ip) = exact_value(bal%acc(:,n))
+      bal%part_mass(ip) = exact_value(bal%acc(:,n+4))
+      do i = 1, 3
+        bal%part_com(ip,i) = exact_value(bal%acc(:,n+i))
+        if (bal%part_mass(ip) > 0.0_rk) bal%part_com(ip,i) = bal%part_com(ip,i)/bal%part_mass(ip)
+      end do
+    end do
+    bal%total = bal%kinetic + bal%internal
   end subroutine
 end module udar_run

@@ -14,7 +14,7 @@ module udar_setup
   use udar_strength, only: initial_hardening, thermal_softening
   implicit none
   private
-  public :: build_domain, count_bodies
+  public :: build_domain, count_bodies, build_incidence, build_blocks
 
 contains
 
@@ -133,6 +133,14 @@ contains
     dom%anti_locking = cfg%numerics%anti_locking
     dom%q_linear = cfg%numerics%q_linear
     dom%q_quadratic = cfg%numerics%q_quadratic
+    ! the whole mesh as one rank's domain: udar_distribution cuts it up
+    dom%n_global_nodes = dom%n_nodes
+    dom%n_global_elems = dom%n_elems
+    dom%n_owned_nodes = dom%n_nodes
+    dom%nd_gidx = [(n, n = 1, dom%n_nodes)]
+    dom%el_gidx = [(e, e = 1, dom%n_elems)]
+    allocate(dom%el_owned(dom%n_elems), source=.true.)
+    dom%el_owned_list = dom%el_gidx
   end subroutine
 
   subroutine allocate_state(dom)

@@ -243,6 +243,7 @@ contains
     call check(.not. cfg%numerics%anti_locking .and. cfg%numerics%q_linear == 0.1_rk, 'numerics')
     call check(cfg%output%directory == 'out/run 1' .and. cfg%output%case_name == 'valid', &
                'output, default case_name')
+    call check(cfg%output%dt_checkpoint == 5e-6_rk .and. cfg%output%checkpoint_keep == 3, 'checkpoint values')
     call check(allocated(cfg%resolved_text), 'resolved_text set')
     if (nfail == before) call pass('valid_deck')
 
@@ -387,6 +388,8 @@ contains
     if (a%output%case_name /= b%output%case_name) why = 'output%case_name'
     if (a%output%dt_field /= b%output%dt_field) why = 'output%dt_field'
     if (a%output%dt_history /= b%output%dt_history) why = 'output%dt_history'
+    if (a%output%dt_checkpoint /= b%output%dt_checkpoint) why = 'output%dt_checkpoint'
+    if (a%output%checkpoint_keep /= b%output%checkpoint_keep) why = 'output%checkpoint_keep'
   end function config_difference
 
 end module test_deck_support

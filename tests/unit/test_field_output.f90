@@ -1,5 +1,8 @@
 !> Unit test for udar_field_output: writes a 2-tet mesh with 2 steps, reads
-!> the HDF5 file back through the HDF5 Fortran API and checks the .xmf.
+!> the HDF5 file back through the HDF5 Fortran API and checks the .xmf; then
+!> a restart (fw_reopen) that keeps 2 of 3 steps and writes one more.
+!> One process (MPI singleton): this rank owns every node and element
+!> (gidx = 1..n); test_field_output_mpi covers rows split over ranks.
 !> Usage: test_field_output [<data_dir>] <output_dir>
 !> The output directory is the LAST argument (tests/run_tests.sh passes
 !> <tests/unit> <work dir>); it is created if missing.
@@ -8,6 +11,7 @@ program test_field_output
                                          c_int, c_null_char
   use udar_kinds, only: rk, ik, i8
   use udar_field_output
+  use udar_comms, only: comms_init, comms_finalize
   use hdf5
   implicit none
 
@@ -30,16 +34,17 @@ program test_field_output
   character(len=1024) :: outdir
   character(len=:), allocatable :: h5path, xmfpath, big_deck, deck, errmsg
   type(field_writer_t) :: w
-  integer(ik) :: node_id(nn), elem_id(ne), conn(ne, 4), part_id(ne)
+  integer(ik) :: node_id(nn), elem_id(ne), conn(ne, 4), part_id(ne), ngidx(nn), egidx(ne)
   real(rk) :: x0(nn, 3), x1(nn, 3), vel0(nn, 3), vel1(nn, 3), mass(nn), p0(ne), p1(ne)
   logical :: ok
   integer :: i, nargs
   integer(c_int) :: irc
 
+  call comms_init()
   nargs = command_argument_count()
   if (nargs < 1) then
     call fail('args', 'usage: test_field_output [<data_dir>] <output_dir>')
-    error stop 1
+    call finish()
   end if
   call get_command_argument(nargs, outdir)
   ! mkdir -p: create each component; EEXIST is fine, real failures show at fw_open
@@ -61,6 +66,8 @@ program test_field_output
   part_id = [1, 2]
   conn(1,:) = [1, 2, 3, 4]
   conn(2,:) = [2, 3, 4, 5]
+  ngidx = [(i, i = 1, nn)]
+  egidx = [(i, i = 1, ne)]
   do i = 1, nn
     vel0(i,:) = [real(i, rk), 10.0_rk*i, 100.0_rk*i]
     mass(i) = 0.5_rk*i
@@ -76,7 +83,8 @@ program test_field_output
   big_deck = repeat(deck, 3000)
 
   ! ---------------------------------------------------------- writing
-  call fw_open(w, h5path, xmfpath, node_id, elem_id, conn, part_id, x0, big_deck, &
+  call fw_open(w, h5path, xmfpath, int(nn, ik), int(ne, ik), ngidx, egidx, node_id, elem_id, &
+               conn, part_id, x0, big_deck, &
                '0.1.0-test', 'two tets <&>', 4_ik, ok, errmsg)
   call check(ok, 'fw_open', errmsg)
   if (.not. ok) call finish()
@@ -122,33 +130,58 @@ program test_field_output
 
   ! ---------------------------------------------------------- failures at open
   call fw_open(w, trim(outdir)//'/no/such/dir/x.h5', trim(outdir)//'/no/such/dir/x.xmf', &
+               int(nn, ik), int(ne, ik), ngidx, egidx, &
                node_id, elem_id, conn, part_id, x0, 'deck', 'v', 't', 1_ik, ok, errmsg)
   call check(.not. ok .and. index(errmsg, 'no/such/dir/x.h5') > 0, 'open_bad_dir_reports_path', errmsg)
-  call fw_open(w, trim(outdir)//'/bad_conn.h5', trim(outdir)//'/bad_conn.xmf', node_id, elem_id, &
+  call fw_open(w, trim(outdir)//'/bad_conn.h5', trim(outdir)//'/bad_conn.xmf', int(nn, ik), &
+               int(ne, ik), ngidx, egidx, node_id, elem_id, &
                reshape([1_ik, 2_ik, 3_ik, 4_ik, 5_ik, 6_ik, 3_ik, 9_ik], [2, 4]), part_id, x0, &
                'deck', 'v', 't', 1_ik, ok, errmsg)
   call check(.not. ok, 'open_bad_conn_rejected', 'accepted')
-  call fw_open(w, trim(outdir)//'/a.h5', trim(outdir)//'/sub/a.xmf', node_id, elem_id, conn, &
-               part_id, x0, 'deck', 'v', 't', 1_ik, ok, errmsg)
+  call fw_open(w, trim(outdir)//'/a.h5', trim(outdir)//'/sub/a.xmf', int(nn, ik), int(ne, ik), &
+               ngidx, egidx, node_id, elem_id, conn, part_id, x0, 'deck', 'v', 't', 1_ik, ok, errmsg)
   call check(.not. ok, 'open_split_dirs_rejected', 'accepted')
+  ! global indices: strictly ascending, within 1..n_global, one row each
+  call fw_open(w, trim(outdir)//'/g.h5', trim(outdir)//'/g.xmf', int(nn, ik), int(ne, ik), &
+               [1_ik, 2_ik, 4_ik, 3_ik, 5_ik], egidx, node_id, elem_id, conn, part_id, x0, &
+               'deck', 'v', 't', 1_ik, ok, errmsg)
+  call check(.not. ok .and. index(errmsg, 'ascending') > 0, 'open_gidx_not_ascending_rejected', errmsg)
+  call fw_open(w, trim(outdir)//'/g.h5', trim(outdir)//'/g.xmf', int(nn, ik), int(ne, ik), &
+               ngidx, [2_ik, 3_ik], node_id, elem_id, conn, part_id, x0, &
+               'deck', 'v', 't', 1_ik, ok, errmsg)
+  call check(.not. ok .and. index(errmsg, 'outside') > 0, 'open_gidx_out_of_range_rejected', errmsg)
+  call fw_open(w, trim(outdir)//'/g.h5', trim(outdir)//'/g.xmf', int(nn, ik), int(ne, ik), &
+               ngidx(1:4), egidx, node_id(1:4), elem_id, conn, part_id, x0, &
+               'deck', 'v', 't', 1_ik, ok, errmsg)
+  call check(.not. ok .and. index(errmsg, 'x0') > 0, 'open_x0_local_shape_rejected', errmsg)
+  call fw_open(w, trim(outdir)//'/g.h5', trim(outdir)//'/g.xmf', 0_ik, int(ne, ik), &
+               ngidx(1:0), egidx, node_id(1:0), elem_id, conn, part_id, x0(1:0,:), &
+               'deck', 'v', 't', 1_ik, ok, errmsg)
+  call check(.not. ok, 'open_zero_global_nodes_rejected', 'accepted')
+  call check(.not. file_exists(trim(outdir)//'/g.h5'), 'rejected_open_creates_no_file', '')
 
   ! An abandoned step is unlinked at close and never counted.
-  call fw_open(w, trim(outdir)//'/fo_abandon.h5', trim(outdir)//'/fo_abandon.xmf', node_id, &
-               elem_id, conn, part_id, x0, 'deck', 'v', 't', 1_ik, ok, errmsg)
+  call fw_open(w, trim(outdir)//'/fo_abandon.h5', trim(outdir)//'/fo_abandon.xmf', int(nn, ik), &
+               int(ne, ik), ngidx, egidx, node_id, elem_id, conn, part_id, x0, 'deck', 'v', 't', &
+               1_ik, ok, errmsg)
   call check(ok, 'open_abandon', errmsg)
   call fw_begin_step(w, 0.0_rk, 0_ik, x0, ok, errmsg)
   call check(ok, 'begin_abandon', errmsg)
   call fw_close(w)
 
+  call restart()
+
   ! ---------------------------------------------------------- reading back
   call verify_main()
   call verify_abandoned()
   call verify_xmf()
+  call verify_restart()
   call finish()
 
 contains
 
   subroutine finish()
+    call comms_finalize()
     if (n_fail > 0) then
       write(*, '(a,i0,a)') 'test_field_output: ', n_fail, ' failure(s)'
       error stop 1
@@ -156,6 +189,138 @@ contains
     write(*, '(a)') 'test_field_output: all passed'
     stop
   end subroutine finish
+
+  !> Restart: 3 steps written, reopened keeping 2, one more step written,
+  !> so the file ends with 3 steps whose last is the new one.  Also the
+  !> reopen errors: missing file, too few steps, another mesh.
+  subroutine restart()
+    character(len=:), allocatable :: rh5, rxmf
+    integer :: k
+
+    rh5 = trim(outdir)//'/fo_restart.h5'
+    rxmf = trim(outdir)//'/fo_restart.xmf'
+    call fw_open(w, rh5, rxmf, int(nn, ik), int(ne, ik), ngidx, egidx, node_id, elem_id, &
+                 conn, part_id, x0, 'deck', 'v', 'restart', 1_ik, ok, errmsg)
+    call check(ok, 'restart_open', errmsg)
+    do k = 0, 2
+      call fw_begin_step(w, real(k, rk), int(10*k, ik), x0, ok, errmsg)
+      if (ok .and. k == 0) call fw_node_scalar(w, 'mass', mass, ok, errmsg)
+      if (ok) call fw_node_vector(w, 'velocity', vel0, ok, errmsg)
+      if (ok) call fw_elem_scalar(w, 'pressure', p0, ok, errmsg)
+      if (ok) call fw_end_step(w, ok, errmsg)
+      call check(ok, 'restart_write_step', errmsg)
+    end do
+    call fw_close(w)
+
+    call fw_reopen(w, trim(outdir)//'/no_such.h5', trim(outdir)//'/no_such.xmf', int(nn, ik), &
+                   int(ne, ik), ngidx, egidx, 2_ik, 'restart', ok, errmsg)
+    call check(.not. ok .and. index(errmsg, 'no_such.h5') > 0, 'reopen_missing_file_rejected', errmsg)
+    call fw_reopen(w, rh5, rxmf, int(nn, ik), int(ne, ik), ngidx, egidx, 4_ik, 'restart', ok, errmsg)
+    call check(.not. ok .and. index(errmsg, 'fo_restart.h5') > 0 .and. index(errmsg, 'only 3') > 0, &
+               'reopen_too_few_steps_rejected', errmsg)
+    call fw_reopen(w, rh5, rxmf, int(nn, ik), int(ne + 1, ik), ngidx, egidx, 2_ik, 'restart', ok, errmsg)
+    call check(.not. ok .and. index(errmsg, 'fo_restart.h5') > 0, 'reopen_other_mesh_rejected', errmsg)
+
+    call fw_reopen(w, rh5, rxmf, int(nn, ik), int(ne, ik), ngidx, egidx, 2_ik, 'restart', ok, errmsg)
+    call check(ok, 'reopen_keep_2', errmsg)
+    if (.not. ok) return
+    call fw_begin_step(w, 9.0_rk, 99_ik, x1, ok, errmsg)
+    call check(ok, 'reopen_begin_step', errmsg)
+    call fw_node_vector(w, 'velocity', vel1, ok, errmsg)
+    call check(ok, 'reopen_node_vector', errmsg)
+    call fw_elem_scalar(w, 'pressure', p1, ok, errmsg)
+    call check(ok, 'reopen_elem_scalar', errmsg)
+    call fw_end_step(w, ok, errmsg)
+    call check(ok, 'reopen_end_step', errmsg)
+    call fw_close(w)
+    call restart_square()
+  end subroutine restart
+
+  !> A mesh with as many nodes as elements: a 1-D field could be either;
+  !> fw_reopen takes the Center from the .xmf it replaces.
+  subroutine restart_square()
+    character(len=:), allocatable :: sh5, sxmf
+    integer(ik) :: g(nn), c(nn, 4)
+    integer :: u, ios
+    character(len=4096) :: line
+    logical :: node_ok, cell_ok
+
+    sh5 = trim(outdir)//'/fo_square.h5'
+    sxmf = trim(outdir)//'/fo_square.xmf'
+    g = [(int(i, ik), i = 1, nn)]
+    c = 1
+    c(:, 2) = 2; c(:, 3) = 3; c(:, 4) = g
+    call fw_open(w, sh5, sxmf, int(nn, ik), int(nn, ik), g, g, node_id, node_id, c, g, x0, &
+                 'deck', 'v', 'square', 1_ik, ok, errmsg)
+    if (ok) call fw_begin_step(w, 0.0_rk, 0_ik, x0, ok, errmsg)
+    if (ok) call fw_elem_scalar(w, 'es', mass, ok, errmsg)
+    if (ok) call fw_node_scalar(w, 'ns', mass, ok, errmsg)
+    if (ok) call fw_end_step(w, ok, errmsg)
+    call fw_close(w)
+    call check(ok, 'square_write', errmsg)
+    call fw_reopen(w, sh5, sxmf, int(nn, ik), int(nn, ik), g, g, 1_ik, 'square', ok, errmsg)
+    call check(ok, 'square_reopen', errmsg)
+    call fw_close(w)
+    node_ok = .false.; cell_ok = .false.
+    open(newunit=u, file=sxmf, status='old', action='read', iostat=ios)
+    do while (ios == 0)
+      read(u, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      if (index(line, '<Attribute Name="ns" AttributeType="Scalar" Center="Node">') > 0) node_ok = .true.
+      if (index(line, '<Attribute Name="es" AttributeType="Scalar" Center="Cell">') > 0) cell_ok = .true.
+    end do
+    close(u, iostat=ios)
+    call check(node_ok .and. cell_ok, 'square_reopen_keeps_centers', sxmf)
+  end subroutine restart_square
+
+  subroutine verify_restart()
+    integer(hid_t) :: fid
+    integer :: err, u, ios, n_uniform
+    logical :: ex, step0_mass_node, pressure_cell, new_time
+    real(rk) :: t
+    integer(i8) :: cyc
+    real(rk), allocatable, target :: rbuf(:,:)
+    character(len=4096) :: line
+
+    call h5fopen_f(trim(outdir)//'/fo_restart.h5', H5F_ACC_RDONLY_F, fid, err)
+    call check(err >= 0, 'reopen_restart_h5', '')
+    if (err < 0) return
+    call check(read_attr_int(fid, 'steps', 'count') == 3, 'restart_count_3', '')
+    call h5lexists_f(fid, 'steps/000003', ex, err)
+    call check(.not. ex, 'restart_no_step_3', '')
+    call read_step_attrs(fid, 'steps/000001', t, cyc)
+    call check(t == 1.0_rk .and. cyc == 10, 'restart_step1_kept', '')
+    call read_step_attrs(fid, 'steps/000002', t, cyc)
+    call check(t == 9.0_rk .and. cyc == 99, 'restart_step2_new_time', '')
+    allocate(rbuf(3, nn))
+    call read_raw(fid, 'steps/000002/velocity', h5kind_to_type(rk, H5_REAL_KIND), c_loc(rbuf))
+    call check(all(rbuf == transpose(vel1)), 'restart_step2_new_velocity', '')
+    call read_raw(fid, 'steps/000002/coordinates', h5kind_to_type(rk, H5_REAL_KIND), c_loc(rbuf))
+    call check(all(rbuf == transpose(x1)), 'restart_step2_new_coords', '')
+    call h5fclose_f(fid, err)
+
+    n_uniform = 0
+    step0_mass_node = .false.; pressure_cell = .false.; new_time = .false.
+    open(newunit=u, file=trim(outdir)//'/fo_restart.xmf', status='old', action='read', iostat=ios)
+    call check(ios == 0, 'restart_xmf_exists', '')
+    if (ios /= 0) return
+    do
+      read(u, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      if (index(line, '<Grid') > 0 .and. index(line, 'GridType="Uniform"') > 0) &
+        n_uniform = n_uniform + 1
+      if (index(line, '<Attribute Name="mass" AttributeType="Scalar" Center="Node">') > 0) &
+        step0_mass_node = .true.
+      if (index(line, '<Attribute Name="pressure" AttributeType="Scalar" Center="Cell">') > 0) &
+        pressure_cell = .true.
+      if (index(line, '<Time Value="9.') > 0) new_time = .true.
+    end do
+    close(u)
+    call check(n_uniform == 3, 'restart_xmf_lists_3_steps', '')
+    call check(new_time, 'restart_xmf_has_new_time', '')
+    call check(step0_mass_node .and. pressure_cell, 'restart_xmf_rebuilt_centers', '')
+    call check(.not. file_exists(trim(outdir)//'/fo_restart.xmf.tmp'), 'restart_xmf_tmp_removed', '')
+  end subroutine verify_restart
 
   subroutine check(cond, name, detail)
     logical, intent(in) :: cond
