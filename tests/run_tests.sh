@@ -50,10 +50,12 @@ run_test "cli/repeatable" tests/cli/repeatable.sh bin/udar-debug
 # on 1, 2, 3 and 4 ranks; checkpoint/restart on another rank count
 run_test "cli/field_output_ranks" tests/cli/field_output_ranks.sh build/debug/tests/test_field_output_mpi "$WORK/field_output_ranks"
 run_test "cli/ranks_elastic_bar" tests/cli/rank_invariance.sh bin/udar elastic_bar
-run_test "cli/ranks_coulomb_wall" tests/cli/rank_invariance.sh bin/udar coulomb_wall
+run_test "cli/ranks_coulomb_wall" tests/cli/rank_invariance.sh bin/udar-debug coulomb_wall
+run_test "cli/more_ranks_than_elements" tests/cli/more_ranks_than_elements.sh bin/udar-debug
 run_test "cli/ranks_plate_impact" tests/cli/rank_invariance.sh bin/udar plate_impact
 run_test "cli/ranks_taylor_ofhc" tests/cli/rank_invariance.sh bin/udar taylor_ofhc_baseline 30.0e-6
 run_test "cli/restart" tests/cli/restart.sh bin/udar
+run_test "cli/slurm_chain" tests/cli/slurm_chain.sh bin/udar
 # ---- regressions against analytic and experimental references
 run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
 run_test "regression/plate_impact" regression plate_impact bin/udar-debug

@@ -2,6 +2,8 @@
 !> udar never sees a communicator and a single rank is simply the serial run.
 module udar_comms
   use mpi_f08
+  use, intrinsic :: iso_c_binding, only: c_int
+  use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use udar_kinds, only: rk, i8
   use udar_exact_sum, only: exact_limbs, exact_normalize
   implicit none
@@ -50,12 +52,7 @@ contains
     integer :: ierr
     if (initialised .and. n_ranks > 1) call MPI_Abort(MPI_COMM_WORLD, code, ierr)
     if (initialised) call MPI_Finalize(ierr)
-    select case (code)
-    case (1); error stop 1
-    case (2); error stop 2
-    case (3); error stop 3
-    case default; error stop 4
-    end select
+    call exit_process(code)
   end subroutine
 
   !> Every rank calls this with the same code (a collective decision): all
@@ -68,13 +65,21 @@ contains
       call MPI_Finalize(ierr)
     end if
     initialised = .false.
-    select case (code)
-    case (0); stop
-    case (1); error stop 1
-    case (2); error stop 2
-    case (3); error stop 3
-    case default; error stop 4
-    end select
+    call exit_process(code)
+  end subroutine
+
+  !> The C library's exit: the status without ERROR STOP's banner and backtrace.
+  subroutine exit_process(code)
+    integer, intent(in) :: code
+    interface
+      subroutine c_exit(status) bind(c, name='exit')
+        import :: c_int
+        integer(c_int), value :: status
+      end subroutine
+    end interface
+    flush(output_unit)
+    flush(error_unit)
+    call c_exit(int(code, c_int))
   end subroutine
 
   integer function comms_rank()

@@ -188,14 +188,14 @@ contains
       end if
       call element_update(dom, dt, st%dt_stable, bad, bad_avg)
       ! the lowest global id that inverted itself, else the lowest whose nodal average did
-      bad_gidx = comms_min_int(merge(dom%el_gidx(max(bad, 1)), huge(1), bad /= 0))
-      if (bad_gidx == huge(1)) bad_gidx = comms_min_int(merge(dom%el_gidx(max(bad_avg, 1)), huge(1), bad_avg /= 0))
+      bad_gidx = comms_min_int(entry_or_huge(dom%el_gidx, bad))
+      if (bad_gidx == huge(1)) bad_gidx = comms_min_int(entry_or_huge(dom%el_gidx, bad_avg))
       if (bad_gidx /= huge(1)) then
         call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
         call fw_close(fw); call history_close(hist)
         k = findloc(dom%el_gidx, bad_gidx, dim=1)
-        bad_tag = comms_min_int(merge(dom%el_id(max(k, 1)), huge(1), k /= 0))
-        bad_part = comms_min_int(merge(dom%el_part(max(k, 1)), huge(1), k /= 0))
+        bad_tag = comms_min_int(entry_or_huge(dom%el_id, k))
+        bad_part = comms_min_int(entry_or_huge(dom%el_part, k))
         write(line, '(a,i0,a,i0,a,es14.7,a)') 'element ', bad_tag, ' (part '''// &
           trim(dom%part_name(bad_part))//''') inverted (volume <= 0) at cycle ', &
           st%cycle, ', time ', st%t, ' s; last state written to '//trim(res%field_file)
@@ -399,6 +399,14 @@ contains
     end subroutine
   end subroutine
 
+  !> a(k), or huge when k = 0 (this rank does not hold the entry): the
+  !> operand of a global minimum that finds the rank that does.
+  pure integer function entry_or_huge(a, k) result(v)
+    integer, intent(in) :: a(:), k
+    v = huge(1)
+    if (k > 0) v = a(k)
+  end function
+
   !> <case>.status, for batch scripts: 'complete', 'checkpointed' (with the
   !> checkpoint to continue from), 'max_cycles' or 'failed' (with why).
   !> Written whole to a temporary name and renamed (rank 0).
@@ -452,7 +460,7 @@ contains
     end do
     g = comms_min_int(g)
     i = findloc(gidx, g, dim=1)
-    tag = comms_min_int(merge(tags(max(i, 1)), huge(1), i /= 0))
+    tag = comms_min_int(entry_or_huge(tags, i))
   end subroutine
 
   function history_columns(dom) result(cols)

@@ -8,6 +8,7 @@ module udar_setup
   use udar_strings, only: itoa, r2s
   use udar_config, only: config_t, bc_fixed, bc_symmetry, bc_rigid_wall
   use udar_gmsh, only: gmsh_mesh_t
+  use udar_nodal, only: apply_velocity_conditions
   use udar_domain, only: domain_t, block_size
   use udar_input_errors, only: input_errors_t
   use udar_tet4, only: tet_volume
@@ -130,6 +131,9 @@ contains
     dom%nd_j = 1.0_rk
     call build_blocks(dom)
     call build_conditions(cfg, mesh, node_new, dom)
+    ! initial velocities obey the velocity conditions (a fixed node starts at
+    ! rest), so the initial energy holds no kinetic energy the first step removes
+    call apply_velocity_conditions(dom)
     dom%anti_locking = cfg%numerics%anti_locking
     dom%q_linear = cfg%numerics%q_linear
     dom%q_quadratic = cfg%numerics%q_quadratic

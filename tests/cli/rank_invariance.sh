@@ -13,7 +13,7 @@ mkdir -p "$W/run"
 cp "$ROOT/tests/regression/$case/$case.msh" "$ROOT/tests/regression/$case/$case.nml" "$W/run/"
 [ -n "$t_end" ] && sed -i "s/^\( *\)t_end = .*/\1t_end = $t_end/" "$W/run/$case.nml"
 for n in 1 2 3 4; do
-  if ! (cd "$W/run" && mpirun -np $n "$EXE" $case.nml > run.log 2>&1); then
+  if ! (cd "$W/run" && timeout 900 mpirun -np $n "$EXE" $case.nml > run.log 2>&1); then
     cat "$W/run/run.log"; bad "run on $n ranks"; exit 1
   fi
   grep -E 'partition over|^ +[0-9]+ +[0-9]+ +[0-9]+ +[0-9]+ +[0-9]+$' "$W/run/run.log"

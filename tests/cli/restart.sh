@@ -27,7 +27,7 @@ same() {   # name, folder a, folder b: history, fields and last checkpoint bitwi
 }
 run() {   # ranks, udar arguments...
   local n=$1; shift
-  (cd "$W/run" && mpirun -np "$n" "$EXE" "$@" >> run.log 2>&1)
+  (cd "$W/run" && timeout 900 mpirun -np "$n" "$EXE" "$@" >> run.log 2>&1)
 }
 status() { sed -n 's/^status = //p' "$W/run/out/$case.status"; }
 mkdir -p "$W/run"
@@ -85,7 +85,7 @@ cp -r "$W/straight" "$W/refuse/out"
 before=$(cd "$W/refuse/out" && md5sum $case.h5 ${case}_history.csv)
 refuse() {   # name, expected message, udar arguments...
   local name=$1 msg=$2; shift 2
-  (cd "$W/refuse" && mpirun -np 2 "$EXE" "$@" > refuse.log 2>&1); local rc=$?
+  (cd "$W/refuse" && timeout 300 mpirun -np 2 "$EXE" "$@" > refuse.log 2>&1); local rc=$?
   after=$(cd "$W/refuse/out" && md5sum $case.h5 ${case}_history.csv)
   if [ $rc = 3 ] && grep -q "$msg" "$W/refuse/refuse.log" && [ "$before" = "$after" ]; then ok "$name"
   else echo "exit $rc"; cat "$W/refuse/refuse.log"; bad "$name"; fi

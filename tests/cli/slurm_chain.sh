@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# The Slurm job script (input/batch/udar.slurm) under stand-ins for sbatch,
+# scontrol and squeue: each job is stopped by a wall-time limit, resubmits
+# itself from its checkpoint until the run is complete, and the chain ends
+# bitwise equal to one straight run.
+#   slurm_chain.sh EXE
+source "$(dirname "$0")/common.sh" "$1"
+case=taylor_ofhc_baseline
+mkdir -p "$W/fake" "$W/run"
+# sbatch runs the job at once (nested); it records its options
+cat > "$W/fake/sbatch" <<'SH'
+#!/bin/bash
+echo "sbatch $*" >> "$FAKE_LOG"
+n=1; args=()
+for a in "$@"; do
+  case $a in --ntasks=*) n=${a#--ntasks=} ;; --*) ;; *) args+=("$a") ;; esac
+done
+SLURM_NTASKS=$n SLURM_JOB_ID=$RANDOM bash "${args[@]}"
+SH
+printf '#!/bin/bash\necho "   Command=%s/input/batch/udar.slurm"\n' "$ROOT" > "$W/fake/scontrol"
+printf '#!/bin/bash\necho 1:00:00\n' > "$W/fake/squeue"
+chmod +x "$W/fake/"*
+cp "$ROOT/tests/regression/$case/$case.msh" "$ROOT/tests/regression/$case/$case.nml" "$W/run/"
+sed -i 's/^\( *\)t_end = .*/\1t_end = 30.0e-6/' "$W/run/$case.nml"
+# the straight run, for reference
+(cd "$W/run" && timeout 600 "$EXE" $case.nml > straight.log 2>&1) || { cat "$W/run/straight.log"; bad "straight run"; exit 1; }
+mv "$W/run/out" "$W/straight"
+export PATH=$W/fake:$PATH FAKE_LOG=$W/sbatch.log UDAR=$EXE MPIRUN="timeout 600 mpirun" UDAR_ARGS="--wall-limit 2.5"
+(cd "$W" && SLURM_SUBMIT_DIR=$W SLURM_NTASKS=2 SLURM_JOB_ID=1 bash "$ROOT/input/batch/udar.slurm" run/$case.nml > job.log 2>&1)
+rc=$?
+grep '^udar' "$W/job.log"
+jobs=$(grep -c '^udar job [0-9]* of' "$W/job.log")
+echo "MEASURED $jobs jobs; resubmissions: $(wc -l < "$W/sbatch.log" 2>/dev/null || echo 0)"
+if [ $rc = 0 ] && grep -q 'run complete' "$W/job.log" && [ "$jobs" -ge 2 ]; then ok "chain_completes_over_${jobs}_jobs"
+else tail -20 "$W/job.log"; bad "chain_completes (exit $rc, $jobs jobs)"; fi
+grep -q -- '--ntasks=2 --time=1:00:00' "$W/sbatch.log" && ok "resubmission_keeps_tasks_and_time" || bad "resubmission_keeps_tasks_and_time"
+if cmp -s "$W/straight/${case}_history.csv" "$W/run/out/${case}_history.csv" && \
+   h5diff --exclude-path /provenance "$W/straight/$case.h5" "$W/run/out/$case.h5"; then ok "chain_bitwise_equals_straight_run"
+else bad "chain_bitwise_equals_straight_run"; fi
+[ $fails -eq 0 ]
