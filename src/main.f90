@@ -149,8 +149,7 @@ contains
     type(halo_t), intent(out) :: halo
     integer, allocatable :: part(:)
     type(partition_stats_t) :: stats
-    type(rank_counts_t), allocatable :: counts(:)
-    integer :: n, r, bad
+    integer :: n, bad
     msg = ''
     n = comms_size()
     allocate(part(glob%n_elems), source=0)
@@ -162,48 +161,57 @@ contains
       end if
       if (comms_max_int(bad) /= 0) call fatal_all(exit_input, 'partition for '//itoa(n)//' ranks: '//msg)
       call comms_bcast_int(part)
+      if (comms_is_root()) call log_partition(glob, part, n, stats)
     end if
     call distribute_domain(glob, part, comms_rank(), loc, halo)
-    if (n > 1 .and. comms_is_root()) then
-      allocate(counts(0:n-1))
-      call decomposition_counts(glob%el_conn, glob%nd_el_ptr, glob%nd_el, part, n, counts)
-      write(line, '(a,i0,a,i0,a,f6.3)') 'partition over ', n, ' ranks (METIS k-way, element dual graph): '// &
-        'edge cut ', stats%edge_cut, ' faces, load imbalance ', stats%imbalance
-      call log_info(line)
+    glob = domain_t()
+  end subroutine
+
+  !> udar --check --ranks N: the partition a run on N ranks would get.
+  subroutine report_partition(dom, n)
+    type(domain_t), intent(in) :: dom
+    integer, intent(in) :: n
+    integer, allocatable :: part(:)
+    type(partition_stats_t) :: stats
+    allocate(part(dom%n_elems))
+    call partition_elements(dom%n_nodes, dom%el_conn, n, part, stats, ok, msg)
+    if (.not. ok) call fatal_all(exit_input, 'partition for '//itoa(n)//' ranks: '//msg)
+    call log_partition(dom, part, n, stats)
+  end subroutine
+
+  !> Edge cut, imbalance, what each rank owns and holds as ghosts, and the
+  !> cost of the decomposition: redundant (ghost) element work and halo
+  !> traffic (x and v, plus nodal J and p with anti-locking: 8 reals per
+  !> ghost node and cycle).
+  subroutine log_partition(dom, part, n, stats)
+    type(domain_t), intent(in) :: dom
+    integer, intent(in) :: part(:), n
+    type(partition_stats_t), intent(in) :: stats
+    type(rank_counts_t), allocatable :: counts(:)
+    integer :: r
+    real(rk) :: overhead, worst
+    allocate(counts(0:n-1))
+    call decomposition_counts(dom%el_conn, dom%nd_el_ptr, dom%nd_el, part, n, counts)
+    write(line, '(a,i0,a,i0,a,f6.3)') 'partition over ', n, ' ranks (METIS k-way, element dual graph): '// &
+      'edge cut ', stats%edge_cut, ' faces, load imbalance ', stats%imbalance
+    call log_info(line)
+    if (n <= 64) then
       call log_info('  rank  owned_elems  owned_nodes  ghost_elems  ghost_nodes')
       do r = 0, n - 1
         write(line, '(i6,4i13)') r, counts(r)%owned_elems, counts(r)%owned_nodes, counts(r)%ghost_elems, &
           counts(r)%ghost_nodes
         call log_info(line)
       end do
-      if (any(counts%owned_elems == 0)) call log_warn('some ranks own no element (more ranks than the mesh '// &
-        'can use); they only take part in the collective steps')
     end if
-    glob = domain_t()
-  end subroutine
-
-  !> The METIS partition of the elements over n ranks and what each rank
-  !> would own and hold as ghosts.
-  subroutine report_partition(dom, n)
-    type(domain_t), intent(in) :: dom
-    integer, intent(in) :: n
-    integer, allocatable :: part(:)
-    type(partition_stats_t) :: stats
-    type(rank_counts_t), allocatable :: counts(:)
-    integer :: r
-    allocate(part(dom%n_elems), counts(0:n-1))
-    call partition_elements(dom%n_nodes, dom%el_conn, n, part, stats, ok, msg)
-    if (.not. ok) call fatal_all(exit_input, 'partition for '//itoa(n)//' ranks: '//msg)
-    call decomposition_counts(dom%el_conn, dom%nd_el_ptr, dom%nd_el, part, n, counts)
-    write(line, '(a,i0,a,i0,a,f6.3)') 'partition for ', n, ' ranks (METIS k-way, element dual graph): edge cut ', &
-      stats%edge_cut, ' faces, load imbalance ', stats%imbalance
+    overhead = 100.0_rk*sum(real(counts%ghost_elems, rk))/dom%n_elems
+    worst = 100.0_rk*maxval(real(counts%ghost_elems, rk)/max(counts%owned_elems, 1))
+    write(line, '(a,i0,a,f7.2,a,f7.2,a,i0,a,i0,a,f9.1,a)') 'decomposition cost over ', n, ' ranks: ghost '// &
+      'element work +', overhead, ' % in all (worst rank +', worst, ' %); halo ', sum(counts%ghost_nodes), &
+      ' ghost nodes in all, at most ', maxval(counts%ghost_nodes), ' on a rank (', &
+      8.0_rk*8.0_rk*maxval(counts%ghost_nodes)/1024.0_rk, ' KiB received per cycle)'
     call log_info(line)
-    call log_info('  rank  owned_elems  owned_nodes  ghost_elems  ghost_nodes')
-    do r = 0, n - 1
-      write(line, '(i6,4i13)') r, counts(r)%owned_elems, counts(r)%owned_nodes, counts(r)%ghost_elems, &
-        counts(r)%ghost_nodes
-      call log_info(line)
-    end do
+    if (any(counts%owned_elems == 0)) call log_warn('some ranks own no element (more ranks than the mesh '// &
+      'can use); they only take part in the collective steps')
   end subroutine
 
   subroutine usage()

@@ -20,7 +20,7 @@ module udar_checkpoint
   use udar_hash, only: fnv_offset, hash_text, hash_ints, hash_reals
   use udar_comms, only: comms_world_handle, comms_info_null_handle, comms_is_root, comms_size, comms_max_int, &
       comms_barrier
-  use udar_files, only: rename_file, remove_file
+  use udar_files, only: rename_file, remove_if_present
   use udar_version, only: program_version
   use udar_strings, only: itoa
   implicit none
@@ -183,8 +183,8 @@ contains
           ok = .false.
           errmsg = 'checkpoint: cannot rename '//path//'.tmp to '//path
         end if
-      else if (remove_file(path//'.tmp')) then
-        ok = .false.        ! the partial file is gone; the previous checkpoint stays
+      else
+        call remove_if_present(path//'.tmp')   ! the previous checkpoints stay
       end if
     end if
     ok = comms_max_int(merge(0, 1, ok)) == 0
@@ -485,40 +485,27 @@ contains
     type(ckpt_file_t), intent(inout) :: f
     character(len=*), intent(in) :: name
     integer(i8), intent(out), target :: a(:)
-    integer(hid_t) :: did, sid
-    integer(hsize_t) :: dims(1), maxdims(1)
-    integer :: err, e2, nd
+    integer(hid_t) :: did
+    integer :: err, e2
     type(c_ptr) :: p
-    call h5dopen_f(f%id, name, did, err)
-    if (err < 0) then
-      call fail(f, 'dataset '//name//' is missing')
-      return
-    end if
-    call h5dget_space_f(did, sid, err)
-    call h5sget_simple_extent_ndims_f(sid, nd, err)
-    dims = 0
-    if (nd == 1) call h5sget_simple_extent_dims_f(sid, dims, maxdims, err)
-    call h5sclose_f(sid, e2)
-    if (nd /= 1 .or. dims(1) /= size(a)) then
-      call fail(f, 'dataset '//name//' has the wrong shape')
-    else
-      p = c_loc(a)
-      call h5dread_f(did, h5kind_to_type(i8, H5_INTEGER_KIND), p, err)
-      if (err < 0) call fail(f, 'cannot read dataset '//name//' (file damaged?)')
-    end if
+    call open_dataset(f, name, [size(a)], did)
+    if (.not. f%ok) return
+    p = c_loc(a)
+    call h5dread_f(did, h5kind_to_type(i8, H5_INTEGER_KIND), p, err)
+    if (err < 0) call fail(f, 'cannot read dataset '//name//' (file damaged?)')
     call h5dclose_f(did, e2)
   end subroutine
 
-  !> The whole global dataset into a(width, n) (width 1 for 1-D), checking its shape.
-  subroutine read_all(f, name, a)
+  !> Opens dataset name and checks its Fortran dimensions (C order reversed).
+  subroutine open_dataset(f, name, expect, did)
     type(ckpt_file_t), intent(inout) :: f
     character(len=*), intent(in) :: name
-    real(rk), intent(out), target :: a(:,:)
-    integer(hid_t) :: did, sid
+    integer, intent(in) :: expect(:)
+    integer(hid_t), intent(out) :: did
+    integer(hid_t) :: sid
     integer(hsize_t) :: dims(2), maxdims(2)
     integer :: err, e2, nd
-    logical :: fits
-    type(c_ptr) :: p
+    if (.not. f%ok) return
     call h5dopen_f(f%id, name, did, err)
     if (err < 0) then
       call fail(f, 'dataset '//name//' is missing')
@@ -529,18 +516,31 @@ contains
     dims = 0
     if (nd >= 1 .and. nd <= 2) call h5sget_simple_extent_dims_f(sid, dims(1:nd), maxdims(1:nd), err)
     call h5sclose_f(sid, e2)
-    if (size(a, 1) == 1) then
-      fits = nd == 1 .and. dims(1) == size(a, 2)
-    else
-      fits = nd == 2 .and. dims(1) == size(a, 1) .and. dims(2) == size(a, 2)
-    end if
-    if (.not. fits) then
+    if (nd /= size(expect)) then
       call fail(f, 'dataset '//name//' has the wrong shape')
-    else
-      p = c_loc(a)
-      call h5dread_f(did, h5kind_to_type(rk, H5_REAL_KIND), p, err)
-      if (err < 0) call fail(f, 'cannot read dataset '//name//' (file damaged?)')
+    else if (any(dims(1:nd) /= expect)) then
+      call fail(f, 'dataset '//name//' has the wrong shape')
     end if
+    if (.not. f%ok) call h5dclose_f(did, e2)
+  end subroutine
+
+  !> The whole global dataset into a(width, n) (width 1: a 1-D dataset).
+  subroutine read_all(f, name, a)
+    type(ckpt_file_t), intent(inout) :: f
+    character(len=*), intent(in) :: name
+    real(rk), intent(out), target :: a(:,:)
+    integer(hid_t) :: did
+    integer :: err, e2
+    type(c_ptr) :: p
+    if (size(a, 1) == 1) then
+      call open_dataset(f, name, [size(a, 2)], did)
+    else
+      call open_dataset(f, name, [size(a, 1), size(a, 2)], did)
+    end if
+    if (.not. f%ok) return
+    p = c_loc(a)
+    call h5dread_f(did, h5kind_to_type(rk, H5_REAL_KIND), p, err)
+    if (err < 0) call fail(f, 'cannot read dataset '//name//' (file damaged?)')
     call h5dclose_f(did, e2)
   end subroutine
 

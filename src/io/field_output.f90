@@ -30,6 +30,7 @@ module udar_field_output
   use udar_kinds, only: rk, ik, i8, max_name_len
   use udar_strings, only: is_letter, is_digit, dir_name, base_name, itoa
   use udar_comms, only: comms_world_handle, comms_info_null_handle, comms_is_root
+  use udar_files, only: rename_file, remove_if_present
   use hdf5
   implicit none
   private
@@ -105,16 +106,6 @@ module udar_field_output
       integer(c_int), value :: op
       integer(c_int64_t) :: r
     end function h5scombine_select_c
-    function c_rename(old, new) bind(c, name='rename') result(r)
-      import :: c_char, c_int
-      character(kind=c_char), intent(in) :: old(*), new(*)
-      integer(c_int) :: r
-    end function c_rename
-    function c_remove(path) bind(c, name='remove') result(r)
-      import :: c_char, c_int
-      character(kind=c_char), intent(in) :: path(*)
-      integer(c_int) :: r
-    end function c_remove
   end interface
 
 contains
@@ -145,7 +136,6 @@ contains
     integer :: nn, ne, i, j
     integer(hid_t) :: gid
     integer(ik), allocatable :: ibuf(:,:)
-    integer(c_int) :: irc
     type(rows_t) :: nrows, erows
 
     ok = .false.
@@ -179,8 +169,8 @@ contains
 
     ! Stale index files from an earlier run would point at the new h5.
     if (comms_is_root()) then
-      irc = c_remove(w%xmf_path//c_null_char)
-      irc = c_remove(w%xmf_path//'.tmp'//c_null_char)
+      call remove_if_present(w%xmf_path)
+      call remove_if_present(w%xmf_path//'.tmp')
     end if
 
     ! A named block gives one cleanup path for every failure below.
@@ -257,7 +247,6 @@ contains
     integer :: err, s, k, n_drop
     character(len=step_digits), allocatable :: drop(:)
     logical :: exists
-    integer(c_int) :: irc
 
     ok = .false.
     errmsg = common_arg_error(w, 'fw_reopen', h5_path, xmf_path, n_nodes_global, n_elems_global)
@@ -332,8 +321,8 @@ contains
           call write_xmf(w, ok, errmsg)
         else
           ! no committed step: no index (as after fw_open)
-          irc = c_remove(w%xmf_path//c_null_char)
-          irc = c_remove(w%xmf_path//'.tmp'//c_null_char)
+          call remove_if_present(w%xmf_path)
+          call remove_if_present(w%xmf_path//'.tmp')
         end if
       end if
       return
@@ -1019,7 +1008,6 @@ contains
     character(len=512) :: iomsg
     character(len=32) :: sn, se, st
     integer :: u, ios, s, f
-    integer(c_int) :: irc
 
     ok = .false.
     errmsg = ''
@@ -1091,8 +1079,7 @@ contains
       return
     end if
 
-    irc = c_rename(tmp_path//c_null_char, w%xmf_path//c_null_char)
-    if (irc /= 0) then
+    if (.not. rename_file(tmp_path, w%xmf_path)) then
       errmsg = 'field_output: rename "'//tmp_path//'" -> "'//w%xmf_path//'" failed'
       return
     end if
