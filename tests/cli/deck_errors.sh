@@ -33,8 +33,8 @@ expect missing_deck 1 'missing.nml' missing.nml
 if [ $rc -eq 0 ] && grep -q 'rho0' "$W/check.txt" && grep -q 'default' "$W/check.txt" && [ ! -e "$W/out/good.h5" ]
 then ok "check_prints_resolved_deck"; else bad "check_prints_resolved_deck (exit $rc)"; cat "$W/check.txt"; fi
 (cd "$W" && "$EXE" --check --ranks 3 good.nml) > "$W/ranks.txt" 2>&1; rc=$?
-if [ $rc -eq 0 ] && grep -q 'partition for 3 ranks.*edge cut' "$W/ranks.txt" && \
-   [ "$(grep -cE '^ +[0-2] +[0-9]+ +[0-9]+ +[0-9]+ +[0-9]+$' "$W/ranks.txt")" -eq 3 ]
+if [ $rc -eq 0 ] && grep -q 'partition over 3 ranks.*edge cut' "$W/ranks.txt" && \
+   [ "$(grep -cE '^ +[0-2] +[0-9]+ +[0-9]+ +[0-9]+ +[0-9]+$' "$W/ranks.txt")" -eq 3 ] && grep -q 'decomposition cost over 3 ranks: ghost element work' "$W/ranks.txt"
 then ok "check_ranks_partition_report"; else bad "check_ranks_partition_report (exit $rc)"; cat "$W/ranks.txt"; fi
 expect ranks_without_check 1 'ranks goes with --check' "--ranks 2 good.nml"
 # two separate bodies: warned that there is no contact yet
