@@ -48,6 +48,7 @@ run_test "cli/run_goes_bad" tests/cli/run_goes_bad.sh bin/udar-debug
 run_test "cli/repeatable" tests/cli/repeatable.sh bin/udar-debug
 # ---- parallel: one file from any number of writers; bitwise the same results
 # on 1, 2, 3 and 4 ranks; checkpoint/restart on another rank count
+run_test "unit/test_distribution_mpi_np3" mpirun -np 3 build/debug/tests/test_distribution_mpi "$ROOT/tests/unit" "$WORK"
 run_test "cli/field_output_ranks" tests/cli/field_output_ranks.sh build/debug/tests/test_field_output_mpi "$WORK/field_output_ranks"
 run_test "cli/ranks_elastic_bar" tests/cli/rank_invariance.sh bin/udar elastic_bar
 run_test "cli/ranks_coulomb_wall" tests/cli/rank_invariance.sh bin/udar-debug coulomb_wall
