@@ -54,6 +54,7 @@ run_test "cli/ranks_elastic_bar" tests/cli/rank_invariance.sh bin/udar elastic_b
 run_test "cli/ranks_coulomb_wall" tests/cli/rank_invariance.sh bin/udar-debug coulomb_wall
 run_test "cli/more_ranks_than_elements" tests/cli/more_ranks_than_elements.sh bin/udar-debug
 run_test "cli/ranks_plate_impact" tests/cli/rank_invariance.sh bin/udar plate_impact
+run_test "cli/ranks_blocks_head_on" tests/cli/rank_invariance.sh bin/udar blocks_head_on
 run_test "cli/ranks_taylor_ofhc" tests/cli/rank_invariance.sh bin/udar taylor_ofhc_baseline 30.0e-6
 run_test "cli/restart" tests/cli/restart.sh bin/udar
 run_test "cli/slurm_chain" tests/cli/slurm_chain.sh bin/udar
@@ -61,6 +62,7 @@ run_test "cli/slurm_chain" tests/cli/slurm_chain.sh bin/udar
 run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
 run_test "regression/plate_impact" regression plate_impact bin/udar-debug
 run_test "regression/coulomb_wall" regression coulomb_wall bin/udar-debug
+run_test "regression/blocks_head_on" regression blocks_head_on bin/udar-debug
 run_test "regression/taylor_wg" regression taylor_wg bin/udar
 run_test "regression/taylor_ofhc_baseline" regression taylor_ofhc_baseline bin/udar
 

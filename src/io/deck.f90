@@ -24,11 +24,12 @@ module udar_deck
   use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_associated
   use udar_kinds, only: rk, max_name_len, max_path_len
   use udar_config, only: config_t, run_cfg_t, mesh_cfg_t, material_cfg_t, part_cfg_t, &
-       boundary_cfg_t, numerics_cfg_t, output_cfg_t, eos_linear, eos_mie_gruneisen, &
+       boundary_cfg_t, contact_cfg_t, numerics_cfg_t, output_cfg_t, eos_linear, eos_mie_gruneisen, &
        strength_none, strength_elastic, strength_perfectly_plastic, strength_linear_hardening, &
        strength_johnson_cook, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
        wall_coulomb, &
-       jc_rate_total, jc_rate_plastic
+       jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
+       overlap_report, overlap_move
   use udar_input_errors, only: input_errors_t
   use udar_nml_scan, only: nml_scan_t, nml_group_t, nml_scan_file
   use udar_strings, only: itoa, r2s, to_lower, replace, shorten, dir_name, base_name
@@ -46,19 +47,20 @@ module udar_deck
   integer, parameter :: title_len = len(run_dflt%title)
 
   ! ------------------------------------------------------------ the groups
-  integer, parameter :: n_group_kinds = 7
+  integer, parameter :: n_group_kinds = 8
   integer, parameter :: g_run = 1, g_mesh = 2, g_material = 3, g_part = 4, g_boundary = 5, &
-                        g_numerics = 6, g_output = 7    !< indices into the tables below
+                        g_contact = 6, g_numerics = 7, g_output = 8    !< indices into the tables below
   character(len=8), parameter :: group_names(n_group_kinds) = [character(len=8) :: &
-       'run', 'mesh', 'material', 'part', 'boundary', 'numerics', 'output']
+       'run', 'mesh', 'material', 'part', 'boundary', 'contact', 'numerics', 'output']
   logical, parameter :: group_once(n_group_kinds) = &
-       [.true., .true., .false., .false., .false., .true., .true.]
+       [.true., .true., .false., .false., .false., .false., .true., .true.]
   logical, parameter :: group_required(n_group_kinds) = &
-       [.true., .true., .true., .true., .false., .false., .false.]
-  character(len=40), parameter :: group_purpose(n_group_kinds) = [character(len=40) :: &
+       [.true., .true., .true., .true., .false., .false., .false., .false.]
+  character(len=80), parameter :: group_purpose(n_group_kinds) = [character(len=80) :: &
        'end time and time step control', 'the mesh file', 'material models', &
-       'bodies: mesh volume, material, velocity', 'boundary conditions', 'solver options', &
-       'output files']
+       'bodies: mesh volume, material, velocity', 'boundary conditions', &
+       'contact interfaces: slave nodes kept out of master triangles (Yugov et al. 1998)', &
+       'solver options', 'output files']
 
   ! ------------------------------------------------- string forms of the codes
   character(len=20), parameter :: eos_words(2) = [character(len=20) :: 'linear', 'mie_gruneisen']
@@ -73,6 +75,10 @@ module udar_deck
   character(len=20), parameter :: rate_words(2) = [character(len=20) :: 'total', 'plastic']
   integer, parameter :: rate_codes(2) = [jc_rate_total, jc_rate_plastic]
   integer, parameter :: wall_codes(3) = [wall_frictionless, wall_sticking, wall_coulomb]
+  character(len=20), parameter :: weights_words(2) = [character(len=20) :: 'distance', 'area']
+  integer, parameter :: weights_codes(2) = [contact_weights_distance, contact_weights_area]
+  character(len=20), parameter :: overlap_words(2) = [character(len=20) :: 'report', 'move']
+  integer, parameter :: overlap_codes(2) = [overlap_report, overlap_move]
 
   ! ------------------------------------------------------ the variable table
   !> One deck variable: for unknown-name suggestions, read-failure
@@ -134,6 +140,14 @@ module udar_deck
        var_t('boundary', 'normal', 'r', 3, 0, '-', 'finite numbers'), &
        var_t('boundary', 'wall_type', 'c', 1, code_len, '', ''), &
        var_t('boundary', 'friction', 'r', 1, 0, '-', '>= 0'), &
+       var_t('contact', 'master', 'c', 1, max_name_len, '', ''), &
+       var_t('contact', 'slave', 'c', 1, max_name_len, '', ''), &
+       var_t('contact', 'friction', 'r', 1, 0, '-', '>= 0'), &
+       var_t('contact', 'iterations', 'i', 1, 0, '-', '>= 1'), &
+       var_t('contact', 'tolerance', 'r', 1, 0, 'm/s', '>= 0'), &
+       var_t('contact', 'symmetric', 'l', 1, 0, '', ''), &
+       var_t('contact', 'weights', 'c', 1, code_len, '', ''), &
+       var_t('contact', 'initial_overlap', 'c', 1, code_len, '', ''), &
        var_t('numerics', 'anti_locking', 'l', 1, 0, '', ''), &
        var_t('numerics', 'q_linear', 'r', 1, 0, '-', '>= 0'), &
        var_t('numerics', 'q_quadratic', 'r', 1, 0, '-', '>= 0'), &
@@ -170,6 +184,7 @@ module udar_deck
     type(material_cfg_t) :: mat
     type(part_cfg_t) :: part
     type(boundary_cfg_t) :: bnd
+    type(contact_cfg_t) :: con
     type(numerics_cfg_t) :: num
     type(output_cfg_t) :: out
     character(len=code_len) :: eos = 'linear'
@@ -177,6 +192,8 @@ module udar_deck
     character(len=code_len) :: kind = ''
     character(len=code_len) :: wall_type = 'frictionless'
     character(len=code_len) :: jc_rate_form = 'total'
+    character(len=code_len) :: weights = 'distance'
+    character(len=code_len) :: initial_overlap = 'report'
   end type
 
   !> One assignment as the deck wrote it.
@@ -262,7 +279,8 @@ contains
     type(values_t) :: v
     character(len=512) :: msg
     character(len=:), allocatable :: text
-    character(len=code_len), allocatable :: eos_txt(:), str_txt(:), kind_txt(:), wall_txt(:), rate_txt(:)
+    character(len=code_len), allocatable :: eos_txt(:), str_txt(:), kind_txt(:), wall_txt(:), rate_txt(:), &
+                                            weights_txt(:), overlap_txt(:)
     integer :: ios, k, j, ig, gk, first(n_group_kinds), cnt(n_group_kinds), nread(n_group_kinds)
     logical :: misspelled(n_group_kinds)
 
@@ -317,9 +335,9 @@ contains
     end do
 
     allocate(cfg%materials(cnt(g_material)), cfg%parts(cnt(g_part)), &
-             cfg%boundaries(cnt(g_boundary)))
+             cfg%boundaries(cnt(g_boundary)), cfg%contacts(cnt(g_contact)))
     allocate(eos_txt(cnt(g_material)), str_txt(cnt(g_material)), rate_txt(cnt(g_material)), kind_txt(cnt(g_boundary)), &
-             wall_txt(cnt(g_boundary)))
+             wall_txt(cnt(g_boundary)), weights_txt(cnt(g_contact)), overlap_txt(cnt(g_contact)))
     do gk = 1, n_group_kinds
       if (group_once(gk)) then
         ! the record of a once-only group exists also when the deck lacks it
@@ -356,6 +374,10 @@ contains
         cfg%boundaries(k) = v%bnd
         kind_txt(k) = v%kind
         wall_txt(k) = v%wall_type
+      case (g_contact)
+        cfg%contacts(k) = v%con
+        weights_txt(k) = v%weights
+        overlap_txt(k) = v%initial_overlap
       case (g_numerics)
         cfg%numerics = v%num
       case (g_output)
@@ -366,7 +388,7 @@ contains
 
     ! check values, fill in derived ones
     associate (runs => tr%g(g_run)%i, meshes => tr%g(g_mesh)%i, mats => tr%g(g_material)%i, &
-               parts => tr%g(g_part)%i, bnds => tr%g(g_boundary)%i)
+               parts => tr%g(g_part)%i, bnds => tr%g(g_boundary)%i, cons => tr%g(g_contact)%i)
       if (runs(1)%line > 0) call check_run(ctx, runs(1), cfg)
       if (meshes(1)%line > 0) call check_mesh(ctx, meshes(1), cfg%mesh, trim(path))
       do k = 1, size(mats)
@@ -377,6 +399,9 @@ contains
       end do
       do k = 1, size(bnds)
         call check_boundary(ctx, bnds(k), cfg, k, kind_txt(k), wall_txt(k))
+      end do
+      do k = 1, size(cons)
+        call check_contact(ctx, cons(k), cfg, k, weights_txt(k), overlap_txt(k))
       end do
     end associate
     call check_numerics(ctx, tr%g(g_numerics)%i(1), cfg)
@@ -553,6 +578,11 @@ contains
       call part_nml(v%part%group, v%part%material, v%part%velocity)
     case ('boundary')
       call boundary_nml(v%kind, v%bnd%surface, v%bnd%point, v%bnd%normal, v%wall_type, v%bnd%friction)
+    case ('contact')
+      associate(c => v%con)
+        call contact_nml(c%master, c%slave, c%friction, c%iterations, c%tolerance, c%symmetric, &
+                         v%weights, v%initial_overlap)
+      end associate
     case ('numerics')
       call numerics_nml(v%num%anti_locking, v%num%q_linear, v%num%q_quadratic)
     case ('output')
@@ -611,6 +641,17 @@ contains
       namelist /boundary/ kind, surface, point, normal, wall_type, friction
       read(text, nml=boundary, iostat=ios, iomsg=msg)
     end subroutine boundary_nml
+
+    subroutine contact_nml(master, slave, friction, iterations, tolerance, symmetric, weights, &
+                           initial_overlap)
+      character(len=*), intent(inout) :: master, slave, weights, initial_overlap
+      real(rk), intent(inout) :: friction, tolerance
+      integer, intent(inout) :: iterations
+      logical, intent(inout) :: symmetric
+      namelist /contact/ master, slave, friction, iterations, tolerance, symmetric, weights, &
+                         initial_overlap
+      read(text, nml=contact, iostat=ios, iomsg=msg)
+    end subroutine contact_nml
 
     subroutine numerics_nml(anti_locking, q_linear, q_quadratic)
       logical, intent(inout) :: anti_locking
@@ -928,6 +969,29 @@ contains
     end associate
   end subroutine check_boundary
 
+  !> A contact interface names a master and a different slave (whether the
+  !> names are in the mesh is checked once the mesh is read).
+  subroutine check_contact(ctx, inst, cfg, k, weights_txt, overlap_txt)
+    type(ctx_t), intent(inout) :: ctx
+    type(inst_t), intent(in) :: inst
+    type(config_t), intent(inout) :: cfg
+    integer, intent(in) :: k
+    character(len=*), intent(in) :: weights_txt, overlap_txt
+    logical :: ok
+    character(len=*), parameter :: what = 'the name of a part (physical volume group) or of a '// &
+         'physical surface group in the mesh'
+
+    associate(c => cfg%contacts(k))
+      if (len_trim(c%master) == 0) call need(ctx, inst, 'master', .false., what)
+      if (len_trim(c%slave) == 0) call need(ctx, inst, 'slave', .false., what)
+      if (len_trim(c%master) > 0 .and. c%slave == c%master .and. .not. is_bad(inst, 'master')) &
+           call complain(ctx, inst, 'slave', 'the same as master: self-contact is not supported yet')
+      ok = choice(ctx, inst, 'weights', weights_txt, weights_words, weights_codes, c%weights)
+      ok = choice(ctx, inst, 'initial_overlap', overlap_txt, overlap_words, overlap_codes, c%initial_overlap)
+      call check_ranges(ctx, inst, cfg_vals(cfg, g_contact, k))
+    end associate
+  end subroutine check_contact
+
   subroutine check_numerics(ctx, inst, cfg)
     type(ctx_t), intent(inout) :: ctx
     type(inst_t), intent(in) :: inst
@@ -1226,6 +1290,8 @@ contains
       if (allocated(cfg%parts)) n = size(cfg%parts)
     case (g_boundary)
       if (allocated(cfg%boundaries)) n = size(cfg%boundaries)
+    case (g_contact)
+      if (allocated(cfg%contacts)) n = size(cfg%contacts)
     end select
   end function n_instances
 
@@ -1270,6 +1336,12 @@ contains
         vals = [choice_val(b%kind, kind_words, kind_codes), val_t(c=b%surface), val(b%point), &
                 val(b%normal), choice_val(b%wall_type, wall_words, wall_codes), val(b%friction)]
       end associate
+    case (g_contact)
+      associate(c => cfg%contacts(k))
+        vals = [val_t(c=c%master), val_t(c=c%slave), val(c%friction), val_t(i=c%iterations), &
+                val(c%tolerance), val_t(l=c%symmetric), choice_val(c%weights, weights_words, weights_codes), &
+                choice_val(c%initial_overlap, overlap_words, overlap_codes)]
+      end associate
     case (g_numerics)
       vals = [val_t(l=cfg%numerics%anti_locking), val(cfg%numerics%q_linear), &
               val(cfg%numerics%q_quadratic)]
@@ -1287,7 +1359,7 @@ contains
     integer, intent(in) :: gk
     type(val_t), allocatable :: vals(:)
     type(config_t) :: dflt
-    allocate(dflt%materials(1), dflt%parts(1), dflt%boundaries(1))
+    allocate(dflt%materials(1), dflt%parts(1), dflt%boundaries(1), dflt%contacts(1))
     vals = cfg_vals(dflt, gk, 1)
   end function default_vals
 
@@ -1474,7 +1546,8 @@ contains
   end function prefix
 
   !> What names a group instance in messages: the material name, the part's
-  !> mesh group, the boundary's surface or kind (as written in the deck).
+  !> mesh group, the boundary's surface or kind, the contact's master or
+  !> slave (as written in the deck).
   function instance_label(gr) result(label)
     type(nml_group_t), intent(in) :: gr
     character(len=:), allocatable :: label
@@ -1487,6 +1560,8 @@ contains
       keys = [character(len=16) :: 'group', '']
     case ('boundary')
       keys = [character(len=16) :: 'surface', 'kind']
+    case ('contact')
+      keys = [character(len=16) :: 'master', 'slave']
     case default
       keys = ''
     end select

@@ -6,11 +6,12 @@ module udar_config
   implicit none
   private
   public :: run_cfg_t, mesh_cfg_t, material_cfg_t, part_cfg_t, boundary_cfg_t, &
-            numerics_cfg_t, output_cfg_t, config_t
+            numerics_cfg_t, output_cfg_t, contact_cfg_t, config_t
   public :: eos_linear, eos_mie_gruneisen, strength_none, strength_elastic, &
             strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
             bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, wall_coulomb, &
-            jc_rate_total, jc_rate_plastic
+            jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
+            overlap_report, overlap_move
 
   ! integer codes the kernels dispatch on (strings stay in the deck)
   integer, parameter :: eos_linear = 1, eos_mie_gruneisen = 2
@@ -19,6 +20,8 @@ module udar_config
   integer, parameter :: bc_fixed = 1, bc_symmetry = 2, bc_rigid_wall = 3
   integer, parameter :: wall_frictionless = 1, wall_sticking = 2, wall_coulomb = 3
   integer, parameter :: jc_rate_total = 1, jc_rate_plastic = 2
+  integer, parameter :: contact_weights_distance = 1, contact_weights_area = 2
+  integer, parameter :: overlap_report = 1, overlap_move = 2
 
   type :: run_cfg_t
     character(len=256) :: title = 'udar run'
@@ -89,6 +92,19 @@ module udar_config
     integer  :: checkpoint_keep = 2    !< -, newest checkpoints kept
   end type
 
+  !> One contact interface (the seed paper's slideline algorithm): slave
+  !> nodes kept out of master triangles.
+  type :: contact_cfg_t
+    character(len=max_name_len) :: master = ''   !< part (physical volume) or physical surface group name
+    character(len=max_name_len) :: slave = ''    !< part (physical volume) or physical surface group name
+    real(rk) :: friction = 0.0_rk                !< -, algorithmic friction coefficient f (0 = free sliding)
+    integer  :: iterations = 2                   !< -, passes of the velocity matching over the contact nodes
+    real(rk) :: tolerance = 0.0_rk               !< m/s, stop iterating below this normal-velocity mismatch; 0 = all passes
+    logical  :: symmetric = .false.              !< also a pass with master and slave swapped
+    integer  :: weights = contact_weights_distance   !< shares of the master nodes: distance (paper eq. 12) | area
+    integer  :: initial_overlap = overlap_report     !< slave nodes behind the master at t = 0: report | move
+  end type
+
   type :: config_t
     character(len=max_path_len) :: deck_file = ''
     character(len=:), allocatable :: resolved_text   !< the fully resolved deck, for output attributes
@@ -99,5 +115,6 @@ module udar_config
     type(material_cfg_t), allocatable :: materials(:)
     type(part_cfg_t), allocatable :: parts(:)
     type(boundary_cfg_t), allocatable :: boundaries(:)
+    type(contact_cfg_t), allocatable :: contacts(:)
   end type
 end module udar_config

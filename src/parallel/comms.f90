@@ -12,7 +12,7 @@ module udar_comms
             comms_is_root, comms_barrier, comms_min, comms_max, comms_wtime, &
             comms_min_int, comms_max_int, comms_sum_int, comms_sum_exact, comms_alltoall_counts, &
             comms_alltoallv_int, comms_bcast_int, comms_halo_exchange, comms_halo_exchange_scalar, &
-            comms_halo_bytes, comms_world_handle, comms_info_null_handle
+            comms_halo_bytes, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, comms_world_handle, comms_info_null_handle
 
   !> A halo: which local nodes go to and come from which neighbour rank.
   !> Built once (udar_halo); the exchange itself allocates nothing.
@@ -167,6 +167,40 @@ contains
     end do
     call MPI_Alltoallv(send, send_counts, sdisp, MPI_INTEGER, recv, recv_counts, rdisp, MPI_INTEGER, &
                        MPI_COMM_WORLD, ierr)
+  end subroutine
+
+  !> counts(q) = n of rank q, on every rank.
+  subroutine comms_allgather_count(n, counts)
+    integer, intent(in) :: n
+    integer, intent(out) :: counts(0:)
+    integer :: ierr
+    call MPI_Allgather(n, 1, MPI_INTEGER, counts, 1, MPI_INTEGER, MPI_COMM_WORLD, ierr)
+  end subroutine
+
+  !> Every rank's send(1:counts(rank)) concatenated in rank order, on every rank.
+  subroutine comms_allgatherv_int(send, counts, recv)
+    integer, intent(in) :: send(:), counts(0:)
+    integer, intent(out) :: recv(:)
+    integer :: disp(0:n_ranks-1), q, ierr
+    disp(0) = 0
+    do q = 1, n_ranks - 1
+      disp(q) = disp(q-1) + counts(q-1)
+    end do
+    call MPI_Allgatherv(send, counts(my_rank), MPI_INTEGER, recv, counts, disp, MPI_INTEGER, MPI_COMM_WORLD, ierr)
+  end subroutine
+
+  !> As comms_allgatherv_int, for reals (counts in reals).
+  subroutine comms_allgatherv_real(send, counts, recv)
+    real(rk), intent(in) :: send(:)
+    integer, intent(in) :: counts(0:)
+    real(rk), intent(out) :: recv(:)
+    integer :: disp(0:n_ranks-1), q, ierr
+    disp(0) = 0
+    do q = 1, n_ranks - 1
+      disp(q) = disp(q-1) + counts(q-1)
+    end do
+    call MPI_Allgatherv(send, counts(my_rank), MPI_DOUBLE_PRECISION, recv, counts, disp, MPI_DOUBLE_PRECISION, &
+                        MPI_COMM_WORLD, ierr)
   end subroutine
 
   !> Rank 0's array to every rank.

@@ -29,6 +29,8 @@ module udar_run
   use udar_signals, only: signals_install, signal_received
   use udar_hash, only: hash_hex
   use udar_strings, only: itoa
+  use udar_contact_model, only: contact_t
+  use udar_contact, only: contact_enforce, contact_overlaps
   use udar_files, only: rename_file
   implicit none
   private
@@ -47,6 +49,7 @@ module udar_run
   type :: balance_t
     real(rk) :: kinetic = 0, internal = 0, plastic = 0, wall_work = 0, total = 0, error = 0
     real(rk) :: momentum(3) = 0, wall_force = 0
+    real(rk), allocatable :: contact_normal(:), contact_friction(:)   !< N, per interface
     real(rk), allocatable :: part_ke(:), part_com(:,:), part_mass(:)
     integer(i8), allocatable :: acc(:,:)   !< exact accumulators, one column per summed quantity
   end type
@@ -64,10 +67,11 @@ contains
 
   !> Runs the deck from t = 0, or from a checkpoint (restart_path not empty).
   !> model_hash, mesh_hash: what a checkpoint must match to be accepted.
-  subroutine run_simulation(cfg, dom, halo, restart_path, model_hash, mesh_hash, res)
+  subroutine run_simulation(cfg, dom, halo, ct, restart_path, model_hash, mesh_hash, res)
     type(config_t), intent(in) :: cfg
     type(domain_t), intent(inout) :: dom
     type(halo_t), intent(inout) :: halo
+    type(contact_t), intent(inout) :: ct
     character(len=*), intent(in) :: restart_path
     integer(i8), intent(in) :: model_hash, mesh_hash
     type(run_result_t), intent(out) :: res
@@ -83,6 +87,7 @@ contains
     integer, parameter :: balance_interval = 10
     character(len=:), allocatable :: errmsg, base, why
     character(len=256) :: line
+    character(len=300), allocatable :: overlap_lines(:)
 
     wall0 = comms_wtime()
     no = size(dom%el_owned_list)
@@ -91,7 +96,7 @@ contains
     res%field_file = base//'.h5'
     res%history_file = base//'_history.csv'
     allocate(work_node(dom%n_owned_nodes,3))
-    allocate(row(size(history_columns(dom))))
+    allocate(row(size(history_columns(dom, ct))))
     allocate(walls%impulse(0:exact_limbs, size(dom%walls)))
     walls%impulse = 0
     st%model_hash = model_hash
@@ -130,9 +135,13 @@ contains
       call log_info(line)
     else
       call open_outputs()
+      call contact_overlaps(ct, dom, overlap_lines)
+      do k = 1, size(overlap_lines)
+        call log_info(trim(overlap_lines(k)))
+      end do
       call element_stable_dt(dom, st%dt_stable)
       st%dt_stable = comms_min(st%dt_stable)
-      call compute_balance(dom, walls, bal)
+      call compute_balance(dom, walls, ct, bal)
       st%e0 = bal%kinetic + bal%internal
       st%e_ref = max(abs(st%e0), tiny(1.0_rk))
       call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
@@ -175,6 +184,7 @@ contains
       call apply_rigid_walls(dom, dt, walls%work, walls%impulse)
       walls%dt_v = dt_v
       call update_positions(dom, dt)
+      call contact_enforce(ct, dom, dt)
       call comms_halo_exchange(halo, dom%nd_x, dom%nd_v)
       st%t = st%t + dt
       st%cycle = st%cycle + 1
@@ -216,7 +226,7 @@ contains
       print_due = mod(st%cycle, cfg%run%cycle_print) == 0 .or. done
       ! the balance costs a pass over the mesh: every few cycles is enough to catch a blow-up
       if (history_due .or. print_due .or. mod(st%cycle, balance_interval) == 0) then
-        call compute_balance(dom, walls, bal)
+        call compute_balance(dom, walls, ct, bal)
         bal%error = (bal%total - bal%wall_work - st%e0)/max(st%e_ref, bal%kinetic)
       end if
       if (.not. ieee_is_finite(bal%total) .or. abs(bal%error) > cfg%run%energy_error_limit) then
@@ -272,6 +282,13 @@ contains
         write(line, '(a,i8,a,es11.4,a,es10.3,a,es10.2,a,f9.1,a)') 'cycle', st%cycle, '  t ', st%t, ' s  dt ', dt, &
           ' s  energy error ', bal%error, '  wall left ', left, ' s'
         call log_info(line)
+        do k = 1, ct%n_interfaces
+          if (ct%ifc(k)%n_active == 0) cycle
+          write(line, '(a,i0,a,es10.3,a,es10.3,a)') '         contact '//trim(ct%ifc(k)%name)//': ', &
+            ct%ifc(k)%n_active, ' slave nodes corrected, deepest ', ct%ifc(k)%max_depth, ' m, normal force ', &
+            bal%contact_normal(k), ' N'
+          call log_info(line)
+        end do
       end if
     end do
     call fw_close(fw)
@@ -343,7 +360,7 @@ contains
                    cfg%resolved_text, program_version, trim(cfg%run%title), comms_size(), ok, errmsg)
       call fatal_unless_all_ok(exit_io, ok, errmsg)
       if (comms_is_root()) then
-        call history_open(hist, base//'_history.csv', history_columns(dom), ok, errmsg)
+        call history_open(hist, base//'_history.csv', history_columns(dom, ct), ok, errmsg)
         if (.not. ok) call fatal(exit_io, errmsg)
       end if
     end subroutine
@@ -355,7 +372,7 @@ contains
       bad_out = 0
       errmsg = ''
       if (comms_is_root()) then
-        call history_reopen(hist, base//'_history.csv', history_columns(dom), st%cycle, ok, errmsg)
+        call history_reopen(hist, base//'_history.csv', history_columns(dom, ct), st%cycle, ok, errmsg)
         if (.not. ok) bad_out = 1
       end if
       if (comms_max_int(bad_out) /= 0) call fatal_all(exit_io, 'restart: '//errmsg)
@@ -463,19 +480,29 @@ contains
     tag = comms_min_int(entry_or_huge(tags, i))
   end subroutine
 
-  function history_columns(dom) result(cols)
+  !> Decks with contact get, after the parts, each interface's normal and
+  !> friction force.
+  function history_columns(dom, ct) result(cols)
     type(domain_t), intent(in) :: dom
+    type(contact_t), intent(in) :: ct
     character(len=80), allocatable :: cols(:)
-    integer :: ip
+    integer :: ip, nc
     character(len=80) :: base(13) = [character(len=80) :: 'time', 'cycle', 'dt', 'kinetic', 'internal', &
       'plastic_work', 'wall_work', 'total', 'energy_error', 'momentum_x', 'momentum_y', 'momentum_z', 'wall_force']
-    allocate(cols(13 + 4*dom%n_parts))
+    nc = 2*ct%n_interfaces
+    allocate(cols(13 + 4*dom%n_parts + nc))
     cols(1:13) = base
     do ip = 1, dom%n_parts
       cols(13 + 4*ip - 3) = 'ke_'//trim(dom%part_name(ip))
       cols(13 + 4*ip - 2) = 'com_x_'//trim(dom%part_name(ip))
       cols(13 + 4*ip - 1) = 'com_y_'//trim(dom%part_name(ip))
       cols(13 + 4*ip) = 'com_z_'//trim(dom%part_name(ip))
+    end do
+    if (nc == 0) return
+    ip = 13 + 4*dom%n_parts
+    do nc = 1, ct%n_interfaces
+      cols(ip + 2*nc - 1) = 'contact_normal_'//trim(ct%ifc(nc)%name)
+      cols(ip + 2*nc) = 'contact_friction_'//trim(ct%ifc(nc)%name)
     end do
   end function
 
@@ -493,14 +520,19 @@ contains
       row(13 + 4*ip - 3) = bal%part_ke(ip)
       row(13 + 4*ip - 2:13 + 4*ip) = bal%part_com(ip,:)
     end do
+    do ip = 1, size(bal%contact_normal)
+      row(12 + 4*np + 2*ip) = bal%contact_normal(ip)
+      row(13 + 4*np + 2*ip) = bal%contact_friction(ip)
+    end do
     call history_write(hist, row)
   end subroutine
 
   !> Global sums over the owned nodes and elements, exact (udar_exact_sum),
   !> hence the same for any partition. Collective.
-  subroutine compute_balance(dom, walls, bal)
+  subroutine compute_balance(dom, walls, ct, bal)
     type(domain_t), intent(in) :: dom
     type(wall_sums_t), intent(in) :: walls
+    type(contact_t), intent(in) :: ct
     type(balance_t), intent(inout) :: bal
     integer, parameter :: c_kin = 1, c_int = 2, c_pla = 3, c_mom = 4, c_work = 7, c_wall = 8
     integer :: n, e, ip, i, np, nw, c_part
@@ -554,5 +586,12 @@ contains
       end do
     end do
     bal%total = bal%kinetic + bal%internal
+    ! the contact pass is replicated: its sums are already the same on every rank
+    if (.not. allocated(bal%contact_normal)) allocate(bal%contact_normal(ct%n_interfaces), &
+                                                      bal%contact_friction(ct%n_interfaces))
+    do i = 1, ct%n_interfaces
+      bal%contact_normal(i) = ct%ifc(i)%normal_impulse/walls%dt_v
+      bal%contact_friction(i) = ct%ifc(i)%friction_impulse/walls%dt_v
+    end do
   end subroutine
 end module udar_run

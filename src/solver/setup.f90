@@ -15,7 +15,7 @@ module udar_setup
   use udar_strength, only: initial_hardening, thermal_softening
   implicit none
   private
-  public :: build_domain, count_bodies, build_incidence, build_blocks
+  public :: build_domain, count_bodies, build_incidence, build_blocks, find_group, group_list
 
 contains
 

@@ -20,6 +20,7 @@ module test_deck_support
   private
   public :: run_all
 
+  character(len=*), parameter :: nl = achar(10)
   character(len=:), allocatable :: dir, scratch
   integer :: nfail = 0
 
@@ -67,6 +68,8 @@ contains
                       trim(bad_decks(k)%frag_line), trim(bad_decks(k)%frag2), trim(bad_decks(k)%frag3))
     end do
     call test_several()
+    call test_contact_errors()
+    call test_no_contact()
 
     failures = nfail
   end subroutine run_all
@@ -157,6 +160,69 @@ contains
 
   end subroutine test_several
 
+  !> The mistakes of &contact groups, each named at its line: required names,
+  !> self-contact, choice words, ranges.
+  subroutine test_contact_errors()
+    character(len=*), parameter :: f = 'bad_contact.nml'
+    type(config_t) :: cfg
+    type(input_errors_t) :: errs
+    integer :: before
+
+    call deck_read(dir//f, cfg, errs)
+    before = nfail
+    call has(f//":7: &contact #1 'plate': slave is required", 'physical surface group')
+    call has(f//":8: &contact #2 'plate': weights = 'nearest'", "unknown choice; valid: 'distance', 'area'")
+    call has(f//":9: &contact #3 'plate': friction = -1", 'must be >= 0')
+    call has(f//":10: &contact #4 'sphere': slave = 'sphere'", 'self-contact is not supported yet')
+    call has(f//":11: &contact #5 'plate': master is required", 'a part')
+    call has(f//':11:', 'iterations = 0', 'must be >= 1')
+    call has(f//':11:', "initial_overlap = 'ignore'", "unknown choice; valid: 'report', 'move'")
+    call has(f//":12: &contact #6 'plate': tolerance = -0.1", 'must be >= 0 (m/s)')
+    if (nfail == before .and. errs%count() /= 8) &
+         call fail('contact_errors', 'expected 8 messages, got '//itoa(errs%count()))
+    if (nfail == before .and. allocated(cfg%resolved_text)) &
+         call fail('contact_errors', 'resolved_text set although the deck has errors')
+    if (nfail == before) then
+      call pass('contact_errors')
+    else
+      call dump(errs)
+    end if
+
+  contains
+
+    subroutine has(a, b, c)
+      character(len=*), intent(in) :: a, b
+      character(len=*), intent(in), optional :: c
+      character(len=:), allocatable :: c_
+      c_ = ''
+      if (present(c)) c_ = c
+      if (.not. errs%contains_text(a, b, c_)) &
+           call fail('contact_errors', 'no message containing "'//a//'" "'//b//'" "'//c_//'"')
+    end subroutine has
+
+  end subroutine test_contact_errors
+
+  !> A deck without &contact: no contacts (an allocated array of size 0), none
+  !> in the resolved deck.
+  subroutine test_no_contact()
+    type(config_t) :: cfg
+    type(input_errors_t) :: errs
+
+    call deck_read(dir//'no_contact.nml', cfg, errs)
+    if (errs%count() /= 0) then
+      call fail('no_contact', 'unexpected errors')
+      call dump(errs)
+    else if (.not. allocated(cfg%contacts)) then
+      call fail('no_contact', 'cfg%contacts not allocated')
+    else if (size(cfg%contacts) /= 0) then
+      call fail('no_contact', 'size(cfg%contacts) = '//itoa(size(cfg%contacts)))
+    else if (index(cfg%resolved_text, '&contact') > 0) then
+      call fail('no_contact', '&contact in the resolved deck')
+    else
+      call pass('no_contact')
+    end if
+  end subroutine test_no_contact
+
   subroutine test_missing_deck()
     type(config_t) :: cfg
     type(input_errors_t) :: errs
@@ -240,6 +306,20 @@ contains
                'symmetry')
     call check(cfg%boundaries(3)%wall_type == wall_coulomb .and. cfg%boundaries(3)%friction == 0.2_rk, &
                'coulomb wall with friction')
+    call check(size(cfg%contacts) == 2, 'number of contacts')
+    if (size(cfg%contacts) == 2) then
+      associate(c => cfg%contacts(1), d => cfg%contacts(2))
+        call check(c%master == 'plate' .and. c%slave == 'sphere', 'contact 1 names')
+        call check(c%friction == 0.18_rk .and. c%iterations == 3 .and. c%tolerance == 0.01_rk, &
+                   'contact 1 numbers')
+        call check(c%symmetric .and. c%weights == contact_weights_area .and. &
+                   c%initial_overlap == overlap_move, 'contact 1 switches (choices case-insensitive)')
+        call check(d%master == 'x0' .and. d%slave == 'sphere', 'contact 2 names')
+        call check(d%friction == 0 .and. d%iterations == 2 .and. d%tolerance == 0 .and. &
+                   .not. d%symmetric .and. d%weights == contact_weights_distance .and. &
+                   d%initial_overlap == overlap_report, 'contact 2 defaults')
+      end associate
+    end if
     call check(.not. cfg%numerics%anti_locking .and. cfg%numerics%q_linear == 0.1_rk, 'numerics')
     call check(cfg%output%directory == 'out/run 1' .and. cfg%output%case_name == 'valid', &
                'output, default case_name')
@@ -252,6 +332,14 @@ contains
     call check(index(cfg%resolved_text, "dt_max = ") > 0, 'dt_max listed')
     call check(index(cfg%resolved_text, '(default)') > 0, '(default) markers')
     call check(index(cfg%resolved_text, '(derived: rho0*c0**2)') > 0, '(derived) marker')
+    call check(index(cfg%resolved_text, nl//'&contact'//nl//"  master = 'plate'"//nl) > 0, &
+               '&contact listed')
+    call check(has_line("  tolerance = 0.01", '! m/s'), 'contact tolerance with its unit')
+    call check(has_line("  weights = 'area'", '! distance | area'), 'contact weights with its choices')
+    call check(has_line("  iterations = 2", '! - (default)'), 'contact iterations (default)')
+    call check(has_line("  symmetric = .false.", '! (default)'), 'contact symmetric (default)')
+    call check(has_line("  initial_overlap = 'report'", '! report | move (default)'), &
+               'contact initial_overlap (default)')
     if (nfail == before) call pass('resolved_text_markers')
 
     ! round trip: the resolved deck reads back to the same configuration,
@@ -269,6 +357,12 @@ contains
     else
       call fail('deck_where', 'got "'//where//'"')
     end if
+    where = deck_where(cfg, 'contact', 2, 'slave')
+    if (index(where, "valid.nml:59: &contact #2 'x0': slave = 'sphere'") > 0) then
+      call pass('deck_where_contact')
+    else
+      call fail('deck_where_contact', 'got "'//where//'"')
+    end if
 
   contains
 
@@ -277,6 +371,25 @@ contains
       character(len=*), intent(in) :: what
       if (.not. ok) call fail('valid_deck', what)
     end subroutine check
+
+    !> The resolved deck has a line that starts with start (the variable and
+    !> its value) and ends with comment (unit and marker).
+    logical function has_line(start, comment)
+      character(len=*), intent(in) :: start, comment
+      integer :: i, j
+      has_line = .false.
+      i = 1
+      do while (i <= len(cfg%resolved_text))
+        j = index(cfg%resolved_text(i:), nl)
+        if (j == 0) j = len(cfg%resolved_text) - i + 2
+        associate(line => cfg%resolved_text(i:i+j-2))
+          if (index(line, start) == 1 .and. len(line) >= len(comment)) then
+            if (line(len(line)-len(comment)+1:) == comment) has_line = .true.
+          end if
+        end associate
+        i = i + j
+      end do
+    end function has_line
 
     !> The resolved deck text must read back to cfg.
     subroutine round_trip(name, text)
@@ -322,6 +435,8 @@ contains
       why = 'number of parts'
     else if (size(a%boundaries) /= size(b%boundaries)) then
       why = 'number of boundaries'
+    else if (size(a%contacts) /= size(b%contacts)) then
+      why = 'number of contacts'
     end if
     if (len(why) > 0) return
     associate(r => a%run, s => b%run)
@@ -379,6 +494,18 @@ contains
         if (any(p%normal /= q%normal)) why = 'boundary%normal'
         if (p%wall_type /= q%wall_type) why = 'boundary%wall_type'
         if (p%friction /= q%friction) why = 'boundary%friction'
+      end associate
+    end do
+    do k = 1, size(a%contacts)
+      associate(p => a%contacts(k), q => b%contacts(k))
+        if (p%master /= q%master) why = 'contact%master'
+        if (p%slave /= q%slave) why = 'contact%slave'
+        if (p%friction /= q%friction) why = 'contact%friction'
+        if (p%iterations /= q%iterations) why = 'contact%iterations'
+        if (p%tolerance /= q%tolerance) why = 'contact%tolerance'
+        if (p%symmetric .neqv. q%symmetric) why = 'contact%symmetric'
+        if (p%weights /= q%weights) why = 'contact%weights'
+        if (p%initial_overlap /= q%initial_overlap) why = 'contact%initial_overlap'
       end associate
     end do
     if (a%numerics%anti_locking .neqv. b%numerics%anti_locking) why = 'numerics%anti_locking'

@@ -1,0 +1,288 @@
+!> The contact pass of each cycle (after the nodes have moved, before the
+!> halo exchange): every rank gathers the state of all contact nodes, runs
+!> the same pass over the slave nodes in ascending global id (search,
+!> penetration test, return to the surface, velocity matching with
+!> friction, iterations), and keeps the results for its own local nodes.
+!> Replicated work, O(surface nodes) per rank, and bitwise the same on any
+!> number of ranks.
+module udar_contact
+  use udar_kinds, only: rk
+  use udar_domain, only: domain_t
+  use udar_contact_model, only: contact_t, interface_t
+  use udar_contact_search, only: grid_build, grid_cell
+  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities
+  use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real
+  implicit none
+  private
+  public :: contact_distribute, contact_enforce, contact_overlaps
+
+  !> a projection this far outside a triangle (in area coordinates) still
+  !> counts as on it: no slave node slips through the seam of two triangles
+  real(rk), parameter :: edge_tolerance = 1.0e-3_rk
+  !> penetration beyond one step's approach still taken as crossed (of the
+  !> mean master edge): rounding and the master triangle's own motion
+  real(rk), parameter :: residual_tolerance = 1.0e-3_rk
+
+contains
+
+  !> Local view and gather layout of the contact nodes on this rank
+  !> (collective).
+  subroutine contact_distribute(ct, loc)
+    type(contact_t), intent(inout) :: ct
+    type(domain_t), intent(in) :: loc
+    integer, allocatable :: pos_of_global(:), owned_counts(:)
+    integer :: n, p, np
+    if (ct%n_interfaces == 0) return
+    np = comms_size()
+    allocate(pos_of_global(loc%n_global_nodes), source=0)
+    pos_of_global(ct%gidx) = [(p, p = 1, ct%n_nodes)]
+    allocate(ct%local(ct%n_nodes), source=0)
+    do n = 1, loc%n_nodes
+      p = pos_of_global(loc%nd_gidx(n))
+      if (p > 0) ct%local(p) = n
+    end do
+    ct%owned_pos = pack([(p, p = 1, ct%n_nodes)], ct%local > 0)
+    ct%owned_pos = pack(ct%owned_pos, ct%local(ct%owned_pos) <= loc%n_owned_nodes)
+    allocate(owned_counts(0:np-1), ct%counts(0:np-1), ct%gather_pos(ct%n_nodes))
+    call comms_allgather_count(size(ct%owned_pos), owned_counts)
+    call comms_allgatherv_int(ct%owned_pos, owned_counts, ct%gather_pos)
+    ct%counts = 6*owned_counts
+    allocate(ct%send(6*size(ct%owned_pos) + 1), ct%recv(6*ct%n_nodes))
+  end subroutine
+
+  !> Slave nodes behind their master surface before the first cycle:
+  !> counted, the deepest named, and moved onto the surface if the interface
+  !> asks for it. Returns a report line per interface.
+  subroutine contact_overlaps(ct, dom, lines)
+    type(contact_t), intent(inout) :: ct
+    type(domain_t), intent(inout) :: dom
+    character(len=300), allocatable, intent(out) :: lines(:)
+    integer :: i, n_found, worst
+    real(rk) :: depth
+    allocate(lines(ct%n_interfaces))
+    if (ct%n_interfaces == 0) return
+    call gather_state(ct, dom)
+    do i = 1, ct%n_interfaces
+      ! anything behind the surface by up to one master element counts
+      call detect(ct, ct%ifc(i), ct%ifc(i)%h_mean, ct%ifc(i)%move_overlaps, 0.0_rk, n_found, depth, worst)
+      if (n_found == 0) then
+        write(lines(i), '(a)') 'contact '//trim(ct%ifc(i)%name)//': no initial overlap'
+      else
+        write(lines(i), '(a,i0,a,es10.3,a,i0,a,3es11.3,a)') 'contact '//trim(ct%ifc(i)%name)//': ', n_found, &
+          ' slave nodes start behind the master surface, deepest ', depth, ' m (node ', dom_tag(worst), ' at ', &
+          ct%x(:,worst), ' m)'//merge('; moved onto the surface', '                        ', ct%ifc(i)%move_overlaps)
+      end if
+    end do
+    call scatter_state(ct, dom)
+  contains
+    integer function dom_tag(p)
+      integer, intent(in) :: p
+      dom_tag = ct%gidx(p)
+    end function
+  end subroutine
+
+  !> One contact pass (every rank, same data, same order).
+  subroutine contact_enforce(ct, dom, dt)
+    type(contact_t), intent(inout) :: ct
+    type(domain_t), intent(inout) :: dom
+    real(rk), intent(in) :: dt
+    integer :: i, n_found, worst
+    real(rk) :: vmax, margin, depth
+    if (ct%n_interfaces == 0) return
+    call gather_state(ct, dom)
+    ! nothing crosses unseen: a slave node and a triangle close by at most
+    ! twice the fastest contact node's step
+    vmax = 0
+    do i = 1, ct%n_nodes
+      vmax = max(vmax, norm2(ct%v(:,i)))
+    end do
+    do i = 1, ct%n_interfaces
+      margin = 2.0_rk*vmax*dt + 0.05_rk*ct%ifc(i)%h_mean
+      call detect(ct, ct%ifc(i), margin, .true., dt, n_found, depth, worst)
+    end do
+    call scatter_state(ct, dom)
+  end subroutine
+
+  !> Finds the slave nodes of interface it behind a master triangle by at
+  !> most depth_limit and corrects them (if move). With dt > 0 (a cycle) the
+  !> velocities are matched and every velocity change dv also moves its node
+  !> by dt dv, as if the corrected velocity had been used for the step: the
+  !> positions stay consistent with the central-difference update, and most
+  !> of the penetration is undone by momentum rather than by a jump. What
+  !> then remains behind the surface is projected out along the normal
+  !> (eq. 5). With dt = 0 (before the first cycle) the slave nodes are only
+  !> projected.
+  subroutine detect(ct, it, depth_limit, move, dt, n_found, deepest, worst)
+    type(contact_t), intent(inout) :: ct
+    type(interface_t), intent(inout) :: it
+    real(rk), intent(in) :: depth_limit, dt
+    logical, intent(in) :: move
+    integer, intent(out) :: n_found, worst
+    real(rk), intent(out) :: deepest
+    real(rk), allocatable :: lo(:,:), hi(:,:), normal(:,:), area(:,:), share(:,:)
+    integer, allocatable :: active(:), on_tri(:)
+    real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), dvs(3), dvm(3,3), dn, dtan, &
+                mismatch, vm(3,3)
+    integer :: nt, t, k, c, s, ps, best, iter, a, pa
+    logical :: closing
+    nt = size(it%tri, 2)
+    allocate(lo(3,nt), hi(3,nt))
+    do t = 1, nt
+      do a = 1, 3
+        xa(:,a) = ct%x(:,it%tri(a,t))
+      end do
+      lo(:,t) = minval(xa, dim=2) - depth_limit
+      hi(:,t) = maxval(xa, dim=2) + depth_limit
+    end do
+    call grid_build(it%grid, lo, hi)
+    allocate(active(size(it%slave)), on_tri(size(it%slave)), normal(3,size(it%slave)), area(3,size(it%slave)), &
+             share(3,size(it%slave)))
+    n_found = 0
+    deepest = 0
+    worst = 0
+    ! ---- search: each slave node's master triangle, in ascending global id
+    do k = 1, size(it%slave)
+      ps = it%slave(k)
+      call nearest_behind(ps, best, best_dist, best_n, best_g)
+      if (best == 0) cycle
+      n_found = n_found + 1
+      if (-best_dist > deepest) then
+        deepest = -best_dist
+        worst = ps
+      end if
+      active(n_found) = ps
+      on_tri(n_found) = best
+      normal(:,n_found) = best_n
+      area(:,n_found) = best_g
+      do a = 1, 3
+        xa(:,a) = ct%x(:,it%tri(a,best))
+      end do
+      call master_shares(it%weights, xa, ct%x(:,ps), best_g, share(:,n_found))
+    end do
+    it%n_active = n_found
+    it%max_depth = deepest
+    it%normal_impulse = 0
+    it%friction_impulse = 0
+    if (.not. move) return
+    ! ---- velocity matching with friction, repeated: a correction moves master
+    ! nodes that earlier slave nodes were matched to
+    if (dt > 0.0_rk) then
+      do iter = 1, it%iterations
+        mismatch = 0
+        do k = 1, n_found
+          ps = active(k)
+          t = on_tri(k)
+          do a = 1, 3
+            vm(:,a) = ct%v(:,it%tri(a,t))
+          end do
+          call match_velocities(normal(:,k), ct%m(ps), ct%v(:,ps), ct%m(it%tri(:,t)), vm, area(:,k), &
+                                share(:,k), it%friction, dvs, dvm, closing, dn, dtan)
+          if (.not. closing) cycle
+          mismatch = max(mismatch, dn)
+          ! contact forces are internal: momentum is exchanged exactly, and
+          ! whatever energy the matching dissipates shows in the energy error
+          ct%v(:,ps) = ct%v(:,ps) + dvs
+          ct%x(:,ps) = ct%x(:,ps) + dt*dvs
+          do a = 1, 3
+            pa = it%tri(a,t)
+            ct%v(:,pa) = vm(:,a) + dvm(:,a)
+            ct%x(:,pa) = ct%x(:,pa) + dt*dvm(:,a)
+          end do
+          it%normal_impulse = it%normal_impulse + ct%m(ps)*dn
+          it%friction_impulse = it%friction_impulse + ct%m(ps)*dtan
+        end do
+        if (it%tolerance > 0.0_rk .and. mismatch < it%tolerance) exit
+      end do
+    end if
+    ! ---- what is left behind the surface goes back along the normal (eq. 5)
+    do k = 1, n_found
+      ps = active(k)
+      do a = 1, 3
+        xa(:,a) = ct%x(:,it%tri(a,on_tri(k)))
+      end do
+      call triangle_projection(xa, ct%x(:,ps), n, dist, g)
+      if (dist < 0.0_rk) ct%x(:,ps) = ct%x(:,ps) - dist*n
+    end do
+
+  contains
+
+    !> The master triangle slave node ps is behind (by at most depth_limit,
+    !> its projection on the triangle). In a cycle, the one the node is
+    !> moving into fastest: at an edge or a corner of the master body the
+    !> node is formally behind the side faces too (by rounding), but it
+    !> crossed the face it moves into; a node moving away from every face
+    !> is separating and left alone. Before the first cycle (dt = 0): the
+    !> shallowest. Ties: the lowest triangle index.
+    subroutine nearest_behind(ps, best, best_dist, best_n, best_g)
+      integer, intent(in) :: ps
+      integer, intent(out) :: best
+      real(rk), intent(out) :: best_dist, best_n(3), best_g(3)
+      real(rk) :: closing, best_closing, gc(3)
+      best = 0
+      best_dist = -huge(1.0_rk)
+      best_closing = 0
+      c = grid_cell(it%grid, ct%x(:,ps))
+      if (c == 0) return
+      do s = it%grid%start(c), it%grid%start(c+1) - 1
+        t = it%grid%items(s)
+        if (any(it%tri(:,t) == ps)) cycle
+        if (any(ct%x(:,ps) < lo(:,t)) .or. any(ct%x(:,ps) > hi(:,t))) cycle
+        do a = 1, 3
+          xa(:,a) = ct%x(:,it%tri(a,t))
+        end do
+        call triangle_projection(xa, ct%x(:,ps), n, dist, g)
+        if (dist >= 0.0_rk .or. dist < -depth_limit .or. any(g < -edge_tolerance)) cycle
+        if (dt > 0.0_rk) then
+          gc = max(g, 0.0_rk)/sum(max(g, 0.0_rk))
+          closing = dot_product(n, gc(1)*ct%v(:,it%tri(1,t)) + gc(2)*ct%v(:,it%tri(2,t)) &
+                                   + gc(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps))
+          if (closing <= 0.0_rk) cycle
+          ! it crossed this triangle during the step: no deeper than its approach
+          ! (plus rounding), else the triangle is a side face it lies behind
+          if (-dist > closing*dt + residual_tolerance*it%h_mean) cycle
+          if (closing < best_closing .or. (closing == best_closing .and. dist <= best_dist)) cycle
+          best_closing = closing
+        else if (dist <= best_dist) then
+          cycle
+        end if
+        best = t; best_dist = dist; best_n = n; best_g = g
+      end do
+    end subroutine
+  end subroutine
+
+  !> x and v of every contact node, from their owners, into ct (collective).
+  subroutine gather_state(ct, dom)
+    type(contact_t), intent(inout) :: ct
+    type(domain_t), intent(in) :: dom
+    integer :: k, p, n
+    if (comms_size() == 1) then
+      ct%x = dom%nd_x(:, ct%local)
+      ct%v = dom%nd_v(:, ct%local)
+      return
+    end if
+    do k = 1, size(ct%owned_pos)
+      n = ct%local(ct%owned_pos(k))
+      ct%send(6*k-5:6*k-3) = dom%nd_x(:,n)
+      ct%send(6*k-2:6*k) = dom%nd_v(:,n)
+    end do
+    call comms_allgatherv_real(ct%send, ct%counts, ct%recv)
+    do k = 1, ct%n_nodes
+      p = ct%gather_pos(k)
+      ct%x(:,p) = ct%recv(6*k-5:6*k-3)
+      ct%v(:,p) = ct%recv(6*k-2:6*k)
+    end do
+  end subroutine
+
+  !> The corrected x and v back into this rank's nodes (owned and ghost).
+  subroutine scatter_state(ct, dom)
+    type(contact_t), intent(in) :: ct
+    type(domain_t), intent(inout) :: dom
+    integer :: p, n
+    do p = 1, ct%n_nodes
+      n = ct%local(p)
+      if (n == 0) cycle
+      dom%nd_x(:,n) = ct%x(:,p)
+      dom%nd_v(:,n) = ct%v(:,p)
+    end do
+  end subroutine
+end module udar_contact

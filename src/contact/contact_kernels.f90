@@ -1,0 +1,122 @@
+!> The seed paper's contact correction for one slave node against one
+!> master triangle (Yugov, Belov, Khabibullin, Starenchenko 1998, eqs. 1-23,
+!> with the corrections of doc/theory.md). Pure kernels: no state, no I/O.
+module udar_contact_kernels
+  use udar_kinds, only: rk
+  use udar_config, only: contact_weights_distance
+  implicit none
+  private
+  public :: triangle_projection, master_shares, match_velocities
+
+contains
+
+  !> Unit normal n of triangle (xa(:,1), xa(:,2), xa(:,3)) (counter-clockwise
+  !> seen from outside the master body: n points out of it), signed distance
+  !> of xs from its plane (eq. 4; negative = behind the surface), and the area
+  !> coordinates g of the projection of xs onto the plane (eqs. 14-15 in
+  !> the triangle's own plane, valid for any orientation).
+  pure subroutine triangle_projection(xa, xs, n, dist, g)
+    real(rk), intent(in) :: xa(3,3), xs(3)
+    real(rk), intent(out) :: n(3), dist, g(3)
+    real(rk) :: e1(3), e2(3), c(3), area2, p(3)
+    e1 = xa(:,2) - xa(:,1)
+    e2 = xa(:,3) - xa(:,1)
+    c = cross(e1, e2)                   ! (A, B, C) of eq. 2
+    area2 = norm2(c)
+    n = c/area2
+    dist = dot_product(n, xs - xa(:,1))
+    p = xs - dist*n
+    ! sub-triangle areas opposite each vertex, signed by the normal
+    g(1) = dot_product(n, cross(xa(:,2) - p, xa(:,3) - p))/area2
+    g(2) = dot_product(n, cross(xa(:,3) - p, xa(:,1) - p))/area2
+    g(3) = 1.0_rk - g(1) - g(2)
+  end subroutine
+
+  !> Shares R of the slave node's momentum for the three master nodes:
+  !> inversely proportional to the distances r_a = |xs - x_a| (eqs. 6-12:
+  !> R_i = 1/(1 + r_i/r_j + r_i/r_k), a node at r = 0 takes all), or the
+  !> area coordinates g (weights = area). Sum R = 1.
+  pure subroutine master_shares(weights, xa, xs, g, r_share)
+    integer, intent(in) :: weights
+    real(rk), intent(in) :: xa(3,3), xs(3), g(3)
+    real(rk), intent(out) :: r_share(3)
+    real(rk) :: r(3)
+    integer :: a
+    if (weights == contact_weights_distance) then
+      do a = 1, 3
+        r(a) = norm2(xs - xa(:,a))
+      end do
+      if (any(r == 0.0_rk)) then
+        r_share = merge(1.0_rk, 0.0_rk, r == 0.0_rk)
+        r_share = r_share/sum(r_share)
+      else
+        ! R_a = (1/r_a) / sum(1/r_b): the same as eq. 12, without divisions by small r
+        r_share = [r(2)*r(3), r(1)*r(3), r(1)*r(2)]
+        r_share = r_share/sum(r_share)
+      end if
+    else
+      r_share = max(g, 0.0_rk)
+      r_share = r_share/sum(r_share)
+    end if
+  end subroutine
+
+  !> Velocity matching (eqs. 13, 16-18) and algorithmic friction (eqs.
+  !> 19-23, with the stick limit) of slave node s (mass ms, velocity vs)
+  !> against the master triangle's nodes (masses mm, velocities vm(:,a)) at
+  !> area coordinates g with shares r_share, along the unit normal n.
+  !> Returns the velocity changes; momentum is conserved: ms dvs + sum_a
+  !> mm(a) dvm(:,a) = 0. Only a compressive change is made: a slave node
+  !> moving away from the surface is left alone (separation), and then
+  !> closing = .false.. dn, dt: the normal and friction velocity changes
+  !> of the slave node (>= 0), for the interface's impulse.
+  pure subroutine match_velocities(n, ms, vs, mm, vm, g, r_share, friction, dvs, dvm, closing, dn, dt)
+    real(rk), intent(in) :: n(3), ms, vs(3), mm(3), vm(3,3), g(3), r_share(3), friction
+    real(rk), intent(out) :: dvs(3), dvm(3,3), dn, dt
+    logical, intent(out) :: closing
+    real(rk) :: v_master(3), denom, vs1(3), vm1(3,3), vr(3), vr_mag, e(3), gc(3)
+    integer :: a
+    dvs = 0.0_rk
+    dvm = 0.0_rk
+    dn = 0.0_rk
+    dt = 0.0_rk
+    gc = max(g, 0.0_rk)                     ! the contact point inside the triangle
+    gc = gc/sum(gc)
+    v_master = gc(1)*vm(:,1) + gc(2)*vm(:,2) + gc(3)*vm(:,3)
+    ! eq. 17: the denominator that makes the normal velocities equal afterwards
+    denom = 1.0_rk + ms*(gc(1)*r_share(1)/mm(1) + gc(2)*r_share(2)/mm(2) + gc(3)*r_share(3)/mm(3))
+    dn = dot_product(n, v_master - vs)/denom
+    closing = dn > 0.0_rk
+    if (.not. closing) then
+      dn = 0.0_rk
+      return
+    end if
+    dvs = dn*n
+    do a = 1, 3
+      dvm(:,a) = -(r_share(a)*ms*dn/mm(a))*n
+    end do
+    if (friction <= 0.0_rk) return
+    ! friction: along the relative tangential velocity after the normal change,
+    ! at most f times the normal change and at most what makes it zero (stick)
+    vs1 = vs + dvs
+    do a = 1, 3
+      vm1(:,a) = vm(:,a) + dvm(:,a)
+    end do
+    v_master = gc(1)*vm1(:,1) + gc(2)*vm1(:,2) + gc(3)*vm1(:,3)
+    vr = v_master - vs1
+    vr = vr - dot_product(vr, n)*n
+    vr_mag = norm2(vr)
+    if (vr_mag <= 0.0_rk) return
+    e = vr/vr_mag
+    dt = min(friction*dn, vr_mag/denom)
+    dvs = dvs + dt*e
+    do a = 1, 3
+      dvm(:,a) = dvm(:,a) - (r_share(a)*ms*dt/mm(a))*e
+    end do
+  end subroutine
+
+  pure function cross(a, b) result(c)
+    real(rk), intent(in) :: a(3), b(3)
+    real(rk) :: c(3)
+    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
+  end function
+end module udar_contact_kernels

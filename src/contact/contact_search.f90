@@ -1,0 +1,115 @@
+!> Bucket search for contact: a uniform grid of cubic cells over the master
+!> triangles' bounding boxes (widened by the search margin); a slave node
+!> looks only at the triangles listed in its own cell. Built by counting
+!> sort in O(triangles + cells); a query is O(1) for a reasonable mesh.
+!> Pure kernels on an explicit grid type: no module state.
+module udar_contact_search
+  use udar_kinds, only: rk
+  implicit none
+  private
+  public :: bucket_grid_t, grid_build, grid_cell
+
+  type, public :: bucket_grid_t
+    real(rk) :: lo(3) = 0, cell = 1       !< m: grid origin, cell edge
+    integer :: n(3) = 1                    !< cells per direction
+    integer, allocatable :: start(:)       !< CSR over cells (size n1*n2*n3 + 1)
+    integer, allocatable :: items(:)       !< triangle indices, ascending in each cell
+  end type
+
+  !> At most this many cells per triangle on average: bounds the memory
+  !> when a few triangles are much larger than the rest.
+  integer, parameter :: max_cells_per_triangle = 8
+
+contains
+
+  !> Grid over boxes [lo(:,t), hi(:,t)] (already widened by the margin).
+  pure subroutine grid_build(grid, box_lo, box_hi)
+    type(bucket_grid_t), intent(inout) :: grid
+    real(rk), intent(in) :: box_lo(:,:), box_hi(:,:)
+    integer :: nt, t, i, j, k, c, n_cells
+    integer :: c_lo(3), c_hi(3)
+    integer, allocatable :: fill(:)
+    real(rk) :: extent(3), size_max
+    nt = size(box_lo, 2)
+    if (allocated(grid%start)) deallocate(grid%start)
+    if (allocated(grid%items)) deallocate(grid%items)
+    if (nt == 0) then
+      grid%n = 1
+      allocate(grid%start(2), source=1)
+      allocate(grid%items(0))
+      return
+    end if
+    grid%lo = minval(box_lo, dim=2)
+    extent = maxval(box_hi, dim=2) - grid%lo
+    ! cells as large as the largest box: each box covers at most 2 cells a direction
+    size_max = maxval(box_hi - box_lo)
+    grid%cell = max(size_max, maxval(extent)*1.0e-6_rk, tiny(1.0_rk))
+    do
+      grid%n = max(1, ceiling(extent/grid%cell))
+      if (real(grid%n(1), rk)*grid%n(2)*grid%n(3) <= real(max_cells_per_triangle, rk)*nt + 8) exit
+      grid%cell = grid%cell*1.25_rk
+    end do
+    n_cells = grid%n(1)*grid%n(2)*grid%n(3)
+    allocate(grid%start(n_cells + 1), source=0)
+    ! count, prefix sum, fill (triangles in ascending order in every cell)
+    do t = 1, nt
+      call cell_range(grid, box_lo(:,t), box_hi(:,t), c_lo, c_hi)
+      do k = c_lo(3), c_hi(3)
+        do j = c_lo(2), c_hi(2)
+          do i = c_lo(1), c_hi(1)
+            c = cell_index(grid, i, j, k)
+            grid%start(c + 1) = grid%start(c + 1) + 1
+          end do
+        end do
+      end do
+    end do
+    grid%start(1) = 1
+    do c = 1, n_cells
+      grid%start(c + 1) = grid%start(c + 1) + grid%start(c)
+    end do
+    allocate(grid%items(grid%start(n_cells + 1) - 1), fill(n_cells))
+    fill = grid%start(1:n_cells)
+    do t = 1, nt
+      call cell_range(grid, box_lo(:,t), box_hi(:,t), c_lo, c_hi)
+      do k = c_lo(3), c_hi(3)
+        do j = c_lo(2), c_hi(2)
+          do i = c_lo(1), c_hi(1)
+            c = cell_index(grid, i, j, k)
+            grid%items(fill(c)) = t
+            fill(c) = fill(c) + 1
+          end do
+        end do
+      end do
+    end do
+  end subroutine
+
+  !> The cell holding point p, or 0 when p is outside the grid.
+  pure integer function grid_cell(grid, p) result(c)
+    type(bucket_grid_t), intent(in) :: grid
+    real(rk), intent(in) :: p(3)
+    integer :: ijk(3)
+    c = 0
+    if (any(p < grid%lo)) return
+    ijk = int((p - grid%lo)/grid%cell) + 1
+    if (any(ijk > grid%n)) then
+      ! the upper faces of the grid belong to the last cells
+      if (any(p > grid%lo + grid%n*grid%cell)) return
+      ijk = min(ijk, grid%n)
+    end if
+    c = cell_index(grid, ijk(1), ijk(2), ijk(3))
+  end function
+
+  pure subroutine cell_range(grid, lo, hi, c_lo, c_hi)
+    type(bucket_grid_t), intent(in) :: grid
+    real(rk), intent(in) :: lo(3), hi(3)
+    integer, intent(out) :: c_lo(3), c_hi(3)
+    c_lo = min(max(int((lo - grid%lo)/grid%cell) + 1, 1), grid%n)
+    c_hi = min(max(int((hi - grid%lo)/grid%cell) + 1, 1), grid%n)
+  end subroutine
+
+  pure integer function cell_index(grid, i, j, k)
+    type(bucket_grid_t), intent(in) :: grid
+    integer, intent(in) :: i, j, k
+    cell_index = i + grid%n(1)*((j - 1) + grid%n(2)*(k - 1))
+  end function
+end module udar_contact_search

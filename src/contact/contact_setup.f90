@@ -1,0 +1,225 @@
+!> Contact surfaces from the deck and the mesh (global domain, every rank
+!> alike): master triangles oriented out of their body, slave nodes, and
+!> the list of contact nodes whose state the contact pass needs.
+module udar_contact_setup
+  use udar_kinds, only: rk
+  use udar_config, only: config_t, overlap_move
+  use udar_gmsh, only: gmsh_mesh_t
+  use udar_domain, only: domain_t
+  use udar_input_errors, only: input_errors_t
+  use udar_deck, only: deck_where
+  use udar_setup, only: find_group, group_list
+  use udar_strings, only: itoa, to_lower
+  use udar_contact_model, only: contact_t, interface_t
+  implicit none
+  private
+  public :: build_contact
+
+  !> local nodes of the face opposite each tet corner
+  integer, parameter :: tet_face(3,4) = reshape([2,3,4, 1,4,3, 1,2,4, 1,3,2], [3,4])
+
+contains
+
+  subroutine build_contact(cfg, mesh, glob, ct, errs)
+    type(config_t), intent(in) :: cfg
+    type(gmsh_mesh_t), intent(in) :: mesh
+    type(domain_t), intent(in) :: glob
+    type(contact_t), intent(out) :: ct
+    type(input_errors_t), intent(inout) :: errs
+    integer, allocatable :: face(:,:), face_part(:), master(:,:), slave(:), tri_all(:,:), cn_of(:)
+    type(interface_t), allocatable :: ifc(:)
+    integer :: k, n_err0, nf, n_ifc, i, mark_count
+    logical, allocatable :: is_contact(:)
+    character(len=:), allocatable :: mname, sname
+
+    ct%n_interfaces = 0
+    allocate(ct%ifc(0), ct%gidx(0))
+    if (.not. allocated(cfg%contacts)) return
+    if (size(cfg%contacts) == 0) return
+    n_err0 = errs%count()
+    call exterior_faces(glob, face, face_part, nf)
+    n_ifc = size(cfg%contacts) + count(cfg%contacts%symmetric)
+    allocate(ifc(n_ifc))
+    i = 0
+    do k = 1, size(cfg%contacts)
+      associate (c => cfg%contacts(k))
+        call surface(c%master, 'master', k, master, mname)
+        call surface(c%slave, 'slave', k, tri_all, sname)
+        if (errs%count() > n_err0) cycle
+        slave = unique_nodes(tri_all)
+        i = i + 1
+        call make_interface(ifc(i), master, slave, sname//'_on_'//mname)
+        if (c%symmetric) then
+          i = i + 1
+          call make_interface(ifc(i), tri_all, unique_nodes(master), mname//'_on_'//sname)
+        end if
+      end associate
+    end do
+    if (errs%count() > n_err0) return
+
+    ! contact nodes: every node of a master triangle or a slave set
+    allocate(is_contact(glob%n_nodes), source=.false.)
+    do i = 1, n_ifc
+      is_contact(reshape(ifc(i)%tri, [size(ifc(i)%tri)])) = .true.
+      is_contact(ifc(i)%slave) = .true.
+    end do
+    mark_count = count(is_contact)
+    ct%gidx = pack([(k, k = 1, glob%n_nodes)], is_contact)
+    allocate(cn_of(glob%n_nodes), source=0)
+    cn_of(ct%gidx) = [(k, k = 1, mark_count)]
+    do i = 1, n_ifc
+      ifc(i)%tri = reshape(cn_of(reshape(ifc(i)%tri, [size(ifc(i)%tri)])), shape(ifc(i)%tri))
+      ifc(i)%slave = cn_of(ifc(i)%slave)
+    end do
+    ct%n_nodes = mark_count
+    ct%n_interfaces = n_ifc
+    call move_alloc(ifc, ct%ifc)
+    ct%m = glob%nd_mass(ct%gidx)
+    allocate(ct%x(3, ct%n_nodes), ct%v(3, ct%n_nodes))
+    ct%x = glob%nd_x(:, ct%gidx)
+    ct%v = glob%nd_v(:, ct%gidx)
+
+  contains
+
+    !> The triangles of a part's boundary (name of a part) or of a physical
+    !> surface group, in global node indices, oriented out of their body.
+    subroutine surface(name, role, k, tri, label)
+      character(len=*), intent(in) :: name, role
+      integer, intent(in) :: k
+      integer, allocatable, intent(out) :: tri(:,:)
+      character(len=:), allocatable, intent(out) :: label
+      integer :: ip, ig
+      label = trim(name)
+      ip = 0
+      do ip = 1, size(cfg%parts)
+        if (to_lower(trim(cfg%parts(ip)%group)) == to_lower(trim(name))) exit
+      end do
+      if (ip <= size(cfg%parts)) then
+        tri = face(:, pack([(i, i = 1, nf)], face_part(1:nf) == ip))
+        return
+      end if
+      ig = find_group(mesh, trim(name), 2)
+      if (ig > 0) then
+        call group_triangles(ig, tri)
+        if (size(tri, 2) == 0) call errs%add(deck_where(cfg, 'contact', k, role)//": surface group '"// &
+          trim(name)//"' has no triangle on the boundary of the mesh")
+        return
+      end if
+      allocate(tri(3,0))
+      call errs%add(deck_where(cfg, 'contact', k, role)//": '"//trim(name)//"' is neither a part nor a "// &
+        'physical surface group of '//trim(cfg%mesh%file)//' (parts: '//group_list(mesh, 3)// &
+        '; surface groups: '//group_list(mesh, 2)//')')
+    end subroutine
+
+    !> The exterior faces (of any part) whose nodes are all nodes of the
+    !> triangles of physical surface group ig.
+    subroutine group_triangles(ig, tri)
+      integer, intent(in) :: ig
+      integer, allocatable, intent(out) :: tri(:,:)
+      logical, allocatable :: in_group(:)
+      integer, allocatable :: node_g(:)
+      integer :: t, a, f
+      call mesh_to_global(mesh, glob, node_g)
+      allocate(in_group(glob%n_nodes), source=.false.)
+      do t = 1, mesh%n_tris
+        if (mesh%tri_group(t) /= ig) cycle
+        do a = 1, 3
+          if (node_g(mesh%tri(t,a)) > 0) in_group(node_g(mesh%tri(t,a))) = .true.
+        end do
+      end do
+      tri = face(:, pack([(f, f = 1, nf)], in_group(face(1,1:nf)) .and. in_group(face(2,1:nf)) .and. &
+                                           in_group(face(3,1:nf))))
+    end subroutine
+
+    subroutine make_interface(it, tri, slave_nodes, label)
+      type(interface_t), intent(inout) :: it
+      integer, intent(in) :: tri(:,:), slave_nodes(:)
+      character(len=*), intent(in) :: label
+      integer :: t
+      real(rk) :: s
+      it%name = label
+      it%tri = tri
+      it%slave = slave_nodes
+      it%friction = cfg%contacts(k)%friction
+      it%iterations = cfg%contacts(k)%iterations
+      it%tolerance = cfg%contacts(k)%tolerance
+      it%weights = cfg%contacts(k)%weights
+      it%move_overlaps = cfg%contacts(k)%initial_overlap == overlap_move
+      s = 0
+      do t = 1, size(tri, 2)
+        s = s + norm2(glob%nd_x(:,tri(2,t)) - glob%nd_x(:,tri(1,t))) + norm2(glob%nd_x(:,tri(3,t)) - &
+            glob%nd_x(:,tri(2,t))) + norm2(glob%nd_x(:,tri(1,t)) - glob%nd_x(:,tri(3,t)))
+      end do
+      it%h_mean = s/max(3*size(tri, 2), 1)
+    end subroutine
+  end subroutine
+
+  !> Faces of each part's boundary: faces of its tetrahedra that no other
+  !> tetrahedron of the same part shares; counter-clockwise seen from outside.
+  subroutine exterior_faces(glob, face, face_part, nf)
+    type(domain_t), intent(in) :: glob
+    integer, allocatable, intent(out) :: face(:,:), face_part(:)
+    integer, intent(out) :: nf
+    integer :: e, f, k, e2, a, b, c
+    logical :: shared
+    allocate(face(3, 4*glob%n_elems), face_part(4*glob%n_elems))
+    nf = 0
+    do e = 1, glob%n_elems
+      do f = 1, 4
+        a = glob%el_conn(e, tet_face(1,f))
+        b = glob%el_conn(e, tet_face(2,f))
+        c = glob%el_conn(e, tet_face(3,f))
+        shared = .false.
+        do k = glob%nd_el_ptr(a), glob%nd_el_ptr(a+1) - 1
+          e2 = glob%nd_el(k)
+          if (e2 == e .or. glob%el_part(e2) /= glob%el_part(e)) cycle
+          if (any(glob%el_conn(e2,:) == b) .and. any(glob%el_conn(e2,:) == c)) then
+            shared = .true.
+            exit
+          end if
+        end do
+        if (shared) cycle
+        nf = nf + 1
+        face(:,nf) = [a, b, c]
+        face_part(nf) = glob%el_part(e)
+      end do
+    end do
+  end subroutine
+
+  !> Global node index of each mesh node (0 for nodes no tetrahedron uses),
+  !> through the mesh-file tags (ascending in the mesh).
+  subroutine mesh_to_global(mesh, glob, node_g)
+    type(gmsh_mesh_t), intent(in) :: mesh
+    type(domain_t), intent(in) :: glob
+    integer, allocatable, intent(out) :: node_g(:)
+    integer :: g, lo, hi, mid
+    allocate(node_g(mesh%n_nodes), source=0)
+    do g = 1, glob%n_nodes
+      lo = 1; hi = mesh%n_nodes
+      do while (lo < hi)
+        mid = (lo + hi)/2
+        if (mesh%node_tag(mid) < glob%nd_id(g)) then
+          lo = mid + 1
+        else
+          hi = mid
+        end if
+      end do
+      node_g(lo) = g
+    end do
+  end subroutine
+
+  !> The distinct nodes of a triangle list, ascending.
+  function unique_nodes(tri) result(nodes)
+    integer, intent(in) :: tri(:,:)
+    integer, allocatable :: nodes(:)
+    logical, allocatable :: mark(:)
+    integer :: n
+    if (size(tri) == 0) then
+      allocate(nodes(0))
+      return
+    end if
+    allocate(mark(maxval(tri)), source=.false.)
+    mark(reshape(tri, [size(tri)])) = .true.
+    nodes = pack([(n, n = 1, size(mark))], mark)
+  end function
+end module udar_contact_setup

@@ -1,0 +1,42 @@
+!> Contact interfaces as the time loop uses them. Every rank holds the same
+!> global surfaces and, each cycle, the same gathered state of every
+!> contact node, so every rank runs the identical contact pass (the
+!> results cannot depend on the partition); each then keeps what concerns
+!> its own nodes.
+module udar_contact_model
+  use udar_kinds, only: rk, max_name_len
+  use udar_contact_search, only: bucket_grid_t
+  implicit none
+  private
+
+  !> One direction of an interface: slave nodes against master triangles.
+  type, public :: interface_t
+    character(len=2*max_name_len+8) :: name = ''  !< 'slave_on_master', for the log and the history
+    integer, allocatable :: tri(:,:)       !< (3, n_tri) contact-node indices; counter-clockwise seen from outside
+    integer, allocatable :: slave(:)       !< contact-node indices, ascending (= ascending global id)
+    real(rk) :: friction = 0
+    integer :: iterations = 2, weights = 1
+    real(rk) :: tolerance = 0
+    logical :: move_overlaps = .false.     !< initial overlaps: move the slave nodes (else report only)
+    real(rk) :: h_mean = 0                 !< m, mean master edge length
+    type(bucket_grid_t) :: grid
+    ! the last cycle
+    real(rk) :: normal_impulse = 0, friction_impulse = 0   !< N s
+    integer :: n_active = 0                !< slave nodes corrected
+    real(rk) :: max_depth = 0              !< m, deepest penetration found (before the correction)
+  end type
+
+  type, public :: contact_t
+    integer :: n_interfaces = 0
+    type(interface_t), allocatable :: ifc(:)
+    integer :: n_nodes = 0                 !< contact nodes: every master-triangle node and slave node
+    integer, allocatable :: gidx(:)        !< their global node indices, ascending
+    real(rk), allocatable :: x(:,:), v(:,:), m(:)   !< (3,n), (3,n), (n): gathered state, masses
+    ! this rank's share
+    integer, allocatable :: local(:)       !< local node of each contact node, 0 if not on this rank
+    integer, allocatable :: owned_pos(:)   !< contact nodes this rank owns (their positions in gidx)
+    integer, allocatable :: gather_pos(:)  !< position in gidx of each entry of the gathered buffer
+    integer, allocatable :: counts(:)      !< reals each rank sends (6 per owned contact node)
+    real(rk), allocatable :: send(:), recv(:)
+  end type
+end module udar_contact_model
