@@ -93,3 +93,17 @@ for n in 2 4 8 16 64; do
 done
 mv "$scaling.tmp" "$scaling"
 echo "saved in $out and $scaling"
+
+# ---- contact: the 3 km/s rod onto a plate (tests/regression/rod_3kms) at three
+# mesh sizes (about 4x the surface nodes each): time per slave node-cycle and
+# the contact's share of the cycle; linear search cost = constant ns per node
+echo "# contact: steel rod onto a plate at 3 km/s, 1 us; contact time per slave node-cycle" | tee -a "$out"
+for h in 1.2e-3 0.6e-3 0.3e-3; do
+  gmsh -3 -v 0 -setnumber h $h tests/regression/rod_3kms/rod_3kms.geo -o "$W/rod.msh"
+  sed -e "s|file = 'rod_3kms.msh'|file = '$W/rod.msh'|" -e "s|directory = 'out'|directory = '$W/out'|" \
+      -e "s|dt_field = 0.25e-6|dt_field = 0.0|" tests/regression/rod_3kms/rod_3kms.nml > "$W/rod.nml"
+  bin/udar "$W/rod.nml" > "$W/log" 2>&1
+  tets=$(grep -o '[0-9]* tetrahedra' "$W/log" | head -1 | cut -d' ' -f1)
+  printf 'h %-7s %8s tets  %s\n' "$h" "$tets" "$(grep '^contact:' "$W/log")" | tee -a "$out"
+done
+echo "saved in $out"

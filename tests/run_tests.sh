@@ -24,11 +24,11 @@ run_test() {   # name, command...
 
 # a regression case: copy the deck and its mesh to tests/work/<case>, run it
 # with the given binary, then its check.py judges the output
-regression() {   # case, binary
-  local case=$1 exe=$2 dir=$WORK/$1
+regression() {   # case, binary [deck name, when the case has several]
+  local case=$1 exe=$2 deck=${3:-$1} dir=$WORK/${3:-$1}
   mkdir -p "$dir"
   cp tests/regression/$case/*.nml tests/regression/$case/*.msh "$dir"/
-  ( cd "$dir" && "$ROOT/$exe" $case.nml ) && $PYTHON tests/regression/$case/check.py "$dir"
+  ( cd "$dir" && "$ROOT/$exe" $deck.nml ) && $PYTHON tests/regression/$case/check.py "$dir" $deck
 }
 
 # ---- unit tests (debug build: bounds checks and floating-point traps on)
@@ -63,6 +63,9 @@ run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
 run_test "regression/plate_impact" regression plate_impact bin/udar-debug
 run_test "regression/coulomb_wall" regression coulomb_wall bin/udar-debug
 run_test "regression/blocks_head_on" regression blocks_head_on bin/udar-debug
+run_test "regression/oblique_friction" regression oblique_friction bin/udar-debug
+run_test "regression/oblique_stick" regression oblique_friction bin/udar-debug oblique_stick
+run_test "regression/rod_3kms" regression rod_3kms bin/udar
 run_test "regression/taylor_wg" regression taylor_wg bin/udar
 run_test "regression/taylor_ofhc_baseline" regression taylor_ofhc_baseline bin/udar
 

@@ -119,12 +119,12 @@ contains
     logical, intent(in) :: move
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
-    real(rk), allocatable :: lo(:,:), hi(:,:), normal(:,:), area(:,:), share(:,:)
+    real(rk), allocatable :: lo(:,:), hi(:,:), normal(:,:), area(:,:), share(:,:), dn_sum(:), dt_sum(:)
     integer, allocatable :: active(:), on_tri(:)
     real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), dvs(3), dvm(3,3), dn, dtan, &
                 mismatch, vm(3,3)
     integer :: nt, t, k, c, s, ps, best, iter, a, pa
-    logical :: closing
+    logical :: closing, separating
     nt = size(it%tri, 2)
     allocate(lo(3,nt), hi(3,nt))
     do t = 1, nt
@@ -136,15 +136,22 @@ contains
     end do
     call grid_build(it%grid, lo, hi)
     allocate(active(size(it%slave)), on_tri(size(it%slave)), normal(3,size(it%slave)), area(3,size(it%slave)), &
-             share(3,size(it%slave)))
+             share(3,size(it%slave)), dn_sum(size(it%slave)), dt_sum(size(it%slave)))
+    dn_sum = 0
+    dt_sum = 0
     n_found = 0
     deepest = 0
     worst = 0
     ! ---- search: each slave node's master triangle, in ascending global id
     do k = 1, size(it%slave)
       ps = it%slave(k)
-      call nearest_behind(ps, best, best_dist, best_n, best_g)
+      call nearest_behind(ps, .false., best, best_dist, best_n, best_g, separating)
       if (best == 0) cycle
+      if (separating) then
+        ! the paper releases it (no velocity change); it only goes back on the surface
+        if (move) ct%x(:,ps) = ct%x(:,ps) - best_dist*best_n
+        cycle
+      end if
       n_found = n_found + 1
       if (-best_dist > deepest) then
         deepest = -best_dist
@@ -176,8 +183,10 @@ contains
             vm(:,a) = ct%v(:,it%tri(a,t))
           end do
           call match_velocities(normal(:,k), ct%m(ps), ct%v(:,ps), ct%m(it%tri(:,t)), vm, area(:,k), &
-                                share(:,k), it%friction, dvs, dvm, closing, dn, dtan)
+                                share(:,k), it%friction, dn_sum(k), dt_sum(k), dvs, dvm, closing, dn, dtan)
           if (.not. closing) cycle
+          dn_sum(k) = dn_sum(k) + dn
+          dt_sum(k) = dt_sum(k) + dtan
           mismatch = max(mismatch, dn)
           ! contact forces are internal: momentum is exchanged exactly, and
           ! whatever energy the matching dissipates shows in the energy error
@@ -194,33 +203,62 @@ contains
         if (it%tolerance > 0.0_rk .and. mismatch < it%tolerance) exit
       end do
     end if
-    ! ---- what is left behind the surface goes back along the normal (eq. 5)
+    ! ---- what is left behind the surface goes back along the normal (eq. 5);
+    ! the largest relative tangential velocity left at a contact point (slip)
+    it%max_slip = 0
     do k = 1, n_found
       ps = active(k)
+      t = on_tri(k)
       do a = 1, 3
-        xa(:,a) = ct%x(:,it%tri(a,on_tri(k)))
+        xa(:,a) = ct%x(:,it%tri(a,t))
       end do
       call triangle_projection(xa, ct%x(:,ps), n, dist, g)
       if (dist < 0.0_rk) ct%x(:,ps) = ct%x(:,ps) - dist*n
+      ! back on one triangle's plane it may still be just behind a neighbour
+      ! facing about the same way (a concave edge, e.g. a crater wall): twice
+      ! more onto the shallowest such (not onto the side faces of a convex edge)
+      do iter = 1, 2
+        call nearest_behind(ps, .true., best, best_dist, best_n, best_g, separating, normal(:,k))
+        if (best == 0) exit
+        ct%x(:,ps) = ct%x(:,ps) - best_dist*best_n
+      end do
+      if (dt > 0.0_rk) then
+        g = max(area(:,k), 0.0_rk)/sum(max(area(:,k), 0.0_rk))
+        vm(:,1) = g(1)*ct%v(:,it%tri(1,t)) + g(2)*ct%v(:,it%tri(2,t)) + g(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps)
+        vm(:,1) = vm(:,1) - dot_product(vm(:,1), normal(:,k))*normal(:,k)
+        it%max_slip = max(it%max_slip, norm2(vm(:,1)))
+      end if
     end do
 
   contains
 
     !> The master triangle slave node ps is behind (by at most depth_limit,
-    !> its projection on the triangle). In a cycle, the one the node is
-    !> moving into fastest: at an edge or a corner of the master body the
-    !> node is formally behind the side faces too (by rounding), but it
-    !> crossed the face it moves into; a node moving away from every face
-    !> is separating and left alone. Before the first cycle (dt = 0): the
-    !> shallowest. Ties: the lowest triangle index.
-    subroutine nearest_behind(ps, best, best_dist, best_n, best_g)
+    !> its projection on the triangle). In a cycle: among the triangles it
+    !> moves into, one it crossed during this step (no deeper than its
+    !> approach over the step), the fastest approached; only when there is
+    !> none, the fastest approached of the others (a node left a little
+    !> behind by earlier cycles). At an edge or a corner of the master body
+    !> the node is also, by rounding, just behind the side faces, but it did
+    !> not cross them. A node moving away from every face is separating and
+    !> left alone. Before the first cycle (dt = 0): the shallowest. Ties:
+    !> the lowest triangle index.
+    subroutine nearest_behind(ps, geometric, best, best_dist, best_n, best_g, separating, n_ref)
       integer, intent(in) :: ps
+      logical, intent(in) :: geometric     !< the shallowest, whatever the velocities
+      real(rk), intent(in), optional :: n_ref(3)   !< only triangles facing within 60 degrees of it
       integer, intent(out) :: best
       real(rk), intent(out) :: best_dist, best_n(3), best_g(3)
-      real(rk) :: closing, best_closing, gc(3)
-      best = 0
-      best_dist = -huge(1.0_rk)
-      best_closing = 0
+      logical, intent(out) :: separating
+      real(rk) :: closing, best_closing, gc(3), other_closing, other_dist, other_n(3), other_g(3), &
+                  sep_dist, sep_n(3)
+      integer :: other, sep
+      integer :: t, c, s, a
+      real(rk) :: xa(3,3), n(3), dist, g(3)
+      best = 0; other = 0; sep = 0
+      sep_dist = -huge(1.0_rk)
+      separating = .false.
+      best_dist = -huge(1.0_rk); other_dist = -huge(1.0_rk)
+      best_closing = 0; other_closing = 0
       c = grid_cell(it%grid, ct%x(:,ps))
       if (c == 0) return
       do s = it%grid%start(c), it%grid%start(c+1) - 1
@@ -232,14 +270,26 @@ contains
         end do
         call triangle_projection(xa, ct%x(:,ps), n, dist, g)
         if (dist >= 0.0_rk .or. dist < -depth_limit .or. any(g < -edge_tolerance)) cycle
-        if (dt > 0.0_rk) then
+        if (present(n_ref)) then
+          if (dot_product(n, n_ref) < 0.5_rk) cycle
+        end if
+        if (dt > 0.0_rk .and. .not. geometric) then
           gc = max(g, 0.0_rk)/sum(max(g, 0.0_rk))
           closing = dot_product(n, gc(1)*ct%v(:,it%tri(1,t)) + gc(2)*ct%v(:,it%tri(2,t)) &
                                    + gc(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps))
-          if (closing <= 0.0_rk) cycle
-          ! it crossed this triangle during the step: no deeper than its approach
-          ! (plus rounding), else the triangle is a side face it lies behind
-          if (-dist > closing*dt + residual_tolerance*it%h_mean) cycle
+          if (closing <= 0.0_rk) then
+            ! behind but already moving out: remembered, to be put back on the surface
+            if (dist > sep_dist) then
+              sep = t; sep_dist = dist; sep_n = n
+            end if
+            cycle
+          end if
+          if (-dist > closing*dt + residual_tolerance*it%h_mean) then
+            ! behind, but deeper than this step's approach
+            if (closing < other_closing .or. (closing == other_closing .and. dist <= other_dist)) cycle
+            other = t; other_closing = closing; other_dist = dist; other_n = n; other_g = g
+            cycle
+          end if
           if (closing < best_closing .or. (closing == best_closing .and. dist <= best_dist)) cycle
           best_closing = closing
         else if (dist <= best_dist) then
@@ -247,6 +297,12 @@ contains
         end if
         best = t; best_dist = dist; best_n = n; best_g = g
       end do
+      if (best == 0 .and. other /= 0) then
+        best = other; best_dist = other_dist; best_n = other_n; best_g = other_g
+      else if (best == 0 .and. sep /= 0) then
+        best = sep; best_dist = sep_dist; best_n = sep_n
+        separating = .true.
+      end if
     end subroutine
   end subroutine
 

@@ -64,39 +64,45 @@ contains
   !> 19-23, with the stick limit) of slave node s (mass ms, velocity vs)
   !> against the master triangle's nodes (masses mm, velocities vm(:,a)) at
   !> area coordinates g with shares r_share, along the unit normal n.
+  !> One pass of the iterations: dn_before, dt_before are the normal and
+  !> friction velocity changes this node already had in this cycle; the
+  !> friction of all passes together stays within f times their normal
+  !> change (Coulomb), and each pass within what stops the slip (stick).
   !> Returns the velocity changes; momentum is conserved: ms dvs + sum_a
-  !> mm(a) dvm(:,a) = 0. Only a compressive change is made: a slave node
-  !> moving away from the surface is left alone (separation), and then
-  !> closing = .false.. dn, dt: the normal and friction velocity changes
-  !> of the slave node (>= 0), for the interface's impulse.
-  pure subroutine match_velocities(n, ms, vs, mm, vm, g, r_share, friction, dvs, dvm, closing, dn, dt)
-    real(rk), intent(in) :: n(3), ms, vs(3), mm(3), vm(3,3), g(3), r_share(3), friction
+  !> mm(a) dvm(:,a) = 0. Only a compressive normal change is made; a node
+  !> not yet corrected this cycle and moving away from the surface is left
+  !> alone (separation). acted: whether anything changed. dn, dt: this
+  !> pass's normal and friction velocity changes of the slave node (>= 0).
+  pure subroutine match_velocities(n, ms, vs, mm, vm, g, r_share, friction, dn_before, dt_before, dvs, dvm, &
+                                   acted, dn, dt)
+    real(rk), intent(in) :: n(3), ms, vs(3), mm(3), vm(3,3), g(3), r_share(3), friction, dn_before, dt_before
     real(rk), intent(out) :: dvs(3), dvm(3,3), dn, dt
-    logical, intent(out) :: closing
+    logical, intent(out) :: acted
     real(rk) :: v_master(3), denom, vs1(3), vm1(3,3), vr(3), vr_mag, e(3), gc(3)
     integer :: a
     dvs = 0.0_rk
     dvm = 0.0_rk
     dn = 0.0_rk
     dt = 0.0_rk
+    acted = .false.
     gc = max(g, 0.0_rk)                     ! the contact point inside the triangle
     gc = gc/sum(gc)
     v_master = gc(1)*vm(:,1) + gc(2)*vm(:,2) + gc(3)*vm(:,3)
     ! eq. 17: the denominator that makes the normal velocities equal afterwards
     denom = 1.0_rk + ms*(gc(1)*r_share(1)/mm(1) + gc(2)*r_share(2)/mm(2) + gc(3)*r_share(3)/mm(3))
     dn = dot_product(n, v_master - vs)/denom
-    closing = dn > 0.0_rk
-    if (.not. closing) then
-      dn = 0.0_rk
+    if (dn <= 0.0_rk .and. dn_before <= 0.0_rk) then
+      dn = 0.0_rk                          ! separating: released
       return
     end if
+    dn = max(dn, 0.0_rk)
     dvs = dn*n
     do a = 1, 3
       dvm(:,a) = -(r_share(a)*ms*dn/mm(a))*n
     end do
+    acted = dn > 0.0_rk
     if (friction <= 0.0_rk) return
-    ! friction: along the relative tangential velocity after the normal change,
-    ! at most f times the normal change and at most what makes it zero (stick)
+    ! friction: along the relative tangential velocity after the normal change
     vs1 = vs + dvs
     do a = 1, 3
       vm1(:,a) = vm(:,a) + dvm(:,a)
@@ -107,7 +113,9 @@ contains
     vr_mag = norm2(vr)
     if (vr_mag <= 0.0_rk) return
     e = vr/vr_mag
-    dt = min(friction*dn, vr_mag/denom)
+    dt = max(min(friction*(dn_before + dn) - dt_before, vr_mag/denom), 0.0_rk)
+    if (dt <= 0.0_rk) return
+    acted = .true.
     dvs = dvs + dt*e
     do a = 1, 3
       dvm(:,a) = dvm(:,a) - (r_share(a)*ms*dt/mm(a))*e

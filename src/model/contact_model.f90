@@ -24,6 +24,7 @@ module udar_contact_model
     real(rk) :: normal_impulse = 0, friction_impulse = 0   !< N s
     integer :: n_active = 0                !< slave nodes corrected
     real(rk) :: max_depth = 0              !< m, deepest penetration found (before the correction)
+    real(rk) :: max_slip = 0               !< m/s, largest relative tangential velocity left at a contact point
   end type
 
   type, public :: contact_t

@@ -50,6 +50,7 @@ module udar_run
     real(rk) :: kinetic = 0, internal = 0, plastic = 0, wall_work = 0, total = 0, error = 0
     real(rk) :: momentum(3) = 0, wall_force = 0
     real(rk), allocatable :: contact_normal(:), contact_friction(:)   !< N, per interface
+    real(rk), allocatable :: contact_slip(:)                          !< m/s, per interface
     real(rk), allocatable :: part_ke(:), part_com(:,:), part_mass(:)
     integer(i8), allocatable :: acc(:,:)   !< exact accumulators, one column per summed quantity
   end type
@@ -81,8 +82,9 @@ contains
     type(wall_sums_t) :: walls
     type(run_state_t) :: st
     real(rk), allocatable :: work_svm(:), work_rho(:), row(:), work_node(:,:), work_elem(:)
-    real(rk) :: dt, dt_v, wall0, elapsed, loop0, last_print_wall, left, ckpt_seconds, cycle_seconds
-    integer :: bad, bad_avg, bad_gidx, bad_tag, bad_part, last_print_cycle, no, k, stop_code, cycles_run
+    real(rk) :: dt, dt_v, wall0, elapsed, loop0, last_print_wall, left, ckpt_seconds, cycle_seconds, &
+                contact_seconds
+    integer :: bad, bad_avg, bad_gidx, bad_tag, bad_part, last_print_cycle, no, k, stop_code, cycles_run, n_slave
     logical :: ok, done, history_due, print_due, stopping
     integer, parameter :: balance_interval = 10
     character(len=:), allocatable :: errmsg, base, why
@@ -163,6 +165,7 @@ contains
     last_print_cycle = st%cycle
     cycles_run = 0
     ckpt_seconds = -1.0_rk      ! until measured: twice a field step's cost
+    contact_seconds = 0.0_rk
     do while (.not. done)
       ! ---- time step: the stable one, or what is left to t_end
       if (st%cycle == 0 .and. cfg%run%dt_initial > 0.0_rk) then
@@ -184,7 +187,9 @@ contains
       call apply_rigid_walls(dom, dt, walls%work, walls%impulse)
       walls%dt_v = dt_v
       call update_positions(dom, dt)
+      elapsed = comms_wtime()
       call contact_enforce(ct, dom, dt)
+      contact_seconds = contact_seconds + (comms_wtime() - elapsed)
       call comms_halo_exchange(halo, dom%nd_x, dom%nd_v)
       st%t = st%t + dt
       st%cycle = st%cycle + 1
@@ -302,6 +307,17 @@ contains
       call write_status(base, 'max_cycles', '')
     else
       call write_status(base, 'complete', '')
+    end if
+    if (ct%n_interfaces > 0) then
+      n_slave = 0
+      do k = 1, ct%n_interfaces
+        n_slave = n_slave + size(ct%ifc(k)%slave)
+      end do
+      write(line, '(a,f0.3,a,f0.1,a,i0,a,f0.1,a)') 'contact: ', contact_seconds, ' s (', &
+        100.0_rk*contact_seconds/max(comms_wtime() - loop0, tiny(1.0_rk)), ' % of the cycle loop), ', n_slave, &
+        ' slave nodes, ', 1.0e9_rk*contact_seconds/(real(n_slave, rk)*max(cycles_run, 1)), &
+        ' ns per slave node-cycle'
+      call log_info(line)
     end if
     res%stopped = stopping
     res%cycles = st%cycle
@@ -481,7 +497,7 @@ contains
   end subroutine
 
   !> Decks with contact get, after the parts, each interface's normal and
-  !> friction force.
+  !> friction force and its largest slip velocity left after the pass.
   function history_columns(dom, ct) result(cols)
     type(domain_t), intent(in) :: dom
     type(contact_t), intent(in) :: ct
@@ -489,7 +505,7 @@ contains
     integer :: ip, nc
     character(len=80) :: base(13) = [character(len=80) :: 'time', 'cycle', 'dt', 'kinetic', 'internal', &
       'plastic_work', 'wall_work', 'total', 'energy_error', 'momentum_x', 'momentum_y', 'momentum_z', 'wall_force']
-    nc = 2*ct%n_interfaces
+    nc = 3*ct%n_interfaces
     allocate(cols(13 + 4*dom%n_parts + nc))
     cols(1:13) = base
     do ip = 1, dom%n_parts
@@ -501,8 +517,9 @@ contains
     if (nc == 0) return
     ip = 13 + 4*dom%n_parts
     do nc = 1, ct%n_interfaces
-      cols(ip + 2*nc - 1) = 'contact_normal_'//trim(ct%ifc(nc)%name)
-      cols(ip + 2*nc) = 'contact_friction_'//trim(ct%ifc(nc)%name)
+      cols(ip + 3*nc - 2) = 'contact_normal_'//trim(ct%ifc(nc)%name)
+      cols(ip + 3*nc - 1) = 'contact_friction_'//trim(ct%ifc(nc)%name)
+      cols(ip + 3*nc) = 'contact_slip_'//trim(ct%ifc(nc)%name)
     end do
   end function
 
@@ -521,8 +538,9 @@ contains
       row(13 + 4*ip - 2:13 + 4*ip) = bal%part_com(ip,:)
     end do
     do ip = 1, size(bal%contact_normal)
-      row(12 + 4*np + 2*ip) = bal%contact_normal(ip)
-      row(13 + 4*np + 2*ip) = bal%contact_friction(ip)
+      row(11 + 4*np + 3*ip) = bal%contact_normal(ip)
+      row(12 + 4*np + 3*ip) = bal%contact_friction(ip)
+      row(13 + 4*np + 3*ip) = bal%contact_slip(ip)
     end do
     call history_write(hist, row)
   end subroutine
@@ -588,10 +606,11 @@ contains
     bal%total = bal%kinetic + bal%internal
     ! the contact pass is replicated: its sums are already the same on every rank
     if (.not. allocated(bal%contact_normal)) allocate(bal%contact_normal(ct%n_interfaces), &
-                                                      bal%contact_friction(ct%n_interfaces))
+                                                      bal%contact_friction(ct%n_interfaces), bal%contact_slip(ct%n_interfaces))
     do i = 1, ct%n_interfaces
       bal%contact_normal(i) = ct%ifc(i)%normal_impulse/walls%dt_v
       bal%contact_friction(i) = ct%ifc(i)%friction_impulse/walls%dt_v
+      bal%contact_slip(i) = ct%ifc(i)%max_slip
     end do
   end subroutine
 end module udar_run

@@ -28,5 +28,14 @@ def below(name, measured, limit, unit=''):
     return ok
 
 
+def above(name, measured, limit, unit=''):
+    """PASS when measured >= limit."""
+    ok = measured >= limit
+    print(f"{'PASS' if ok else 'FAIL'} {name}: {measured:.4g} {unit} >= {limit:.4g} {unit}")
+    if not ok:
+        _failed.append(name)
+    return ok
+
+
 def finish():
     sys.exit(1 if _failed else 0)
