@@ -119,26 +119,21 @@ contains
     logical, intent(in) :: move
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
-    real(rk), allocatable :: lo(:,:), hi(:,:), normal(:,:), area(:,:), share(:,:), dn_sum(:), dt_sum(:)
-    integer, allocatable :: active(:), on_tri(:)
     real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), dvs(3), dvm(3,3), dn, dtan, &
                 mismatch, vm(3,3)
     integer :: nt, t, k, c, s, ps, best, iter, a, pa
     logical :: closing, separating
     nt = size(it%tri, 2)
-    allocate(lo(3,nt), hi(3,nt))
     do t = 1, nt
       do a = 1, 3
         xa(:,a) = ct%x(:,it%tri(a,t))
       end do
-      lo(:,t) = minval(xa, dim=2) - depth_limit
-      hi(:,t) = maxval(xa, dim=2) + depth_limit
+      it%box_lo(:,t) = minval(xa, dim=2) - depth_limit
+      it%box_hi(:,t) = maxval(xa, dim=2) + depth_limit
     end do
-    call grid_build(it%grid, lo, hi)
-    allocate(active(size(it%slave)), on_tri(size(it%slave)), normal(3,size(it%slave)), area(3,size(it%slave)), &
-             share(3,size(it%slave)), dn_sum(size(it%slave)), dt_sum(size(it%slave)))
-    dn_sum = 0
-    dt_sum = 0
+    call grid_build(it%grid, it%box_lo, it%box_hi)
+    it%dn_sum = 0
+    it%dt_sum = 0
     n_found = 0
     deepest = 0
     worst = 0
@@ -157,14 +152,14 @@ contains
         deepest = -best_dist
         worst = ps
       end if
-      active(n_found) = ps
-      on_tri(n_found) = best
-      normal(:,n_found) = best_n
-      area(:,n_found) = best_g
+      it%active(n_found) = ps
+      it%on_tri(n_found) = best
+      it%normal(:,n_found) = best_n
+      it%area(:,n_found) = best_g
       do a = 1, 3
         xa(:,a) = ct%x(:,it%tri(a,best))
       end do
-      call master_shares(it%weights, xa, ct%x(:,ps), best_g, share(:,n_found))
+      call master_shares(it%weights, xa, ct%x(:,ps), best_g, it%share(:,n_found))
     end do
     it%n_active = n_found
     it%max_depth = deepest
@@ -177,16 +172,16 @@ contains
       do iter = 1, it%iterations
         mismatch = 0
         do k = 1, n_found
-          ps = active(k)
-          t = on_tri(k)
+          ps = it%active(k)
+          t = it%on_tri(k)
           do a = 1, 3
             vm(:,a) = ct%v(:,it%tri(a,t))
           end do
-          call match_velocities(normal(:,k), ct%m(ps), ct%v(:,ps), ct%m(it%tri(:,t)), vm, area(:,k), &
-                                share(:,k), it%friction, dn_sum(k), dt_sum(k), dvs, dvm, closing, dn, dtan)
+          call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), ct%m(it%tri(:,t)), vm, it%area(:,k), &
+                                it%share(:,k), it%friction, it%dn_sum(k), it%dt_sum(k), dvs, dvm, closing, dn, dtan)
           if (.not. closing) cycle
-          dn_sum(k) = dn_sum(k) + dn
-          dt_sum(k) = dt_sum(k) + dtan
+          it%dn_sum(k) = it%dn_sum(k) + dn
+          it%dt_sum(k) = it%dt_sum(k) + dtan
           mismatch = max(mismatch, dn)
           ! contact forces are internal: momentum is exchanged exactly, and
           ! whatever energy the matching dissipates shows in the energy error
@@ -207,8 +202,8 @@ contains
     ! the largest relative tangential velocity left at a contact point (slip)
     it%max_slip = 0
     do k = 1, n_found
-      ps = active(k)
-      t = on_tri(k)
+      ps = it%active(k)
+      t = it%on_tri(k)
       do a = 1, 3
         xa(:,a) = ct%x(:,it%tri(a,t))
       end do
@@ -218,14 +213,14 @@ contains
       ! facing about the same way (a concave edge, e.g. a crater wall): twice
       ! more onto the shallowest such (not onto the side faces of a convex edge)
       do iter = 1, 2
-        call nearest_behind(ps, .true., best, best_dist, best_n, best_g, separating, normal(:,k))
+        call nearest_behind(ps, .true., best, best_dist, best_n, best_g, separating, it%normal(:,k))
         if (best == 0) exit
         ct%x(:,ps) = ct%x(:,ps) - best_dist*best_n
       end do
       if (dt > 0.0_rk) then
-        g = max(area(:,k), 0.0_rk)/sum(max(area(:,k), 0.0_rk))
+        g = max(it%area(:,k), 0.0_rk)/sum(max(it%area(:,k), 0.0_rk))
         vm(:,1) = g(1)*ct%v(:,it%tri(1,t)) + g(2)*ct%v(:,it%tri(2,t)) + g(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps)
-        vm(:,1) = vm(:,1) - dot_product(vm(:,1), normal(:,k))*normal(:,k)
+        vm(:,1) = vm(:,1) - dot_product(vm(:,1), it%normal(:,k))*it%normal(:,k)
         it%max_slip = max(it%max_slip, norm2(vm(:,1)))
       end if
     end do
@@ -264,7 +259,7 @@ contains
       do s = it%grid%start(c), it%grid%start(c+1) - 1
         t = it%grid%items(s)
         if (any(it%tri(:,t) == ps)) cycle
-        if (any(ct%x(:,ps) < lo(:,t)) .or. any(ct%x(:,ps) > hi(:,t))) cycle
+        if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
         do a = 1, 3
           xa(:,a) = ct%x(:,it%tri(a,t))
         end do

@@ -14,6 +14,7 @@ module udar_contact_search
     integer :: n(3) = 1                    !< cells per direction
     integer, allocatable :: start(:)       !< CSR over cells (size n1*n2*n3 + 1)
     integer, allocatable :: items(:)       !< triangle indices, ascending in each cell
+    integer, allocatable :: fill(:)        !< work: next free slot of each cell
   end type
 
   !> At most this many cells per triangle on average: bounds the memory
@@ -28,15 +29,12 @@ contains
     real(rk), intent(in) :: box_lo(:,:), box_hi(:,:)
     integer :: nt, t, i, j, k, c, n_cells
     integer :: c_lo(3), c_hi(3)
-    integer, allocatable :: fill(:)
     real(rk) :: extent(3), size_max
     nt = size(box_lo, 2)
-    if (allocated(grid%start)) deallocate(grid%start)
-    if (allocated(grid%items)) deallocate(grid%items)
     if (nt == 0) then
       grid%n = 1
-      allocate(grid%start(2), source=1)
-      allocate(grid%items(0))
+      call ensure(grid%start, 2)
+      grid%start(1:2) = 1
       return
     end if
     grid%lo = minval(box_lo, dim=2)
@@ -50,7 +48,10 @@ contains
       grid%cell = grid%cell*1.25_rk
     end do
     n_cells = grid%n(1)*grid%n(2)*grid%n(3)
-    allocate(grid%start(n_cells + 1), source=0)
+    ! the arrays grow when needed and are kept: no allocation in a steady run
+    call ensure(grid%start, n_cells + 1)
+    call ensure(grid%fill, n_cells)
+    grid%start(1:n_cells+1) = 0
     ! count, prefix sum, fill (triangles in ascending order in every cell)
     do t = 1, nt
       call cell_range(grid, box_lo(:,t), box_hi(:,t), c_lo, c_hi)
@@ -67,20 +68,31 @@ contains
     do c = 1, n_cells
       grid%start(c + 1) = grid%start(c + 1) + grid%start(c)
     end do
-    allocate(grid%items(grid%start(n_cells + 1) - 1), fill(n_cells))
-    fill = grid%start(1:n_cells)
+    call ensure(grid%items, grid%start(n_cells + 1) - 1)
+    grid%fill(1:n_cells) = grid%start(1:n_cells)
     do t = 1, nt
       call cell_range(grid, box_lo(:,t), box_hi(:,t), c_lo, c_hi)
       do k = c_lo(3), c_hi(3)
         do j = c_lo(2), c_hi(2)
           do i = c_lo(1), c_hi(1)
             c = cell_index(grid, i, j, k)
-            grid%items(fill(c)) = t
-            fill(c) = fill(c) + 1
+            grid%items(grid%fill(c)) = t
+            grid%fill(c) = grid%fill(c) + 1
           end do
         end do
       end do
     end do
+  end subroutine
+
+  !> a has at least n entries (grown by half again when too small).
+  pure subroutine ensure(a, n)
+    integer, allocatable, intent(inout) :: a(:)
+    integer, intent(in) :: n
+    if (allocated(a)) then
+      if (size(a) >= n) return
+      deallocate(a)
+    end if
+    allocate(a(max(n, 3*n/2, 1)))
   end subroutine
 
   !> The cell holding point p, or 0 when p is outside the grid.

@@ -151,6 +151,9 @@ contains
             glob%nd_x(:,tri(2,t))) + norm2(glob%nd_x(:,tri(1,t)) - glob%nd_x(:,tri(3,t)))
       end do
       it%h_mean = s/max(3*size(tri, 2), 1)
+      allocate(it%box_lo(3, size(tri, 2)), it%box_hi(3, size(tri, 2)), it%active(size(slave_nodes)), &
+               it%on_tri(size(slave_nodes)), it%normal(3, size(slave_nodes)), it%area(3, size(slave_nodes)), &
+               it%share(3, size(slave_nodes)), it%dn_sum(size(slave_nodes)), it%dt_sum(size(slave_nodes)))
     end subroutine
   end subroutine
 

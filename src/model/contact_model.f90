@@ -20,6 +20,11 @@ module udar_contact_model
     logical :: move_overlaps = .false.     !< initial overlaps: move the slave nodes (else report only)
     real(rk) :: h_mean = 0                 !< m, mean master edge length
     type(bucket_grid_t) :: grid
+    ! work arrays of the pass, sized once (no allocation in the cycle)
+    real(rk), allocatable :: box_lo(:,:), box_hi(:,:)            !< (3, n_tri) widened bounding boxes
+    integer, allocatable :: active(:), on_tri(:)                   !< slave nodes found and their triangles
+    real(rk), allocatable :: normal(:,:), area(:,:), share(:,:)    !< (3, n_slave)
+    real(rk), allocatable :: dn_sum(:), dt_sum(:)                  !< velocity changes so far in the cycle
     ! the last cycle
     real(rk) :: normal_impulse = 0, friction_impulse = 0   !< N s
     integer :: n_active = 0                !< slave nodes corrected
