@@ -125,9 +125,7 @@ contains
     logical :: closing, separating
     nt = size(it%tri, 2)
     do t = 1, nt
-      do a = 1, 3
-        xa(:,a) = ct%x(:,it%tri(a,t))
-      end do
+      xa = ct%x(:, it%tri(:,t))
       it%box_lo(:,t) = minval(xa, dim=2) - depth_limit
       it%box_hi(:,t) = maxval(xa, dim=2) + depth_limit
     end do
@@ -156,9 +154,7 @@ contains
       it%on_tri(n_found) = best
       it%normal(:,n_found) = best_n
       it%area(:,n_found) = best_g
-      do a = 1, 3
-        xa(:,a) = ct%x(:,it%tri(a,best))
-      end do
+      xa = ct%x(:, it%tri(:,best))
       call master_shares(it%weights, xa, ct%x(:,ps), best_g, it%share(:,n_found))
     end do
     it%n_active = n_found
@@ -174,9 +170,7 @@ contains
         do k = 1, n_found
           ps = it%active(k)
           t = it%on_tri(k)
-          do a = 1, 3
-            vm(:,a) = ct%v(:,it%tri(a,t))
-          end do
+          vm = ct%v(:, it%tri(:,t))
           call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), ct%m(it%tri(:,t)), vm, it%area(:,k), &
                                 it%share(:,k), it%friction, it%dn_sum(k), it%dt_sum(k), dvs, dvm, closing, dn, dtan)
           if (.not. closing) cycle
@@ -204,9 +198,7 @@ contains
     do k = 1, n_found
       ps = it%active(k)
       t = it%on_tri(k)
-      do a = 1, 3
-        xa(:,a) = ct%x(:,it%tri(a,t))
-      end do
+      xa = ct%x(:, it%tri(:,t))
       call triangle_projection(xa, ct%x(:,ps), n, dist, g)
       if (dist < 0.0_rk) ct%x(:,ps) = ct%x(:,ps) - dist*n
       ! back on one triangle's plane it may still be just behind a neighbour
@@ -260,9 +252,7 @@ contains
         t = it%grid%items(s)
         if (any(it%tri(:,t) == ps)) cycle
         if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
-        do a = 1, 3
-          xa(:,a) = ct%x(:,it%tri(a,t))
-        end do
+        xa = ct%x(:, it%tri(:,t))
         call triangle_projection(xa, ct%x(:,ps), n, dist, g)
         if (dist >= 0.0_rk .or. dist < -depth_limit .or. any(g < -edge_tolerance)) cycle
         if (present(n_ref)) then
