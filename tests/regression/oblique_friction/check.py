@@ -20,6 +20,15 @@ touching = fn > 0.0
 ratio = (ft * h['dt']).sum() / (fn * h['dt']).sum()
 print(f"MEASURED {deck}: {touching.sum()} cycles in contact, friction/normal impulse {ratio:.5f}, "
       f"slip after the pass: median {np.median(slip[touching]):.3g} m/s, max {slip[touching].max():.3g} m/s")
+# separation: the elastic cube leaves the plate; the contact never pulls
+# (no tensile sticking): the normal force is never negative and is zero
+# once the cube moves away
+last = np.nonzero(touching)[0][-1]
+after = slice(last + 1, None)
+vz = np.polyfit(h['time'][after], h['com_z_block'][after], 1)[0] if h['time'][after].size > 2 else 0.0
+print(f"MEASURED contact ends at {h['time'][last] * 1e6:.2f} us; the cube then rises at {vz:.1f} m/s")
+checks.below('normal_force_never_tensile', min(fn.min(), 0.0), 0.0, 'N')
+checks.above('cube_leaves_the_plate_m_per_s', vz, 1.0, 'm/s')
 if deck == 'oblique_friction':
     checks.compare('friction_impulse_is_f_times_normal', ratio, 0.1, 0.02)
     checks.above('slides_median_slip', np.median(slip[touching]), 1.0, 'm/s')
