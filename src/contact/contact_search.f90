@@ -27,7 +27,7 @@ contains
   pure subroutine grid_build(grid, box_lo, box_hi)
     type(bucket_grid_t), intent(inout) :: grid
     real(rk), intent(in) :: box_lo(:,:), box_hi(:,:)
-    integer :: nt, t, i, j, k, c, n_cells
+    integer :: nt, t, i, j, k, c, n_cells, pass
     integer :: c_lo(3), c_hi(3)
     real(rk) :: extent(3), size_max
     nt = size(box_lo, 2)
@@ -52,32 +52,30 @@ contains
     call ensure(grid%start, n_cells + 1)
     call ensure(grid%fill, n_cells)
     grid%start(1:n_cells+1) = 0
-    ! count, prefix sum, fill (triangles in ascending order in every cell)
-    do t = 1, nt
-      call cell_range(grid, box_lo(:,t), box_hi(:,t), c_lo, c_hi)
-      do k = c_lo(3), c_hi(3)
-        do j = c_lo(2), c_hi(2)
-          do i = c_lo(1), c_hi(1)
-            c = cell_index(grid, i, j, k)
-            grid%start(c + 1) = grid%start(c + 1) + 1
-          end do
+    ! two sweeps over the boxes' cells: count, then (after the prefix sum)
+    ! fill; triangles end up in ascending order in every cell
+    do pass = 1, 2
+      if (pass == 2) then
+        grid%start(1) = 1
+        do c = 1, n_cells
+          grid%start(c + 1) = grid%start(c + 1) + grid%start(c)
         end do
-      end do
-    end do
-    grid%start(1) = 1
-    do c = 1, n_cells
-      grid%start(c + 1) = grid%start(c + 1) + grid%start(c)
-    end do
-    call ensure(grid%items, grid%start(n_cells + 1) - 1)
-    grid%fill(1:n_cells) = grid%start(1:n_cells)
-    do t = 1, nt
-      call cell_range(grid, box_lo(:,t), box_hi(:,t), c_lo, c_hi)
-      do k = c_lo(3), c_hi(3)
-        do j = c_lo(2), c_hi(2)
-          do i = c_lo(1), c_hi(1)
-            c = cell_index(grid, i, j, k)
-            grid%items(grid%fill(c)) = t
-            grid%fill(c) = grid%fill(c) + 1
+        call ensure(grid%items, grid%start(n_cells + 1) - 1)
+        grid%fill(1:n_cells) = grid%start(1:n_cells)
+      end if
+      do t = 1, nt
+        call cell_range(grid, box_lo(:,t), box_hi(:,t), c_lo, c_hi)
+        do k = c_lo(3), c_hi(3)
+          do j = c_lo(2), c_hi(2)
+            do i = c_lo(1), c_hi(1)
+              c = cell_index(grid, i, j, k)
+              if (pass == 1) then
+                grid%start(c + 1) = grid%start(c + 1) + 1
+              else
+                grid%items(grid%fill(c)) = t
+                grid%fill(c) = grid%fill(c) + 1
+              end if
+            end do
           end do
         end do
       end do

@@ -3,7 +3,7 @@ module udar_files
   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
   implicit none
   private
-  public :: rename_file, remove_file, remove_if_present
+  public :: rename_file, remove_if_present
 
   interface
     function c_rename(old, new) bind(c, name='rename') result(r)
@@ -26,11 +26,7 @@ contains
     ok = c_rename(old//c_null_char, new//c_null_char) == 0
   end function
 
-  logical function remove_file(path) result(ok)
-    character(len=*), intent(in) :: path
-    ok = c_remove(path//c_null_char) == 0
-  end function
-  !> Removes path if it exists; a missing file is not an error.
+ !> Removes path if it exists; a missing file is not an error.
   subroutine remove_if_present(path)
     character(len=*), intent(in) :: path
     if (c_remove(path//c_null_char) /= 0) return

@@ -11,8 +11,7 @@ module udar_comms
   public :: comms_init, comms_finalize, comms_abort, comms_exit, comms_rank, comms_size, &
             comms_is_root, comms_barrier, comms_min, comms_max, comms_wtime, &
             comms_min_int, comms_max_int, comms_sum_int, comms_sum_exact, comms_alltoall_counts, &
-            comms_alltoallv_int, comms_bcast_int, comms_halo_exchange, comms_halo_exchange_scalar, &
-            comms_halo_bytes, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, comms_world_handle, comms_info_null_handle
+            comms_alltoallv_int, comms_bcast_int, comms_halo_exchange, comms_halo_exchange_scalar, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, comms_world_handle, comms_info_null_handle
 
   !> A halo: which local nodes go to and come from which neighbour rank.
   !> Built once (udar_halo); the exchange itself allocates nothing.
@@ -265,14 +264,6 @@ contains
     s2(1:1, 1:size(s)) => s
     call comms_halo_exchange(h, s2)
   end subroutine
-
-  !> Bytes a halo exchange of nc reals per node sends from this rank.
-  integer(i8) function comms_halo_bytes(h, nc)
-    type(halo_t), intent(in) :: h
-    integer, intent(in) :: nc
-    comms_halo_bytes = 0
-    if (h%n_neighbors > 0) comms_halo_bytes = int(8*nc, i8)*(h%send_ptr(h%n_neighbors+1) - 1)
-  end function
 
   real(rk) function comms_wtime()
     comms_wtime = MPI_Wtime()

@@ -202,10 +202,13 @@ contains
         call comms_halo_exchange_scalar(halo, dom%nd_j)
       end if
       call element_update(dom, dt, st%dt_stable, bad, bad_avg)
-      ! the lowest global id that inverted itself, else the lowest whose nodal average did
-      bad_gidx = comms_min_int(entry_or_huge(dom%el_gidx, bad))
-      if (bad_gidx == huge(1)) bad_gidx = comms_min_int(entry_or_huge(dom%el_gidx, bad_avg))
+      ! the lowest global id that inverted itself, else the lowest whose nodal
+      ! average did: one reduction a cycle (keys above n_global_elems are the latter)
+      bad_gidx = entry_or_huge(dom%el_gidx, bad)
+      if (bad_gidx == huge(1) .and. bad_avg /= 0) bad_gidx = dom%n_global_elems + dom%el_gidx(bad_avg)
+      bad_gidx = comms_min_int(bad_gidx)
       if (bad_gidx /= huge(1)) then
+        if (bad_gidx > dom%n_global_elems) bad_gidx = bad_gidx - dom%n_global_elems
         call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
         call fw_close(fw); call history_close(hist)
         k = findloc(dom%el_gidx, bad_gidx, dim=1)
