@@ -14,7 +14,7 @@ module udar_contact
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real
   implicit none
   private
-  public :: contact_distribute, contact_enforce, contact_overlaps
+  public :: contact_distribute, contact_enforce, contact_overlaps, contact_pressure
 
   !> a projection this far outside a triangle (in area coordinates) still
   !> counts as on it: no slave node slips through the seam of two triangles
@@ -90,6 +90,8 @@ contains
     real(rk) :: vmax, margin, depth
     if (ct%n_interfaces == 0) return
     call gather_state(ct, dom)
+    ct%impulse = 0
+    ct%dt_last = dt
     ! nothing crosses unseen: a slave node and a triangle close by at most
     ! twice the fastest contact node's step
     vmax = 0
@@ -181,10 +183,12 @@ contains
           ! whatever energy the matching dissipates shows in the energy error
           ct%v(:,ps) = ct%v(:,ps) + dvs
           ct%x(:,ps) = ct%x(:,ps) + dt*dvs
+          ct%impulse(ps) = ct%impulse(ps) + ct%m(ps)*dn
           do a = 1, 3
             pa = it%tri(a,t)
             ct%v(:,pa) = vm(:,a) + dvm(:,a)
             ct%x(:,pa) = ct%x(:,pa) + dt*dvm(:,a)
+            ct%impulse(pa) = ct%impulse(pa) + it%share(a,k)*ct%m(ps)*dn
           end do
           it%normal_impulse = it%normal_impulse + ct%m(ps)*dn
           it%friction_impulse = it%friction_impulse + ct%m(ps)*dtan
@@ -289,6 +293,43 @@ contains
         separating = .true.
       end if
     end subroutine
+  end subroutine
+
+  !> Contact pressure of every contact node in the last pass (into
+  !> ct%pressure): the normal impulse it received over the step and its
+  !> tributary area, a third of each adjacent contact face that is wholly in
+  !> contact (all three nodes loaded; so an edge node does not count the
+  !> free side faces), or of every adjacent face for a node that has none.
+  subroutine contact_pressure(ct)
+    type(contact_t), intent(inout) :: ct
+    integer :: f, pass
+    real(rk) :: third_area
+    ct%pressure = 0
+    ct%work_area = 0
+    if (ct%dt_last <= 0.0_rk) return       ! before the first pass
+    do pass = 1, 2
+      do f = 1, size(ct%faces, 2)
+        if (pass == 1) then
+          if (any(ct%impulse(ct%faces(:,f)) <= 0.0_rk)) cycle
+        else
+          if (.not. any(ct%impulse(ct%faces(:,f)) > 0.0_rk .and. ct%pressure(ct%faces(:,f)) <= 0.0_rk)) cycle
+        end if
+        associate (a => ct%x(:,ct%faces(1,f)), b => ct%x(:,ct%faces(2,f)), c => ct%x(:,ct%faces(3,f)))
+          third_area = norm2([(b(2)-a(2))*(c(3)-a(3)) - (b(3)-a(3))*(c(2)-a(2)), &
+                              (b(3)-a(3))*(c(1)-a(1)) - (b(1)-a(1))*(c(3)-a(3)), &
+                              (b(1)-a(1))*(c(2)-a(2)) - (b(2)-a(2))*(c(1)-a(1))])/6.0_rk
+        end associate
+        if (pass == 1) then
+          ct%pressure(ct%faces(:,f)) = ct%pressure(ct%faces(:,f)) + third_area
+        else
+          ! only the loaded nodes that no wholly loaded face reached
+          where (ct%impulse(ct%faces(:,f)) > 0.0_rk .and. ct%pressure(ct%faces(:,f)) <= 0.0_rk) &
+            ct%work_area(ct%faces(:,f)) = ct%work_area(ct%faces(:,f)) + third_area
+        end if
+      end do
+    end do
+    where (ct%pressure <= 0.0_rk) ct%pressure = ct%work_area
+    where (ct%pressure > 0.0_rk) ct%pressure = ct%impulse/(ct%dt_last*ct%pressure)
   end subroutine
 
   !> x and v of every contact node, from their owners, into ct (collective).

@@ -29,7 +29,7 @@ contains
     integer, allocatable :: face(:,:), face_part(:), master(:,:), slave(:), tri_all(:,:), cn_of(:)
     type(interface_t), allocatable :: ifc(:)
     integer :: k, n_err0, nf, n_ifc, i, mark_count
-    logical, allocatable :: is_contact(:)
+    logical, allocatable :: is_contact(:), face_used(:)
     character(len=:), allocatable :: mname, sname
 
     ct%n_interfaces = 0
@@ -38,6 +38,7 @@ contains
     if (size(cfg%contacts) == 0) return
     n_err0 = errs%count()
     call exterior_faces(glob, face, face_part, nf)
+    allocate(face_used(nf), source=.false.)
     n_ifc = size(cfg%contacts) + count(cfg%contacts%symmetric)
     allocate(ifc(n_ifc))
     i = 0
@@ -72,6 +73,10 @@ contains
       ifc(i)%slave = cn_of(ifc(i)%slave)
     end do
     ct%n_nodes = mark_count
+    ! every face of a contact surface once (tributary areas of the nodes)
+    ct%faces = face(:, pack([(k, k = 1, nf)], face_used))
+    ct%faces = reshape(cn_of(reshape(ct%faces, [size(ct%faces)])), shape(ct%faces))
+    allocate(ct%impulse(ct%n_nodes), ct%pressure(ct%n_nodes), ct%work_area(ct%n_nodes), source=0.0_rk)
     ct%n_interfaces = n_ifc
     call move_alloc(ifc, ct%ifc)
     ct%m = glob%nd_mass(ct%gidx)
@@ -95,7 +100,7 @@ contains
         if (to_lower(trim(cfg%parts(ip)%group)) == to_lower(trim(name))) exit
       end do
       if (ip <= size(cfg%parts)) then
-        tri = face(:, pack([(i, i = 1, nf)], face_part(1:nf) == ip))
+        call take_faces(face_part(1:nf) == ip, tri)
         return
       end if
       ig = find_group(mesh, trim(name), 2)
@@ -127,8 +132,16 @@ contains
           if (node_g(mesh%tri(t,a)) > 0) in_group(node_g(mesh%tri(t,a))) = .true.
         end do
       end do
-      tri = face(:, pack([(f, f = 1, nf)], in_group(face(1,1:nf)) .and. in_group(face(2,1:nf)) .and. &
-                                           in_group(face(3,1:nf))))
+      call take_faces(in_group(face(1,1:nf)) .and. in_group(face(2,1:nf)) .and. in_group(face(3,1:nf)), tri)
+    end subroutine
+
+    !> The exterior faces selected, remembered as contact faces.
+    subroutine take_faces(selected, tri)
+      logical, intent(in) :: selected(:)
+      integer, allocatable, intent(out) :: tri(:,:)
+      integer :: f
+      tri = face(:, pack([(f, f = 1, nf)], selected))
+      face_used = face_used .or. selected
     end subroutine
 
     subroutine make_interface(it, tri, slave_nodes, label)

@@ -38,6 +38,11 @@ module udar_contact_model
     integer :: n_nodes = 0                 !< contact nodes: every master-triangle node and slave node
     integer, allocatable :: gidx(:)        !< their global node indices, ascending
     real(rk), allocatable :: x(:,:), v(:,:), m(:)   !< (3,n), (3,n), (n): gathered state, masses
+    integer, allocatable :: faces(:,:)     !< (3, n_faces) every face of a contact surface once
+    real(rk), allocatable :: impulse(:)    !< N s, normal contact impulse on each contact node in the last pass
+    real(rk), allocatable :: pressure(:)   !< Pa, work array: contact pressure of each contact node
+    real(rk), allocatable :: work_area(:)  !< m2, work array of contact_pressure
+    real(rk) :: dt_last = 0                !< s, the step of the last pass
     ! this rank's share
     integer, allocatable :: local(:)       !< local node of each contact node, 0 if not on this rank
     integer, allocatable :: owned_pos(:)   !< contact nodes this rank owns (their positions in gidx)

@@ -21,7 +21,8 @@ module udar_run
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions
   use udar_strength, only: von_mises
   use udar_history, only: history_t, history_open, history_reopen, history_write, history_close
-  use udar_field_output, only: field_writer_t, fw_open, fw_reopen, fw_begin_step, fw_node_vector, fw_elem_scalar, &
+  use udar_field_output, only: field_writer_t, fw_open, fw_reopen, fw_begin_step, fw_node_vector, fw_node_scalar, &
+      fw_elem_scalar, &
       fw_end_step, fw_close
   use udar_version, only: program_version
   use udar_run_state, only: run_state_t
@@ -30,7 +31,7 @@ module udar_run
   use udar_hash, only: hash_hex
   use udar_strings, only: itoa
   use udar_contact_model, only: contact_t
-  use udar_contact, only: contact_enforce, contact_overlaps
+  use udar_contact, only: contact_enforce, contact_overlaps, contact_pressure
   use udar_files, only: rename_file
   implicit none
   private
@@ -430,6 +431,14 @@ contains
       work_elem = dom%el_temp(dom%el_owned_list)
       if (ok) call fw_elem_scalar(fw, 'temperature', work_elem, ok, msg)
       if (ok) call fw_elem_scalar(fw, 'density', rho, ok, msg)
+      if (ok .and. ct%n_interfaces > 0) then
+        call contact_pressure(ct)
+        work_node(:,1) = 0
+        do i = 1, ct%n_nodes
+          if (ct%local(i) > 0 .and. ct%local(i) <= dom%n_owned_nodes) work_node(ct%local(i),1) = ct%pressure(i)
+        end do
+        call fw_node_scalar(fw, 'contact_pressure', work_node(:,1), ok, msg)
+      end if
       if (ok) call fw_end_step(fw, ok, msg)
       call fatal_unless_all_ok(exit_io, ok, msg)
     end subroutine
