@@ -39,7 +39,7 @@ for t in build/debug/tests/test_*; do
   run_test "unit/$name" "$t" "$ROOT/tests/unit" "$WORK/$name"
 done
 # ---- post-processing scripts on synthetic files with known answers
-for s in udar_results plot_history section taylor; do
+for s in udar_results plot_history section taylor plot_contact_history; do
   run_test "postproc/$s" $PYTHON postproc/$s.py --self-test
 done
 # ---- deck errors through the real program
@@ -55,6 +55,8 @@ run_test "cli/ranks_coulomb_wall" tests/cli/rank_invariance.sh bin/udar-debug co
 run_test "cli/more_ranks_than_elements" tests/cli/more_ranks_than_elements.sh bin/udar-debug
 run_test "cli/ranks_plate_impact" tests/cli/rank_invariance.sh bin/udar plate_impact
 run_test "cli/ranks_blocks_head_on" tests/cli/rank_invariance.sh bin/udar blocks_head_on
+run_test "cli/tracking_rod_3kms" tests/cli/tracking.sh bin/udar rod_3kms 0.6e-6
+run_test "cli/tracking_oblique_friction" tests/cli/tracking.sh bin/udar oblique_friction
 run_test "cli/ranks_taylor_ofhc" tests/cli/rank_invariance.sh bin/udar taylor_ofhc_baseline 30.0e-6
 run_test "cli/restart" tests/cli/restart.sh bin/udar
 run_test "cli/slurm_chain" tests/cli/slurm_chain.sh bin/udar

@@ -131,7 +131,8 @@ contains
       it%box_lo(:,t) = minval(xa, dim=2) - depth_limit
       it%box_hi(:,t) = maxval(xa, dim=2) + depth_limit
     end do
-    call grid_build(it%grid, it%box_lo, it%box_hi)
+    it%passes = it%passes + 1
+    if (.not. lists_hold()) call full_search()
     it%dn_sum = 0
     it%dt_sum = 0
     n_found = 0
@@ -140,7 +141,7 @@ contains
     ! ---- search: each slave node's master triangle, in ascending global id
     do k = 1, size(it%slave)
       ps = it%slave(k)
-      call nearest_behind(ps, .false., best, best_dist, best_n, best_g, separating)
+      call nearest_behind(ps, .false., best, best_dist, best_n, best_g, separating, slot=k)
       if (best == 0) cycle
       if (separating) then
         ! the paper releases it (no velocity change); it only goes back on the surface
@@ -153,6 +154,7 @@ contains
         worst = ps
       end if
       it%active(n_found) = ps
+      it%slot(n_found) = k
       it%on_tri(n_found) = best
       it%normal(:,n_found) = best_n
       it%area(:,n_found) = best_g
@@ -223,6 +225,57 @@ contains
 
   contains
 
+    !> Whether the candidate lists still hold every triangle a slave node
+    !> can be behind this pass: since the last full search no contact node
+    !> has moved more than d, so a slave node and a triangle's box have
+    !> closed by at most 2 d; the pass itself moves nodes by at most about
+    !> twice the margin (velocity corrections, return to the surface).
+    logical function lists_hold()
+      real(rk) :: d2
+      integer :: p
+      lists_hold = .false.
+      if (.not. it%tracking .or. dt <= 0.0_rk .or. it%reach_built < 0.0_rk) return
+      d2 = 0
+      do p = 1, ct%n_nodes
+        d2 = max(d2, sum((ct%x(:,p) - it%x_built(:,p))**2))
+      end do
+      lists_hold = 3.0_rk*depth_limit + 2.0_rk*sqrt(d2) <= it%reach_built
+    end function
+
+    !> Bucket grid over the triangles' boxes widened by the margin and the
+    !> skin, and each slave node's candidates: the triangles whose widened
+    !> box holds it, ascending.
+    subroutine full_search()
+      real(rk) :: reach
+      integer :: k, s, t, c, n_cand
+      reach = depth_limit
+      if (it%tracking .and. dt > 0.0_rk) reach = depth_limit + it%skin
+      do t = 1, nt
+        xa = ct%x(:, it%tri(:,t))
+        it%wide_lo(:,t) = minval(xa, dim=2) - reach
+        it%wide_hi(:,t) = maxval(xa, dim=2) + reach
+      end do
+      call grid_build(it%grid, it%wide_lo, it%wide_hi)
+      n_cand = 0
+      it%cand_start(1) = 1
+      do k = 1, size(it%slave)
+        c = grid_cell(it%grid, ct%x(:,it%slave(k)))
+        if (c > 0) then
+          do s = it%grid%start(c), it%grid%start(c+1) - 1
+            t = it%grid%items(s)
+            if (any(ct%x(:,it%slave(k)) < it%wide_lo(:,t)) .or. any(ct%x(:,it%slave(k)) > it%wide_hi(:,t))) cycle
+            n_cand = n_cand + 1
+            if (n_cand > size(it%cand)) call grow(it%cand, n_cand)
+            it%cand(n_cand) = t
+          end do
+        end if
+        it%cand_start(k+1) = n_cand + 1
+      end do
+      it%x_built = ct%x
+      it%reach_built = merge(reach, -1.0_rk, it%tracking .and. dt > 0.0_rk)
+      it%full_searches = it%full_searches + 1
+    end subroutine
+
     !> The master triangle slave node ps is behind (by at most depth_limit,
     !> its projection on the triangle). In a cycle: among the triangles it
     !> moves into, one it crossed during this step (no deeper than its
@@ -233,27 +286,39 @@ contains
     !> not cross them. A node moving away from every face is separating and
     !> left alone. Before the first cycle (dt = 0): the shallowest. Ties:
     !> the lowest triangle index.
-    subroutine nearest_behind(ps, geometric, best, best_dist, best_n, best_g, separating, n_ref)
+    subroutine nearest_behind(ps, geometric, best, best_dist, best_n, best_g, separating, n_ref, slot)
       integer, intent(in) :: ps
       logical, intent(in) :: geometric     !< the shallowest, whatever the velocities
       real(rk), intent(in), optional :: n_ref(3)   !< only triangles facing within 60 degrees of it
+      integer, intent(in), optional :: slot        !< its slave index: look through its candidates (else the grid)
       integer, intent(out) :: best
       real(rk), intent(out) :: best_dist, best_n(3), best_g(3)
       logical, intent(out) :: separating
       real(rk) :: closing, best_closing, gc(3), other_closing, other_dist, other_n(3), other_g(3), &
                   sep_dist, sep_n(3)
       integer :: other, sep
-      integer :: t, c, s, a
+      integer :: t, c, s, a, first, last
       real(rk) :: xa(3,3), n(3), dist, g(3)
       best = 0; other = 0; sep = 0
       sep_dist = -huge(1.0_rk)
       separating = .false.
       best_dist = -huge(1.0_rk); other_dist = -huge(1.0_rk)
       best_closing = 0; other_closing = 0
-      c = grid_cell(it%grid, ct%x(:,ps))
-      if (c == 0) return
-      do s = it%grid%start(c), it%grid%start(c+1) - 1
-        t = it%grid%items(s)
+      if (present(slot)) then
+        first = it%cand_start(slot)
+        last = it%cand_start(slot+1) - 1
+      else
+        c = grid_cell(it%grid, ct%x(:,ps))
+        if (c == 0) return
+        first = it%grid%start(c)
+        last = it%grid%start(c+1) - 1
+      end if
+      do s = first, last
+        if (present(slot)) then
+          t = it%cand(s)
+        else
+          t = it%grid%items(s)
+        end if
         if (any(it%tri(:,t) == ps)) cycle
         if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
         xa = ct%x(:, it%tri(:,t))
@@ -330,6 +395,16 @@ contains
     end do
     where (ct%pressure <= 0.0_rk) ct%pressure = ct%work_area
     where (ct%pressure > 0.0_rk) ct%pressure = ct%impulse/(ct%dt_last*ct%pressure)
+  end subroutine
+
+  !> a keeps its first n - 1 entries and can hold n (grown by half again).
+  subroutine grow(a, n)
+    integer, allocatable, intent(inout) :: a(:)
+    integer, intent(in) :: n
+    integer, allocatable :: b(:)
+    allocate(b(max(n, 3*size(a)/2)))
+    b(1:size(a)) = a
+    call move_alloc(b, a)
   end subroutine
 
   !> x and v of every contact node, from their owners, into ct (collective).

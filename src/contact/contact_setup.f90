@@ -73,6 +73,9 @@ contains
       ifc(i)%slave = cn_of(ifc(i)%slave)
     end do
     ct%n_nodes = mark_count
+    do i = 1, n_ifc
+      allocate(ifc(i)%x_built(3, ct%n_nodes), ifc(i)%cand(4*size(ifc(i)%slave) + 1))
+    end do
     ! every face of a contact surface once (tributary areas of the nodes)
     ct%faces = face(:, pack([(k, k = 1, nf)], face_used))
     ct%faces = reshape(cn_of(reshape(ct%faces, [size(ct%faces)])), shape(ct%faces))
@@ -155,6 +158,7 @@ contains
       it%slave = slave_nodes
       it%friction = cfg%contacts(k)%friction
       it%iterations = cfg%contacts(k)%iterations
+      it%tracking = cfg%contacts(k)%tracking
       it%tolerance = cfg%contacts(k)%tolerance
       it%weights = cfg%contacts(k)%weights
       it%move_overlaps = cfg%contacts(k)%initial_overlap == overlap_move
@@ -164,8 +168,14 @@ contains
             glob%nd_x(:,tri(2,t))) + norm2(glob%nd_x(:,tri(1,t)) - glob%nd_x(:,tri(3,t)))
       end do
       it%h_mean = s/max(3*size(tri, 2), 1)
+      ! half an element of reach beyond the margin: a full search every few
+      ! cycles at moderate speeds, every cycle when a node moves half an
+      ! element a step (3 km/s)
+      if (it%tracking) it%skin = 0.5_rk*it%h_mean
       allocate(it%box_lo(3, size(tri, 2)), it%box_hi(3, size(tri, 2)), it%active(size(slave_nodes)), &
-               it%on_tri(size(slave_nodes)), it%normal(3, size(slave_nodes)), it%area(3, size(slave_nodes)), &
+               it%on_tri(size(slave_nodes)), it%slot(size(slave_nodes)), it%wide_lo(3, size(tri, 2)), &
+               it%wide_hi(3, size(tri, 2)), it%cand_start(size(slave_nodes) + 1), it%normal(3, size(slave_nodes)), &
+               it%area(3, size(slave_nodes)), &
                it%share(3, size(slave_nodes)), it%dn_sum(size(slave_nodes)), it%dt_sum(size(slave_nodes)))
     end subroutine
   end subroutine

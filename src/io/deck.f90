@@ -146,6 +146,7 @@ module udar_deck
        var_t('contact', 'iterations', 'i', 1, 0, '-', '>= 1'), &
        var_t('contact', 'tolerance', 'r', 1, 0, 'm/s', '>= 0'), &
        var_t('contact', 'symmetric', 'l', 1, 0, '', ''), &
+       var_t('contact', 'tracking', 'l', 1, 0, '', ''), &
        var_t('contact', 'weights', 'c', 1, code_len, '', ''), &
        var_t('contact', 'initial_overlap', 'c', 1, code_len, '', ''), &
        var_t('numerics', 'anti_locking', 'l', 1, 0, '', ''), &
@@ -581,7 +582,7 @@ contains
     case ('contact')
       associate(c => v%con)
         call contact_nml(c%master, c%slave, c%friction, c%iterations, c%tolerance, c%symmetric, &
-                         v%weights, v%initial_overlap)
+                         c%tracking, v%weights, v%initial_overlap)
       end associate
     case ('numerics')
       call numerics_nml(v%num%anti_locking, v%num%q_linear, v%num%q_quadratic)
@@ -642,13 +643,13 @@ contains
       read(text, nml=boundary, iostat=ios, iomsg=msg)
     end subroutine boundary_nml
 
-    subroutine contact_nml(master, slave, friction, iterations, tolerance, symmetric, weights, &
+    subroutine contact_nml(master, slave, friction, iterations, tolerance, symmetric, tracking, weights, &
                            initial_overlap)
       character(len=*), intent(inout) :: master, slave, weights, initial_overlap
       real(rk), intent(inout) :: friction, tolerance
       integer, intent(inout) :: iterations
-      logical, intent(inout) :: symmetric
-      namelist /contact/ master, slave, friction, iterations, tolerance, symmetric, weights, &
+      logical, intent(inout) :: symmetric, tracking
+      namelist /contact/ master, slave, friction, iterations, tolerance, symmetric, tracking, weights, &
                          initial_overlap
       read(text, nml=contact, iostat=ios, iomsg=msg)
     end subroutine contact_nml
@@ -1339,7 +1340,8 @@ contains
     case (g_contact)
       associate(c => cfg%contacts(k))
         vals = [val_t(c=c%master), val_t(c=c%slave), val(c%friction), val_t(i=c%iterations), &
-                val(c%tolerance), val_t(l=c%symmetric), choice_val(c%weights, weights_words, weights_codes), &
+                val(c%tolerance), val_t(l=c%symmetric), val_t(l=c%tracking), &
+                choice_val(c%weights, weights_words, weights_codes), &
                 choice_val(c%initial_overlap, overlap_words, overlap_codes)]
       end associate
     case (g_numerics)

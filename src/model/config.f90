@@ -101,6 +101,7 @@ module udar_config
     integer  :: iterations = 2                   !< -, passes of the velocity matching over the contact nodes
     real(rk) :: tolerance = 0.0_rk               !< m/s, stop iterating below this normal-velocity mismatch; 0 = all passes
     logical  :: symmetric = .false.              !< also a pass with master and slave swapped
+    logical  :: tracking = .true.                !< candidate lists kept between full searches (else a full search every cycle)
     integer  :: weights = contact_weights_distance   !< shares of the master nodes: distance (paper eq. 12) | area
     integer  :: initial_overlap = overlap_report     !< slave nodes behind the master at t = 0: report | move
   end type

@@ -20,9 +20,19 @@ module udar_contact_model
     logical :: move_overlaps = .false.     !< initial overlaps: move the slave nodes (else report only)
     real(rk) :: h_mean = 0                 !< m, mean master edge length
     type(bucket_grid_t) :: grid
+    ! local tracking: each slave node's candidate triangles, found by a full
+    ! (grid) search and kept while no node can have moved far enough to
+    ! meet a triangle outside its list
+    logical :: tracking = .true.
+    real(rk) :: skin = 0                   !< m, extra reach of the candidate lists beyond the search margin
+    real(rk) :: reach_built = -1           !< m, reach of the current lists (< 0: none, search again)
+    real(rk), allocatable :: x_built(:,:)  !< (3, contact nodes) positions at the last full search
+    real(rk), allocatable :: wide_lo(:,:), wide_hi(:,:)           !< (3, n_tri) boxes of the last full search
+    integer, allocatable :: cand_start(:), cand(:)                 !< CSR over slave nodes: candidate triangles
+    integer :: full_searches = 0, passes = 0   !< counters for the log
     ! work arrays of the pass, sized once (no allocation in the cycle)
     real(rk), allocatable :: box_lo(:,:), box_hi(:,:)            !< (3, n_tri) widened bounding boxes
-    integer, allocatable :: active(:), on_tri(:)                   !< slave nodes found and their triangles
+    integer, allocatable :: active(:), on_tri(:), slot(:)          !< slave nodes found, their triangles, slave index
     real(rk), allocatable :: normal(:,:), area(:,:), share(:,:)    !< (3, n_slave)
     real(rk), allocatable :: dn_sum(:), dt_sum(:)                  !< velocity changes so far in the cycle
     ! the last cycle

@@ -322,6 +322,11 @@ contains
         ' slave nodes, ', 1.0e9_rk*contact_seconds/(real(n_slave, rk)*max(cycles_run, 1)), &
         ' ns per slave node-cycle'
       call log_info(line)
+      do k = 1, ct%n_interfaces
+        write(line, '(a,i0,a,i0,a)') '         contact '//trim(ct%ifc(k)%name)//': full searches in ', &
+          ct%ifc(k)%full_searches, ' of ', ct%ifc(k)%passes, ' passes (local tracking in the others)'
+        call log_info(line)
+      end do
     end if
     res%stopped = stopping
     res%cycles = st%cycle
