@@ -104,6 +104,13 @@ for h in 1.2e-3 0.6e-3 0.3e-3; do
       -e "s|dt_field = 0.25e-6|dt_field = 0.0|" tests/regression/rod_3kms/rod_3kms.nml > "$W/rod.nml"
   bin/udar "$W/rod.nml" > "$W/log" 2>&1
   tets=$(grep -o '[0-9]* tetrahedra' "$W/log" | head -1 | cut -d' ' -f1)
-  printf 'h %-7s %8s tets  %s\n' "$h" "$tets" "$(grep '^contact:' "$W/log")" | tee -a "$out"
+  printf 'h %-7s %8s tets  %s  %s\n' "$h" "$tets" "$(grep '^contact:' "$W/log")" \
+    "$(grep -o 'full searches in [0-9]* of [0-9]*' "$W/log")" | tee -a "$out"
+  if [ $h = 0.6e-3 ]; then
+    # the same run with a full search every cycle: what local tracking saves
+    sed -i "s|^&contact \(.*\) /|\&contact \1, tracking = .false. /|" "$W/rod.nml"
+    bin/udar "$W/rod.nml" > "$W/log" 2>&1
+    printf 'h %-7s %8s tets  %s  (tracking off)\n' "$h" "$tets" "$(grep '^contact:' "$W/log")" | tee -a "$out"
+  fi
 done
 echo "saved in $out"
