@@ -29,7 +29,7 @@ module udar_deck
        strength_johnson_cook, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
        wall_coulomb, &
        jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
-       overlap_report, overlap_move
+       overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook
   use udar_input_errors, only: input_errors_t
   use udar_nml_scan, only: nml_scan_t, nml_group_t, nml_scan_file
   use udar_strings, only: itoa, r2s, to_lower, replace, shorten, dir_name, base_name
@@ -79,6 +79,9 @@ module udar_deck
   integer, parameter :: weights_codes(2) = [contact_weights_distance, contact_weights_area]
   character(len=20), parameter :: overlap_words(2) = [character(len=20) :: 'report', 'move']
   integer, parameter :: overlap_codes(2) = [overlap_report, overlap_move]
+  character(len=20), parameter :: fracture_words(3) = [character(len=20) :: 'none', 'plastic_strain', &
+       'johnson_cook']
+  integer, parameter :: fracture_codes(3) = [fracture_none, fracture_plastic_strain, fracture_johnson_cook]
 
   ! ------------------------------------------------------ the variable table
   !> One deck variable: for unknown-name suggestions, read-failure
@@ -131,6 +134,15 @@ module udar_deck
        var_t('material', 'specific_heat', 'r', 1, 0, 'J/(kg K)', '> 0'), &
        var_t('material', 'taylor_quinney', 'r', 1, 0, '-', 'in [0, 1]'), &
        var_t('material', 'initial_temperature', 'r', 1, 0, 'K', '> 0'), &
+       var_t('material', 'fracture', 'c', 1, code_len, '', ''), &
+       var_t('material', 'eps_f', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'jc_d1', 'r', 1, 0, '-', ''), &
+       var_t('material', 'jc_d2', 'r', 1, 0, '-', ''), &
+       var_t('material', 'jc_d3', 'r', 1, 0, '-', ''), &
+       var_t('material', 'jc_d4', 'r', 1, 0, '-', ''), &
+       var_t('material', 'jc_d5', 'r', 1, 0, '-', ''), &
+       var_t('material', 'p_spall', 'r', 1, 0, 'Pa', '>= 0'), &
+       var_t('material', 'eps_erode', 'r', 1, 0, '-', '>= 0'), &
        var_t('part', 'group', 'c', 1, max_name_len, '', ''), &
        var_t('part', 'material', 'c', 1, max_name_len, '', ''), &
        var_t('part', 'velocity', 'r', 3, 0, 'm/s', 'finite numbers'), &
@@ -152,6 +164,7 @@ module udar_deck
        var_t('numerics', 'anti_locking', 'l', 1, 0, '', ''), &
        var_t('numerics', 'q_linear', 'r', 1, 0, '-', '>= 0'), &
        var_t('numerics', 'q_quadratic', 'r', 1, 0, '-', '>= 0'), &
+       var_t('numerics', 'erode_dt_ratio', 'r', 1, 0, '-', 'in [0, 1)'), &
        var_t('output', 'directory', 'c', 1, max_path_len, '', ''), &
        var_t('output', 'case_name', 'c', 1, max_name_len, '', ''), &
        var_t('output', 'dt_field', 'r', 1, 0, 's', '>= 0'), &
@@ -195,6 +208,7 @@ module udar_deck
     character(len=code_len) :: jc_rate_form = 'total'
     character(len=code_len) :: weights = 'distance'
     character(len=code_len) :: initial_overlap = 'report'
+    character(len=code_len) :: fracture = 'none'
   end type
 
   !> One assignment as the deck wrote it.
@@ -281,7 +295,7 @@ contains
     character(len=512) :: msg
     character(len=:), allocatable :: text
     character(len=code_len), allocatable :: eos_txt(:), str_txt(:), kind_txt(:), wall_txt(:), rate_txt(:), &
-                                            weights_txt(:), overlap_txt(:)
+                                            weights_txt(:), overlap_txt(:), frac_txt(:)
     integer :: ios, k, j, ig, gk, first(n_group_kinds), cnt(n_group_kinds), nread(n_group_kinds)
     logical :: misspelled(n_group_kinds)
 
@@ -337,7 +351,8 @@ contains
 
     allocate(cfg%materials(cnt(g_material)), cfg%parts(cnt(g_part)), &
              cfg%boundaries(cnt(g_boundary)), cfg%contacts(cnt(g_contact)))
-    allocate(eos_txt(cnt(g_material)), str_txt(cnt(g_material)), rate_txt(cnt(g_material)), kind_txt(cnt(g_boundary)), &
+    allocate(eos_txt(cnt(g_material)), str_txt(cnt(g_material)), rate_txt(cnt(g_material)), &
+             frac_txt(cnt(g_material)), kind_txt(cnt(g_boundary)), &
              wall_txt(cnt(g_boundary)), weights_txt(cnt(g_contact)), overlap_txt(cnt(g_contact)))
     do gk = 1, n_group_kinds
       if (group_once(gk)) then
@@ -369,6 +384,7 @@ contains
         eos_txt(k) = v%eos
         str_txt(k) = v%strength
         rate_txt(k) = v%jc_rate_form
+        frac_txt(k) = v%fracture
       case (g_part)
         cfg%parts(k) = v%part
       case (g_boundary)
@@ -393,7 +409,8 @@ contains
       if (runs(1)%line > 0) call check_run(ctx, runs(1), cfg)
       if (meshes(1)%line > 0) call check_mesh(ctx, meshes(1), cfg%mesh, trim(path))
       do k = 1, size(mats)
-        call check_material(ctx, mats(k), cfg, k, eos_txt(k), str_txt(k), rate_txt(k), mats(1:k-1))
+        call check_material(ctx, mats(k), cfg, k, eos_txt(k), str_txt(k), rate_txt(k), frac_txt(k), &
+                            mats(1:k-1))
       end do
       do k = 1, size(parts)
         call check_part(ctx, parts(k), cfg, k, parts(1:k-1))
@@ -573,7 +590,8 @@ contains
         call material_nml(m%name, m%rho0, v%eos, m%bulk_modulus, m%c0, m%s, m%gamma0, &
              v%strength, m%shear_modulus, m%youngs_modulus, m%poisson_ratio, m%yield_stress, &
              m%hardening_modulus, m%jc_a, m%jc_b, m%jc_n, m%jc_c, m%jc_m, m%jc_rate0, v%jc_rate_form, &
-             m%t_melt, m%t_room, m%specific_heat, m%taylor_quinney, m%initial_temperature)
+             m%t_melt, m%t_room, m%specific_heat, m%taylor_quinney, m%initial_temperature, &
+             v%fracture, m%eps_f, m%jc_d1, m%jc_d2, m%jc_d3, m%jc_d4, m%jc_d5, m%p_spall, m%eps_erode)
       end associate
     case ('part')
       call part_nml(v%part%group, v%part%material, v%part%velocity)
@@ -585,7 +603,7 @@ contains
                          c%tracking, v%weights, v%initial_overlap)
       end associate
     case ('numerics')
-      call numerics_nml(v%num%anti_locking, v%num%q_linear, v%num%q_quadratic)
+      call numerics_nml(v%num%anti_locking, v%num%q_linear, v%num%q_quadratic, v%num%erode_dt_ratio)
     case ('output')
       call output_nml(v%out%directory, v%out%case_name, v%out%dt_field, v%out%dt_history, v%out%dt_checkpoint, &
                       v%out%checkpoint_keep)
@@ -616,15 +634,18 @@ contains
     subroutine material_nml(name, rho0, eos, bulk_modulus, c0, s, gamma0, strength, shear_modulus, &
                             youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
                             jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, t_melt, t_room, specific_heat, &
-                            taylor_quinney, initial_temperature)
-      character(len=*), intent(inout) :: name, eos, strength, jc_rate_form
+                            taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
+                            jc_d4, jc_d5, p_spall, eps_erode)
+      character(len=*), intent(inout) :: name, eos, strength, jc_rate_form, fracture
       real(rk), intent(inout) :: rho0, bulk_modulus, c0, s, gamma0, shear_modulus, youngs_modulus, &
            poisson_ratio, yield_stress, hardening_modulus, jc_a, jc_b, jc_n, jc_c, jc_m, jc_rate0, &
-           t_melt, t_room, specific_heat, taylor_quinney, initial_temperature
+           t_melt, t_room, specific_heat, taylor_quinney, initial_temperature, eps_f, jc_d1, jc_d2, &
+           jc_d3, jc_d4, jc_d5, p_spall, eps_erode
       namelist /material/ name, rho0, eos, bulk_modulus, c0, s, gamma0, strength, shear_modulus, &
                           youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
                           jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, t_melt, t_room, specific_heat, &
-                          taylor_quinney, initial_temperature
+                          taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
+                          jc_d4, jc_d5, p_spall, eps_erode
       read(text, nml=material, iostat=ios, iomsg=msg)
     end subroutine material_nml
 
@@ -654,10 +675,10 @@ contains
       read(text, nml=contact, iostat=ios, iomsg=msg)
     end subroutine contact_nml
 
-    subroutine numerics_nml(anti_locking, q_linear, q_quadratic)
+    subroutine numerics_nml(anti_locking, q_linear, q_quadratic, erode_dt_ratio)
       logical, intent(inout) :: anti_locking
-      real(rk), intent(inout) :: q_linear, q_quadratic
-      namelist /numerics/ anti_locking, q_linear, q_quadratic
+      real(rk), intent(inout) :: q_linear, q_quadratic, erode_dt_ratio
+      namelist /numerics/ anti_locking, q_linear, q_quadratic, erode_dt_ratio
       read(text, nml=numerics, iostat=ios, iomsg=msg)
     end subroutine numerics_nml
 
@@ -713,19 +734,20 @@ contains
     m%file = absolute_path(f)
   end subroutine check_mesh
 
-  !> Material models: ranges, what each EOS / strength model needs, parameters
-  !> set for a model that is not selected, and the derived elastic moduli.
-  subroutine check_material(ctx, inst, cfg, k, eos_txt, str_txt, rate_txt, earlier_inst)
+  !> Material models: ranges, what each EOS / strength / fracture model needs,
+  !> parameters set for a model that is not selected, and the derived elastic
+  !> moduli.
+  subroutine check_material(ctx, inst, cfg, k, eos_txt, str_txt, rate_txt, frac_txt, earlier_inst)
     type(ctx_t), intent(inout) :: ctx
     type(inst_t), intent(in) :: inst
     type(config_t), intent(inout) :: cfg
     integer, intent(in) :: k
-    character(len=*), intent(in) :: eos_txt, str_txt, rate_txt
+    character(len=*), intent(in) :: eos_txt, str_txt, rate_txt, frac_txt
     type(inst_t), intent(in) :: earlier_inst(:)    !< of materials 1 .. k-1
 
-    logical :: eos_ok, str_ok, rate_ok, e_set, nu_set, en_ok, plastic, elastic_needed
+    logical :: eos_ok, str_ok, rate_ok, frac_ok, e_set, nu_set, en_ok, plastic, elastic_needed, jc_fracture
     real(rk) :: k_en, g_en, k_mg
-    character(len=:), allocatable :: sname
+    character(len=:), allocatable :: sname, fname
     integer :: j
 
     associate(m => cfg%materials(k))
@@ -745,6 +767,8 @@ contains
       eos_ok = choice(ctx, inst, 'eos', eos_txt, eos_words, eos_codes, m%eos)
       str_ok = choice(ctx, inst, 'strength', str_txt, strength_words, strength_codes, m%strength)
       rate_ok = choice(ctx, inst, 'jc_rate_form', rate_txt, rate_words, rate_codes, m%jc_rate_form)
+      frac_ok = choice(ctx, inst, 'fracture', frac_txt, fracture_words, fracture_codes, m%fracture)
+      jc_fracture = frac_ok .and. m%fracture == fracture_johnson_cook
 
       ! Young's modulus and Poisson's ratio: optional, but only as a pair
       ! (an unreadable value counts as given: it has been reported already)
@@ -845,7 +869,13 @@ contains
                  m%t_melt > m%t_room, '> t_room = '//r2s(m%t_room)//' K for '//sname)
           end if
         else
-          call not_used('jc_a jc_b jc_n jc_c jc_m jc_rate0', "strength = 'johnson_cook'")
+          call not_used('jc_a jc_b jc_n jc_c jc_m', "strength = 'johnson_cook'")
+          ! the reference rate also scales the rate term of Johnson-Cook fracture
+          if (jc_fracture) then
+            call ranges('jc_rate0')
+          else
+            call not_used('jc_rate0', "strength = 'johnson_cook' or fracture = 'johnson_cook'")
+          end if
         end if
       end if
 
@@ -853,6 +883,34 @@ contains
       if (m%specific_heat /= mat_dflt%specific_heat) call ranges('specific_heat')
       if (m%t_melt /= mat_dflt%t_melt) call ranges('t_melt')
       call ranges('t_room taylor_quinney initial_temperature')
+
+      ! fracture and erosion (the criteria themselves act in the element driver)
+      if (frac_ok) then
+        fname = "fracture = '"//code_word(m%fracture, fracture_words, fracture_codes)//"'"
+        select case (m%fracture)
+        case (fracture_plastic_strain)
+          call need(ctx, inst, 'eps_f', positive(m%eps_f), '> 0 for '//fname)
+          call not_used('jc_d1 jc_d2 jc_d3 jc_d4 jc_d5', "fracture = 'johnson_cook'")
+        case (fracture_johnson_cook)
+          if (m%eps_f /= mat_dflt%eps_f) call complain(ctx, inst, 'eps_f', 'set, but '//fname// &
+               ' computes the fracture strain from jc_d1 .. jc_d5: remove the line')
+          call jc_d12()
+          ! D5 needs the homologous temperature: t_melt (a Johnson-Cook
+          ! strength has asked for it already)
+          if (m%jc_d5 /= 0 .and. .not. is_bad(inst, 'jc_d5') .and. .not. is_bad(inst, 't_room') .and. &
+              str_ok .and. m%strength /= strength_johnson_cook) &
+               call need(ctx, inst, 't_melt', positive(m%t_melt) .and. positive(m%t_room) .and. &
+               m%t_melt > m%t_room, '> t_room = '//r2s(m%t_room)//' K for '//fname// &
+               ' with jc_d5 /= 0')
+        case default
+          call not_used('eps_f', "fracture = 'plastic_strain'")
+          call not_used('jc_d1 jc_d2 jc_d3 jc_d4 jc_d5', "fracture = 'johnson_cook'")
+        end select
+      end if
+      call ranges('p_spall eps_erode')
+      if (frac_ok .and. m%fracture == fracture_none .and. m%p_spall == 0 .and. positive(m%eps_erode) &
+          .and. .not. is_bad(inst, 'p_spall')) &
+           call complain(ctx, inst, 'eps_erode', 'erosion needs a fracture criterion: set fracture or p_spall')
     end associate
 
   contains
@@ -878,6 +936,27 @@ contains
       if (differs(x, x_en)) call complain(ctx, inst, name, 'disagrees with youngs_modulus and '// &
            'poisson_ratio, which give '//formula//' = '//r2s(x_en)//' Pa: give one or the other')
     end subroutine agree
+
+    !> Johnson-Cook fracture: D1 + D2, the fracture strain at zero stress
+    !> triaxiality (reference rate, room temperature), must be positive.
+    subroutine jc_d12()
+      character(len=*), parameter :: why = "> 0 for fracture = 'johnson_cook' (the fracture strain " // &
+           'at zero stress triaxiality)'
+      character(len=:), allocatable :: at
+      associate(m => cfg%materials(k))
+        if (is_bad(inst, 'jc_d1') .or. is_bad(inst, 'jc_d2')) return
+        if (m%jc_d1 + m%jc_d2 > 0) return
+        if (is_set(inst, 'jc_d1') .or. is_set(inst, 'jc_d2')) then
+          ! at the later of the two assignments
+          at = 'jc_d2'
+          if (last_assign(inst, 'jc_d1') > last_assign(inst, 'jc_d2')) at = 'jc_d1'
+          call complain(ctx, inst, at, 'jc_d1 + jc_d2 = '//r2s(m%jc_d1 + m%jc_d2)//': must be '//why)
+        else
+          call report(ctx, inst%line, prefix(inst)//'jc_d1 and jc_d2 are required but not set: give '// &
+               'jc_d1 + jc_d2 '//why)
+        end if
+      end associate
+    end subroutine jc_d12
 
   end subroutine check_material
 
@@ -1082,6 +1161,8 @@ contains
       ok = all(inside(x%r, -1.0_rk, 0.5_rk))
     case ('in [0, 1]')
       ok = all(nonneg(x%r) .and. x%r <= 1)
+    case ('in [0, 1)')
+      ok = all(nonneg(x%r) .and. x%r < 1)
     case ('finite numbers')
       ok = all(ieee_is_finite(x%r))
     case default
@@ -1326,7 +1407,9 @@ contains
                 val(m%poisson_ratio), val(m%yield_stress), val(m%hardening_modulus), val(m%jc_a), &
                 val(m%jc_b), val(m%jc_n), val(m%jc_c), val(m%jc_m), val(m%jc_rate0), &
                 choice_val(m%jc_rate_form, rate_words, rate_codes), val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), &
-                val(m%initial_temperature)]
+                val(m%initial_temperature), choice_val(m%fracture, fracture_words, fracture_codes), &
+                val(m%eps_f), val(m%jc_d1), val(m%jc_d2), val(m%jc_d3), val(m%jc_d4), val(m%jc_d5), &
+                val(m%p_spall), val(m%eps_erode)]
       end associate
     case (g_part)
       associate(p => cfg%parts(k))
@@ -1346,7 +1429,7 @@ contains
       end associate
     case (g_numerics)
       vals = [val_t(l=cfg%numerics%anti_locking), val(cfg%numerics%q_linear), &
-              val(cfg%numerics%q_quadratic)]
+              val(cfg%numerics%q_quadratic), val(cfg%numerics%erode_dt_ratio)]
     case default
       associate(o => cfg%output)
         vals = [val_t(c=o%directory), val_t(c=o%case_name, from='the deck file name'), &

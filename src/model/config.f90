@@ -11,7 +11,7 @@ module udar_config
             strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
             bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, wall_coulomb, &
             jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
-            overlap_report, overlap_move
+            overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook
 
   ! integer codes the kernels dispatch on (strings stay in the deck)
   integer, parameter :: eos_linear = 1, eos_mie_gruneisen = 2
@@ -22,6 +22,7 @@ module udar_config
   integer, parameter :: jc_rate_total = 1, jc_rate_plastic = 2
   integer, parameter :: contact_weights_distance = 1, contact_weights_area = 2
   integer, parameter :: overlap_report = 1, overlap_move = 2
+  integer, parameter :: fracture_none = 0, fracture_plastic_strain = 1, fracture_johnson_cook = 2
 
   type :: run_cfg_t
     character(len=256) :: title = 'udar run'
@@ -60,6 +61,13 @@ module udar_config
     real(rk) :: specific_heat = -1.0_rk        !< J/(kg K)
     real(rk) :: taylor_quinney = 0.9_rk        !< -, share of plastic work turned to heat
     real(rk) :: initial_temperature = 294.0_rk !< K
+    integer  :: fracture = fracture_none       !< how the material fractures
+    real(rk) :: eps_f = -1.0_rk                !< -, critical equivalent plastic strain (fracture = 'plastic_strain')
+    real(rk) :: jc_d1 = 0.0_rk, jc_d2 = 0.0_rk, jc_d3 = 0.0_rk, jc_d4 = 0.0_rk, jc_d5 = 0.0_rk
+                                               !< -, Johnson-Cook (1985) damage constants (fracture = 'johnson_cook')
+    real(rk) :: p_spall = 0.0_rk               !< Pa, spall strength: a mean stress below -p_spall fractures an element; 0 = no spall criterion
+    real(rk) :: eps_erode = 0.0_rk             !< -, a fractured element is eroded when its accumulated equivalent
+                                               !< (deviatoric) total strain passes this; 0 = never by strain
   end type
 
   type :: part_cfg_t
@@ -81,6 +89,8 @@ module udar_config
     logical  :: anti_locking = .true.   !< nodal-averaged volumetric strain (Bonet-Burton)
     real(rk) :: q_linear = 0.06_rk      !< -, linear artificial viscosity coefficient
     real(rk) :: q_quadratic = 1.5_rk    !< -, quadratic artificial viscosity coefficient
+    real(rk) :: erode_dt_ratio = 0.1_rk !< -, an element of a material with eps_erode > 0 is eroded when its stable
+                                        !< step falls below this fraction of the run's initial stable step; 0 = off
   end type
 
   type :: output_cfg_t

@@ -45,7 +45,10 @@ module test_deck_support
        bad_deck_t('negative_density', 'bad_negative_density.nml', 1, ':5:', "&material #1 'copper': rho0 = -8930", 'must be > 0'), &
        bad_deck_t('poisson_out_of_range', 'bad_poisson.nml', 1, ':7:', 'poisson_ratio = 0.5', 'must be in (-1, 0.5)'), &
        bad_deck_t('t_end_not_positive', 'bad_t_end.nml', 1, ':4:', '&run: t_end = 0', 'must be > 0'), &
-       bad_deck_t('bad_string_choice', 'bad_eos_choice.nml', 1, ':6:', "eos = 'mie'", "valid: 'linear', 'mie_gruneisen'") ]
+       bad_deck_t('bad_string_choice', 'bad_eos_choice.nml', 1, ':6:', "eos = 'mie'", "valid: 'linear', 'mie_gruneisen'"), &
+       bad_deck_t('fracture_without_eps_f', 'bad_fracture_no_eps_f.nml', 1, ':4:', "&material #1 'copper': eps_f is required", "give > 0 for fracture = 'plastic_strain'"), &
+       bad_deck_t('erosion_no_criterion', 'bad_erode_no_criterion.nml', 1, ":7: &material #1 'copper'", 'eps_erode = 1.5 : erosion needs a fracture', 'criterion: set fracture or p_spall'), &
+       bad_deck_t('unknown_fracture_choice', 'bad_fracture_choice.nml', 1, ':7:', "&material #1 'copper': fracture = 'johnson-cook'", "'johnson_cook' (did you mean 'johnson_cook'?)") ]
 
 contains
 
@@ -70,6 +73,9 @@ contains
     call test_several()
     call test_contact_errors()
     call test_no_contact()
+    call test_fracture_jc()
+    call test_fracture_plastic()
+    call test_fracture_errors()
 
     failures = nfail
   end subroutine run_all
@@ -266,7 +272,7 @@ contains
   subroutine test_valid()
     type(config_t) :: cfg
     type(input_errors_t) :: errs
-    character(len=:), allocatable :: why, text, where
+    character(len=:), allocatable :: text, where
     integer :: before
 
     call deck_read(dir//'valid.nml', cfg, errs)
@@ -292,6 +298,8 @@ contains
       call check(cu%shear_modulus == 124e9_rk / (2 * 1.34_rk), 'copper G from E, nu')
       call check(cu%jc_n == 0.31_rk .and. cu%t_melt == 1356.0_rk, 'copper JC values')
       call check(cu%jc_rate_form == jc_rate_plastic, 'copper JC plastic-rate form')
+      call check(cu%fracture == fracture_none .and. cu%eps_f == -1 .and. cu%jc_d1 == 0 .and. &
+                 cu%jc_d5 == 0 .and. cu%p_spall == 0 .and. cu%eps_erode == 0, 'fracture defaults')
       call check(st%name == 'Steel' .and. st%eos == eos_linear .and. &
                  st%strength == strength_perfectly_plastic, 'steel models')
       call check(st%bulk_modulus == 166.7e9_rk .and. st%shear_modulus == 76.9e9_rk, 'steel K, G')
@@ -321,6 +329,7 @@ contains
       end associate
     end if
     call check(.not. cfg%numerics%anti_locking .and. cfg%numerics%q_linear == 0.1_rk, 'numerics')
+    call check(cfg%numerics%erode_dt_ratio == 0.1_rk, 'erode_dt_ratio default')
     call check(cfg%output%directory == 'out/run 1' .and. cfg%output%case_name == 'valid', &
                'output, default case_name')
     call check(cfg%output%dt_checkpoint == 5e-6_rk .and. cfg%output%checkpoint_keep == 3, 'checkpoint values')
@@ -340,15 +349,18 @@ contains
     call check(has_line("  symmetric = .false.", '! (default)'), 'contact symmetric (default)')
     call check(has_line("  initial_overlap = 'report'", '! report | move (default)'), &
                'contact initial_overlap (default)')
+    call check(has_line("  fracture = 'none'", '! none | plastic_strain | johnson_cook (default)'), &
+               'fracture (default) with its choices')
+    call check(has_line("  eps_f = -1.0", '! - (not set)'), 'eps_f (not set)')
+    call check(has_line("  p_spall = 0.0", '! Pa (default)'), 'p_spall (default) with its unit')
+    call check(has_line("  erode_dt_ratio = 0.1", '! - (default)'), 'erode_dt_ratio (default)')
     if (nfail == before) call pass('resolved_text_markers')
 
     ! round trip: the resolved deck reads back to the same configuration,
     ! also that of the public writer (default markers by value)
-    call round_trip('round_trip', cfg%resolved_text)
+    call round_trip('round_trip', cfg, cfg%resolved_text)
     call deck_write_resolved(cfg, text)
-    call round_trip('round_trip_public_writer', text)
-    open(newunit=before, file=scratch, status='old')
-    close(before, status='delete')
+    call round_trip('round_trip_public_writer', cfg, text)
 
     ! message prefixes for errors found later (mesh)
     where = deck_where(cfg, 'part', 2, 'group')
@@ -372,47 +384,194 @@ contains
       if (.not. ok) call fail('valid_deck', what)
     end subroutine check
 
-    !> The resolved deck has a line that starts with start (the variable and
-    !> its value) and ends with comment (unit and marker).
     logical function has_line(start, comment)
       character(len=*), intent(in) :: start, comment
-      integer :: i, j
-      has_line = .false.
-      i = 1
-      do while (i <= len(cfg%resolved_text))
-        j = index(cfg%resolved_text(i:), nl)
-        if (j == 0) j = len(cfg%resolved_text) - i + 2
-        associate(line => cfg%resolved_text(i:i+j-2))
-          if (index(line, start) == 1 .and. len(line) >= len(comment)) then
-            if (line(len(line)-len(comment)+1:) == comment) has_line = .true.
-          end if
-        end associate
-        i = i + j
-      end do
+      has_line = text_has_line(cfg%resolved_text, start, comment)
     end function has_line
 
-    !> The resolved deck text must read back to cfg.
-    subroutine round_trip(name, text)
-      character(len=*), intent(in) :: name, text
-      type(config_t) :: cfg2
-      type(input_errors_t) :: errs2
-      call write_file(scratch, text)
-      call deck_read(scratch, cfg2, errs2)
-      if (errs2%count() /= 0) then
-        call fail(name, 'the resolved deck does not read back:')
-        call dump(errs2)
-        write(*, '(a)') text
-      else
-        why = config_difference(cfg, cfg2)
-        if (len(why) == 0) then
-          call pass(name)
-        else
-          call fail(name, 'differs in '//why)
-        end if
-      end if
-    end subroutine round_trip
-
   end subroutine test_valid
+
+  !> The resolved deck text has a line that starts with start (the variable
+  !> and its value) and ends with comment (unit and marker).
+  logical function text_has_line(text, start, comment) result(has_line)
+    character(len=*), intent(in) :: text, start, comment
+    integer :: i, j
+    has_line = .false.
+    i = 1
+    do while (i <= len(text))
+      j = index(text(i:), nl)
+      if (j == 0) j = len(text) - i + 2
+      associate(line => text(i:i+j-2))
+        if (index(line, start) == 1 .and. len(line) >= len(comment)) then
+          if (line(len(line)-len(comment)+1:) == comment) has_line = .true.
+        end if
+      end associate
+      i = i + j
+    end do
+  end function text_has_line
+
+  !> The resolved deck text must read back to cfg (the scratch file is removed).
+  subroutine round_trip(name, cfg, text)
+    character(len=*), intent(in) :: name, text
+    type(config_t), intent(in) :: cfg
+    type(config_t) :: cfg2
+    type(input_errors_t) :: errs2
+    character(len=:), allocatable :: why
+    integer :: u
+    call write_file(scratch, text)
+    call deck_read(scratch, cfg2, errs2)
+    open(newunit=u, file=scratch, status='old')
+    close(u, status='delete')
+    if (errs2%count() /= 0) then
+      call fail(name, 'the resolved deck does not read back:')
+      call dump(errs2)
+      write(*, '(a)') text
+    else
+      why = config_difference(cfg, cfg2)
+      if (len(why) == 0) then
+        call pass(name)
+      else
+        call fail(name, 'differs in '//why)
+      end if
+    end if
+  end subroutine round_trip
+
+  !> Johnson-Cook fracture with D1 .. D5, spall and erosion, and a fluid with a
+  !> spall strength: the values as written, the resolved deck, its round trip.
+  subroutine test_fracture_jc()
+    type(config_t) :: cfg
+    type(input_errors_t) :: errs
+    integer :: before
+
+    call deck_read(dir//'fracture_jc.nml', cfg, errs)
+    if (errs%count() /= 0) then
+      call fail('fracture_johnson_cook', 'unexpected errors')
+      call dump(errs)
+      return
+    end if
+    before = nfail
+    call check(size(cfg%materials) == 2, 'number of materials')
+    if (size(cfg%materials) == 2) then
+      associate(st => cfg%materials(1), wa => cfg%materials(2))
+        call check(st%fracture == fracture_johnson_cook, 'steel fracture = johnson_cook (case-insensitive)')
+        call check(st%jc_d1 == 0.05_rk .and. st%jc_d2 == 3.44_rk .and. st%jc_d3 == -2.12_rk .and. &
+                   st%jc_d4 == 0.002_rk .and. st%jc_d5 == 0.61_rk, 'steel D1 .. D5')
+        call check(st%eps_f == -1, 'steel eps_f not set')
+        call check(st%p_spall == 1.5e9_rk .and. st%eps_erode == 1.2_rk, 'steel p_spall, eps_erode')
+        call check(wa%strength == strength_none .and. wa%fracture == fracture_none, 'water models')
+        call check(wa%p_spall == 1e6_rk .and. wa%eps_erode == 2.0_rk, 'water p_spall, eps_erode')
+      end associate
+    end if
+    call check(cfg%numerics%erode_dt_ratio == 0.05_rk, 'erode_dt_ratio')
+    call check(text_has_line(cfg%resolved_text, "  fracture = 'johnson_cook'", &
+               '! none | plastic_strain | johnson_cook'), 'resolved fracture with its choices')
+    call check(text_has_line(cfg%resolved_text, "  jc_d3 = -2.12", '! -'), 'resolved jc_d3')
+    call check(text_has_line(cfg%resolved_text, "  p_spall = 1.5e9", '! Pa'), 'resolved p_spall')
+    call check(text_has_line(cfg%resolved_text, "  erode_dt_ratio = 0.05", '! -'), 'resolved erode_dt_ratio')
+    if (nfail == before) then
+      call pass('fracture_johnson_cook')
+    else
+      write(*, '(a)') cfg%resolved_text
+    end if
+    call round_trip('fracture_johnson_cook_round_trip', cfg, cfg%resolved_text)
+
+  contains
+
+    subroutine check(ok, what)
+      logical, intent(in) :: ok
+      character(len=*), intent(in) :: what
+      if (.not. ok) call fail('fracture_johnson_cook', what)
+    end subroutine check
+
+  end subroutine test_fracture_jc
+
+  !> Plastic-strain fracture with eps_f; Johnson-Cook fracture with a
+  !> non-Johnson-Cook strength, which may set the reference rate jc_rate0.
+  subroutine test_fracture_plastic()
+    type(config_t) :: cfg
+    type(input_errors_t) :: errs
+    integer :: before
+
+    call deck_read(dir//'fracture_plastic.nml', cfg, errs)
+    if (errs%count() /= 0) then
+      call fail('fracture_plastic_strain', 'unexpected errors')
+      call dump(errs)
+      return
+    end if
+    before = nfail
+    associate(al => cfg%materials(1), st => cfg%materials(2))
+      call check(al%fracture == fracture_plastic_strain .and. al%eps_f == 0.8_rk, 'aluminium eps_f')
+      call check(al%jc_d1 == 0 .and. al%jc_d2 == 0 .and. al%p_spall == 0 .and. al%eps_erode == 0, &
+                 'aluminium defaults')
+      call check(st%fracture == fracture_johnson_cook .and. st%strength == strength_linear_hardening, &
+                 'steel models')
+      call check(st%jc_d1 == 0.05_rk .and. st%jc_d2 == 3.44_rk .and. st%jc_d3 == -2.12_rk .and. &
+                 st%jc_d4 == 0 .and. st%jc_d5 == 0, 'steel D1 .. D5')
+      call check(st%jc_rate0 == 0.1_rk, 'steel jc_rate0 for fracture')
+    end associate
+    call check(cfg%numerics%erode_dt_ratio == 0.1_rk, 'erode_dt_ratio default')
+    if (nfail == before) call pass('fracture_plastic_strain')
+    call round_trip('fracture_plastic_strain_round_trip', cfg, cfg%resolved_text)
+
+  contains
+
+    subroutine check(ok, what)
+      logical, intent(in) :: ok
+      character(len=*), intent(in) :: what
+      if (.not. ok) call fail('fracture_plastic_strain', what)
+    end subroutine check
+
+  end subroutine test_fracture_plastic
+
+  !> The other mistakes of fracture and erosion, each named at its line.
+  subroutine test_fracture_errors()
+    character(len=*), parameter :: f = 'bad_fracture.nml'
+    type(config_t) :: cfg
+    type(input_errors_t) :: errs
+    integer :: before
+
+    call deck_read(dir//f, cfg, errs)
+    before = nfail
+    call has(f//":5: &material #1 'a': jc_d2 = -0.5 : jc_d1 + jc_d2 = 0", &
+             "must be > 0 for fracture = 'johnson_cook'")
+    call has(f//":6: &material #2 'b': jc_d1 and jc_d2 are required but not set", &
+             "give jc_d1 + jc_d2 > 0 for fracture = 'johnson_cook'")
+    call has(f//":8: &material #3 'c': t_melt is required but not set", &
+             "> t_room = 294", "with jc_d5 /= 0")
+    call has(f//":10: &material #3 'c': eps_f = 0.5 : set, but fracture = 'johnson_cook'", &
+             'computes the fracture strain from jc_d1 .. jc_d5')
+    call has(f//":12: &material #4 'd': eps_f = 0.5 : set, but only used with", &
+             "fracture = 'plastic_strain'")
+    call has(f//":12: &material #4 'd': jc_d3 = -1.5 : set, but only used with", &
+             "fracture = 'johnson_cook'")
+    call has(f//":12: &material #4 'd': p_spall = -1e9 : must be >= 0 (Pa)", '')
+    call has(f//":12: &material #4 'd': eps_erode = -1 : must be >= 0", '')
+    call has(f//":14: &material #5 'e': eps_f = 0 : must be > 0 for fracture = 'plastic_strain'", '')
+    call has(f//":14: &material #5 'e': jc_d1 = 0.1 : set, but only used with", "fracture = 'johnson_cook'")
+    call has(f//':16: &numerics: erode_dt_ratio = 1.0 : must be in [0, 1)', '')
+    if (nfail == before .and. errs%count() /= 11) &
+         call fail('fracture_errors', 'expected 11 messages, got '//itoa(errs%count()))
+    if (nfail == before .and. allocated(cfg%resolved_text)) &
+         call fail('fracture_errors', 'resolved_text set although the deck has errors')
+    if (nfail == before) then
+      call pass('fracture_errors')
+    else
+      call dump(errs)
+    end if
+
+  contains
+
+    subroutine has(a, b, c)
+      character(len=*), intent(in) :: a, b
+      character(len=*), intent(in), optional :: c
+      character(len=:), allocatable :: c_
+      c_ = ''
+      if (present(c)) c_ = c
+      if (.not. errs%contains_text(a, b, c_)) &
+           call fail('fracture_errors', 'no message containing "'//a//'" "'//b//'" "'//c_//'"')
+    end subroutine has
+
+  end subroutine test_fracture_errors
 
   subroutine write_file(path, text)
     character(len=*), intent(in) :: path, text
@@ -479,6 +638,15 @@ contains
         if (m%specific_heat /= n%specific_heat) why = 'material%specific_heat'
         if (m%taylor_quinney /= n%taylor_quinney) why = 'material%taylor_quinney'
         if (m%initial_temperature /= n%initial_temperature) why = 'material%initial_temperature'
+        if (m%fracture /= n%fracture) why = 'material%fracture'
+        if (m%eps_f /= n%eps_f) why = 'material%eps_f'
+        if (m%jc_d1 /= n%jc_d1) why = 'material%jc_d1'
+        if (m%jc_d2 /= n%jc_d2) why = 'material%jc_d2'
+        if (m%jc_d3 /= n%jc_d3) why = 'material%jc_d3'
+        if (m%jc_d4 /= n%jc_d4) why = 'material%jc_d4'
+        if (m%jc_d5 /= n%jc_d5) why = 'material%jc_d5'
+        if (m%p_spall /= n%p_spall) why = 'material%p_spall'
+        if (m%eps_erode /= n%eps_erode) why = 'material%eps_erode'
       end associate
     end do
     do k = 1, size(a%parts)
@@ -511,6 +679,7 @@ contains
     if (a%numerics%anti_locking .neqv. b%numerics%anti_locking) why = 'numerics%anti_locking'
     if (a%numerics%q_linear /= b%numerics%q_linear) why = 'numerics%q_linear'
     if (a%numerics%q_quadratic /= b%numerics%q_quadratic) why = 'numerics%q_quadratic'
+    if (a%numerics%erode_dt_ratio /= b%numerics%erode_dt_ratio) why = 'numerics%erode_dt_ratio'
     if (a%output%directory /= b%output%directory) why = 'output%directory'
     if (a%output%case_name /= b%output%case_name) why = 'output%case_name'
     if (a%output%dt_field /= b%output%dt_field) why = 'output%dt_field'
