@@ -8,12 +8,14 @@ module udar_element_driver
   use udar_kinds, only: rk
   use udar_domain, only: domain_t, block_size
   use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_volume
-  use udar_strength, only: strength_block, thermal_softening_update
+  use udar_strength, only: strength_block, thermal_softening_update, von_mises
+  use udar_fracture, only: el_fractured, el_eroded, el_intact, erode_strain, erode_time_step, erode_inverted, &
+      fracture_update, fracture_enabled, erosion_enabled, deviatoric_rate
   use udar_hydro, only: volumetric_update, dilatational_speed2
   implicit none
   private
   public :: element_volumes, nodal_volumes, element_update, nodal_pressures, &
-            element_forces_averaged, assemble_forces, element_stable_dt
+            element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes
 
 contains
 
@@ -30,24 +32,43 @@ contains
     end do
   end subroutine
 
+  !> Nodal reference volumes V0_a: a quarter of each incident element's
+  !> reference volume, eroded elements left out (again after each erosion).
+  subroutine nodal_reference_volumes(dom)
+    type(domain_t), intent(inout) :: dom
+    integer :: n, k, e
+    real(rk) :: acc
+    do n = 1, dom%n_nodes
+      acc = 0.0_rk
+      do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
+        e = dom%nd_el(k)
+        if (dom%el_state(e) /= el_eroded) acc = acc + dom%el_vol0(e)
+      end do
+      dom%nd_vol0(n) = 0.25_rk*acc
+    end do
+  end subroutine
+
   !> Nodal volume ratio J_a = V_a / V0_a, V_a a quarter of each incident
-  !> element's volume (Bonet and Burton 1998).
+  !> element's volume (Bonet and Burton 1998); eroded elements left out, 1
+  !> at a node they all left.
   subroutine nodal_volumes(dom)
     type(domain_t), intent(inout) :: dom
-    integer :: n, k
+    integer :: n, k, e
     real(rk) :: acc
     do n = 1, dom%n_owned_nodes
       acc = 0.0_rk
       do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
-        acc = acc + dom%el_vol(dom%nd_el(k))
+        e = dom%nd_el(k)
+        if (dom%el_state(e) /= el_eroded) acc = acc + dom%el_vol(e)
       end do
-      dom%nd_j(n) = 0.25_rk*acc/dom%nd_vol0(n)
+      dom%nd_j(n) = 1.0_rk
+      if (dom%nd_vol0(n) > 0.0_rk) dom%nd_j(n) = 0.25_rk*acc/dom%nd_vol0(n)
     end do
   end subroutine
 
   !> Nodal pressure: reference-volume-weighted mean of the incident elements'
   !> EOS pressures; the weights make the averaged forces the exact gradient of
-  !> the averaged-volume energy.
+  !> the averaged-volume energy. Eroded elements left out.
   subroutine nodal_pressures(dom)
     type(domain_t), intent(inout) :: dom
     integer :: n, k, e
@@ -56,43 +77,50 @@ contains
       acc = 0.0_rk
       do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
         e = dom%nd_el(k)
-        acc = acc + dom%el_vol0(e)*dom%el_p(e)
+        if (dom%el_state(e) /= el_eroded) acc = acc + dom%el_vol0(e)*dom%el_p(e)
       end do
-      dom%nd_p(n) = 0.25_rk*acc/dom%nd_vol0(n)
+      dom%nd_p(n) = 0.0_rk
+      if (dom%nd_vol0(n) > 0.0_rk) dom%nd_p(n) = 0.25_rk*acc/dom%nd_vol0(n)
     end do
   end subroutine
 
   !> Stress update of every element over dt with the velocities v(n+1/2) on
   !> the geometry x(n+1); forces too unless anti-locking needs the nodal
-  !> pressures first. Returns the smallest stable time step, the first
+  !> pressures first. Fracture and erosion: a fractured element keeps no
+  !> deviator and no tension; an eroded one passes through the kernels as an
+  !> element at rest (no strain, no force, its state frozen) and is left out
+  !> of the time step. Returns the smallest stable time step, the first
   !> element (lowest id) with a non-positive volume and the first whose
-  !> nodal-averaged volume ratio is non-positive (a neighbour inverted), or 0.
-  subroutine element_update(dom, dt, dt_stable, bad_elem, bad_j)
+  !> nodal-averaged volume ratio is non-positive (a neighbour inverted), or
+  !> 0 (elements of eroding materials are eroded instead), the owned
+  !> elements eroded this cycle by reason (udar_fracture erode_*), and
+  !> whether any local element was eroded.
+  subroutine element_update(dom, dt, dt_stable, bad_elem, bad_j, n_eroded, eroded_any)
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
     real(rk), intent(out) :: dt_stable
-    integer, intent(out) :: bad_elem, bad_j
+    integer, intent(out) :: bad_elem, bad_j, n_eroded(3)
+    logical, intent(out) :: eroded_any
     integer, parameter :: ld = block_size
     real(rk) :: ve(ld,4,3), grad(ld,4,3), fe(ld,4,3)
     real(rk) :: vol(ld), h(ld), d(ld,6), w(ld,3), s(ld,6), p_app(ld), trd(ld), j_new(ld), &
-                w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld)
-    real(rk) :: t_old
+                w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld), dt_el(ld)
+    logical :: gone(ld), no_shear(ld), erodible, fracturing, fractured
+    real(rk) :: t_old, d_eps
     integer :: b, i, e, nb, first, last, k
     dt_stable = huge(1.0_rk)
     bad_elem = 0
     bad_j = 0
+    n_eroded = 0
+    eroded_any = .false.
     do b = 1, dom%n_blocks
       call block_geometry(dom, b, first, last, nb, vol, grad, h)
       call gather_block(dom, dom%nd_v, first, nb, ve)
       h(1:nb) = 1.0_rk/sqrt(h(1:nb))      ! smallest altitude
-      if (any(vol(1:nb) <= 0.0_rk)) then
-        ! stop after this cycle; keep the arithmetic finite meanwhile
-        do i = 1, nb
-          if (vol(i) <= 0.0_rk .and. bad_elem == 0) bad_elem = first + i - 1
-        end do
-        where (vol(1:nb) <= 0.0_rk) vol(1:nb) = dom%el_vol0(first:last)
-      end if
       call tet_velocity_gradient(ld, nb, ve, grad, d, w)
+      associate (mat => dom%mat(dom%el_mat(first)))
+      erodible = erosion_enabled(mat)
+      fracturing = fracture_enabled(mat)
       ! volume ratio seen by the EOS: nodal average (Bonet-Burton) or the element's own
       if (dom%anti_locking) then
         do i = 1, nb
@@ -101,18 +129,37 @@ contains
                             + dom%nd_j(dom%el_conn(e,3)) + dom%nd_j(dom%el_conn(e,4)))
         end do
       else
-        j_new(1:nb) = vol(1:nb)/dom%el_vol0(first:last)
+        j_new(1:nb) = vol(1:nb)/max(dom%el_vol0(first:last), tiny(1.0_rk))
       end if
-      if (any(j_new(1:nb) <= 0.0_rk)) then
-        ! a neighbour inverted and took the nodal average with it: stop after
-        ! this cycle, keeping the EOS finite meanwhile
-        do i = 1, nb
-          if (j_new(i) <= 0.0_rk .and. bad_j == 0) bad_j = first + i - 1
-        end do
-        where (j_new(1:nb) <= 0.0_rk) j_new(1:nb) = dom%el_j(first:last)
-      end if
+      do i = 1, nb
+        e = first + i - 1
+        gone(i) = dom%el_state(e) == el_eroded
+        if (.not. gone(i) .and. (vol(i) <= 0.0_rk .or. j_new(i) <= 0.0_rk)) then
+          if (erodible) then
+            ! inverted within one step: eroded, never a silent negative volume
+            call erode(e, erode_inverted)
+            gone(i) = .true.
+          else if (vol(i) <= 0.0_rk) then
+            if (bad_elem == 0) bad_elem = e    ! stop after this cycle
+          else
+            if (bad_j == 0) bad_j = e          ! a neighbour inverted and took the nodal average with it
+          end if
+        end if
+        if (gone(i)) then
+          ! at rest at its reference volume, too large to limit the step
+          d(i,:) = 0.0_rk
+          w(i,:) = 0.0_rk
+          h(i) = huge(1.0_rk)
+          j_new(i) = dom%el_j(e)
+        end if
+        ! keep the arithmetic finite until the run stops
+        if (vol(i) <= 0.0_rk .or. gone(i)) vol(i) = dom%el_vol0(e)
+        if (j_new(i) <= 0.0_rk) j_new(i) = dom%el_j(e)
+        no_shear(i) = gone(i) .or. dom%el_state(e) == el_fractured
+        if (.not. gone(i)) dom%el_eps_tot(e) = dom%el_eps_tot(e) + dt*deviatoric_rate(d(i,:))
+      end do
       do k = 1, 6
-        s(1:nb,k) = dom%el_s(first:last,k)
+        s(1:nb,k) = merge(0.0_rk, dom%el_s(first:last,k), no_shear(1:nb))
       end do
       eps(1:nb) = dom%el_eps_p(first:last)
       hard(1:nb) = dom%el_hard(first:last)
@@ -120,10 +167,22 @@ contains
       e_int(1:nb) = dom%el_e(first:last)
       p(1:nb) = dom%el_p(first:last)
       trd(1:nb) = d(1:nb,1) + d(1:nb,2) + d(1:nb,3)
-      associate (mat => dom%mat(dom%el_mat(first)))
         call strength_block(mat, ld, nb, dt, d, w, soft, hard, s, eps, w_dev, w_pl)
+        if (fracturing .or. erodible) then
+          ! fractured material carries no shear: no deviatoric work, no flow
+          do i = 1, nb
+            if (.not. no_shear(i)) cycle
+            e = first + i - 1
+            s(i,:) = 0.0_rk
+            w_dev(i) = 0.0_rk
+            w_pl(i) = 0.0_rk
+            eps(i) = dom%el_eps_p(e)
+            hard(i) = dom%el_hard(e)
+          end do
+        end if
         call volumetric_update(mat, dom%q_linear, dom%q_quadratic, ld, nb, dt, vol, h, trd, &
-                               dom%el_mass(first:last), dom%el_j(first:last), j_new, w_dev, e_int, p, q, dt_stable)
+                               dom%el_mass(first:last), dom%el_j(first:last), j_new, w_dev, no_shear(1:nb), &
+                               e_int, p, q, dt_el)
         ! plastic work heats the material (Taylor-Quinney share), which softens it
         do i = 1, nb
           if (w_pl(i) <= 0.0_rk) cycle
@@ -135,7 +194,42 @@ contains
             soft(i) = thermal_softening_update(mat, soft(i), t_old, dom%el_temp(e))
           end if
         end do
+        if (fracturing .or. erodible) then
+          do i = 1, nb
+            e = first + i - 1
+            if (gone(i)) then
+              p(i) = 0.0_rk
+              q(i) = 0.0_rk
+              cycle
+            end if
+            if (dom%el_state(e) == el_intact .and. fracturing) then
+              d_eps = eps(i) - dom%el_eps_p(e)
+              call fracture_update(mat, dt, d_eps, eps(i), von_mises(s(i,:)), p(i), dom%el_temp(e), &
+                                   dom%el_damage(e), fractured)
+              if (fractured) then
+                dom%el_state(e) = el_fractured
+                s(i,:) = 0.0_rk
+                p(i) = max(p(i), 0.0_rk)
+              end if
+            end if
+            if (.not. erodible) cycle
+            if (dom%el_state(e) == el_fractured .and. dom%el_eps_tot(e) >= mat%eps_erode) then
+              call erode(e, erode_strain)
+            else if (dt_el(i) < dom%erode_dt_limit) then
+              call erode(e, erode_time_step)
+            end if
+            if (dom%el_state(e) == el_eroded) then
+              gone(i) = .true.
+              s(i,:) = 0.0_rk
+              p(i) = 0.0_rk
+              q(i) = 0.0_rk
+            end if
+          end do
+        end if
       end associate
+      do i = 1, nb
+        if (.not. gone(i)) dt_stable = min(dt_stable, dt_el(i))
+      end do
       do k = 1, 6
         dom%el_s(first:last,k) = s(1:nb,k)
       end do
@@ -150,9 +244,21 @@ contains
       if (.not. dom%anti_locking) then
         p_app(1:nb) = p(1:nb) + q(1:nb)
         call tet_internal_forces(ld, nb, vol, grad, s, p_app, fe)
+        do i = 1, nb
+          if (gone(i)) fe(i,:,:) = 0.0_rk
+        end do
         call store_forces(dom, first, nb, fe)
       end if
     end do
+  contains
+    !> Element e leaves the mesh: its mass stays at its nodes, its internal
+    !> energy (frozen from now on) is the eroded energy.
+    subroutine erode(e, reason)
+      integer, intent(in) :: e, reason
+      dom%el_state(e) = el_eroded
+      eroded_any = .true.
+      if (dom%el_owned(e)) n_eroded(reason) = n_eroded(reason) + 1
+    end subroutine
   end subroutine
 
   !> Stable step of the current state without advancing it (start-up).
@@ -168,7 +274,7 @@ contains
       h(1:nb) = 1.0_rk/sqrt(h(1:nb))
       call dilatational_speed2(dom%mat(dom%el_mat(first)), nb, dom%el_j(first:last), dom%el_p(first:last), &
                                dom%el_mass(first:last), vol, c2)
-      dt_stable = min(dt_stable, minval(h(1:nb)/sqrt(c2(1:nb))))
+      dt_stable = min(dt_stable, minval(h(1:nb)/sqrt(c2(1:nb)), mask=dom%el_state(first:last) /= el_eroded))
     end do
   end subroutine
 
@@ -185,12 +291,18 @@ contains
       do i = 1, nb
         e = first + i - 1
         p_app(i) = 0.25_rk*(dom%nd_p(dom%el_conn(e,1)) + dom%nd_p(dom%el_conn(e,2)) &
-                 + dom%nd_p(dom%el_conn(e,3)) + dom%nd_p(dom%el_conn(e,4))) + dom%el_q(e)
+                 + dom%nd_p(dom%el_conn(e,3)) + dom%nd_p(dom%el_conn(e,4)))
+        ! fractured: no tension from the averaged pressure either
+        if (dom%el_state(e) == el_fractured) p_app(i) = max(p_app(i), 0.0_rk)
+        p_app(i) = p_app(i) + dom%el_q(e)
       end do
       do k = 1, 6
         sb(1:nb,k) = dom%el_s(first:last,k)
       end do
       call tet_internal_forces(ld, nb, vol, grad, sb, p_app, fe)
+      do i = 1, nb
+        if (dom%el_state(first + i - 1) == el_eroded) fe(i,:,:) = 0.0_rk
+      end do
       call store_forces(dom, first, nb, fe)
     end do
   end subroutine

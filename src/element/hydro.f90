@@ -18,13 +18,18 @@ contains
   !> solved for e(n+1) in closed form; and the smallest
   !>   dt = h / (Q + sqrt(Q^2 + c^2)),  Q = q_lin c + q_quad h |trd|
   !> (Hallquist, LS-DYNA theory manual, section 18).
+  !> Fractured elements (no_tension) carry no tension: where the EOS would
+  !> give p < 0 the pressure is 0 and the energy equation has no p dv term
+  !> for the new pressure. dt_el: each element's stable step.
   pure subroutine volumetric_update(mat, q_lin, q_quad, ld, nb, dt, vol, h, trd, mass, j_old, j_new, &
-                                    w_dev, e, p, q, dt_min)
+                                    w_dev, no_tension, e, p, q, dt_el)
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: q_lin, q_quad, dt
     integer, intent(in) :: ld, nb
     real(rk), intent(in) :: vol(nb), h(nb), trd(nb), mass(nb), j_old(nb), j_new(nb), w_dev(nb)
-    real(rk), intent(inout) :: e(nb), p(nb), q(nb), dt_min
+    logical, intent(in) :: no_tension(nb)
+    real(rk), intent(inout) :: e(nb), p(nb), q(nb)
+    real(rk), intent(out) :: dt_el(nb)
     real(rk) :: c2(ld), a(ld), b(ld), rho, c, eq, dv, e_star
     integer :: i
     call dilatational_speed2(mat, nb, j_old, p, mass, vol, c2)
@@ -51,7 +56,11 @@ contains
       e_star = e(i) + (w_dev(i) - q(i)*trd(i)*dt)*vol(i)/mass(i) - 0.5_rk*p(i)*dv
       e(i) = (e_star - 0.5_rk*dv*a(i))/(1.0_rk + 0.5_rk*dv*b(i))
       p(i) = a(i) + b(i)*e(i)
-      dt_min = min(dt_min, h(i)/(eq + sqrt(eq*eq + c2(i))))
+      if (no_tension(i) .and. p(i) < 0.0_rk) then
+        e(i) = e_star
+        p(i) = 0.0_rk
+      end if
+      dt_el(i) = h(i)/(eq + sqrt(eq*eq + c2(i)))
     end do
   end subroutine
 

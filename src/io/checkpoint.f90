@@ -27,14 +27,14 @@ module udar_checkpoint
   private
   public :: checkpoint_write, checkpoint_read, checkpoint_latest, checkpoint_model_hash, checkpoint_mesh_hash
 
-  character(len=*), parameter :: ckpt_format = 'udar-checkpoint-1'
-  character(len=*), parameter :: real_names(8) = [character(len=20) :: 't', 'dt_old', 'dt_stable', 'e0', 'e_ref', &
-      't_next_field', 't_next_hist', 't_next_checkpoint']
+  character(len=*), parameter :: ckpt_format = 'udar-checkpoint-2'
+  character(len=*), parameter :: real_names(9) = [character(len=20) :: 't', 'dt_old', 'dt_stable', 'e0', 'e_ref', &
+      't_next_field', 't_next_hist', 't_next_checkpoint', 'dt0']
   !> checkpoints_written (how the run got here, not its state) lives in /provenance
   character(len=*), parameter :: int_names(5) = [character(len=30) :: 'cycle', 'field_steps', &
       'provenance/checkpoints_written', 'n_nodes', 'n_elems']
-  character(len=*), parameter :: elem_names(10) = [character(len=8) :: 'vol', 'j', 'e', 'wp', 'p', 'q', 'eps_p', &
-      'temp', 'hard', 'soft']
+  character(len=*), parameter :: elem_names(13) = [character(len=8) :: 'vol', 'j', 'e', 'wp', 'p', 'q', 'eps_p', &
+      'temp', 'hard', 'soft', 'state', 'damage', 'eps_tot']
 
   type :: ckpt_file_t
     integer(hid_t) :: id = -1, dxpl = -1
@@ -128,7 +128,8 @@ contains
     if (f%ok) then
       call attr_text(f, 'format', ckpt_format)
       call attr_text(f, 'version', program_version)
-      reals = [st%t, st%dt_old, st%dt_stable, st%e0, st%e_ref, st%t_next_field, st%t_next_hist, st%t_next_checkpoint]
+      reals = [st%t, st%dt_old, st%dt_stable, st%e0, st%e_ref, st%t_next_field, st%t_next_hist, st%t_next_checkpoint, &
+               st%dt0]
       ints = [st%cycle, st%field_steps, st%checkpoints_written, dom%n_global_nodes, dom%n_global_elems]
       do k = 1, size(real_names)
         call attr_real(f, f%id, trim(real_names(k)), reals(k))
@@ -164,6 +165,9 @@ contains
         case (8); buf(1,:) = dom%el_temp(dom%el_owned_list)
         case (9); buf(1,:) = dom%el_hard(dom%el_owned_list)
         case (10); buf(1,:) = dom%el_soft(dom%el_owned_list)
+        case (11); buf(1,:) = real(dom%el_state(dom%el_owned_list), rk)
+        case (12); buf(1,:) = dom%el_damage(dom%el_owned_list)
+        case (13); buf(1,:) = dom%el_eps_tot(dom%el_owned_list)
         end select
         call write_rows(f, 'elems/'//trim(elem_names(k)), dom%n_global_elems, 0, elem_first, elem_count, buf)
       end do
@@ -238,7 +242,7 @@ contains
     if (f%ok) call read_small_i8(f, 'wall_work', wall)
     if (f%ok) then
       st%t = reals(1); st%dt_old = reals(2); st%dt_stable = reals(3); st%e0 = reals(4); st%e_ref = reals(5)
-      st%t_next_field = reals(6); st%t_next_hist = reals(7); st%t_next_checkpoint = reals(8)
+      st%t_next_field = reals(6); st%t_next_hist = reals(7); st%t_next_checkpoint = reals(8); st%dt0 = reals(9)
       st%cycle = ints(1); st%field_steps = ints(2); st%checkpoints_written = ints(3)
       st%model_hash = hashes(1); st%mesh_hash = hashes(2)
       st%wall_work = wall
@@ -268,6 +272,9 @@ contains
       case (8); dom%el_temp = a(1,dom%el_gidx)
       case (9); dom%el_hard = a(1,dom%el_gidx)
       case (10); dom%el_soft = a(1,dom%el_gidx)
+      case (11); dom%el_state = nint(a(1,dom%el_gidx))
+      case (12); dom%el_damage = a(1,dom%el_gidx)
+      case (13); dom%el_eps_tot = a(1,dom%el_gidx)
       end select
     end do
     deallocate(a)

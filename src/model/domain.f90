@@ -50,6 +50,9 @@ module udar_domain
     real(rk), allocatable :: el_s(:,:)          !< (n,6) Pa, deviatoric stress xx,yy,zz,xy,yz,zx
     real(rk), allocatable :: el_eps_p(:), el_temp(:)  !< -, K
     real(rk), allocatable :: el_hard(:), el_soft(:)   !< Pa, -: strain-hardening part and thermal factor of the flow stress
+    integer, allocatable :: el_state(:)         !< intact, fractured or eroded (udar_fracture)
+    real(rk), allocatable :: el_damage(:)       !< -, fracture at 1 (eps_p/eps_f or Johnson-Cook damage)
+    real(rk), allocatable :: el_eps_tot(:)      !< -, accumulated equivalent deviatoric (total) strain
     real(rk), allocatable :: el_f(:,:)          !< (12,n) N, element nodal forces (x,y,z of corner 1..4):
                                                 !< element-major so the node-wise assembly reads contiguously
     ! vectorized blocks: runs of consecutive elements of one material
@@ -66,5 +69,6 @@ module udar_domain
     type(wall_t), allocatable :: walls(:)
     logical :: anti_locking = .true.
     real(rk) :: q_linear = 0.06_rk, q_quadratic = 1.5_rk
+    real(rk) :: erode_dt_limit = 0.0_rk          !< s, an eroding material's element with a smaller stable step is eroded
   end type
 end module udar_domain

@@ -8,6 +8,7 @@ module udar_run_state
 
   type, public :: run_state_t
     real(rk) :: t = 0, dt_old = 0, dt_stable = 0   !< s: time, last step, stable step of the current state
+    real(rk) :: dt0 = 0                           !< s, stable step at the start (erosion by time step)
     integer :: cycle = 0
     real(rk) :: e0 = 0, e_ref = 0                 !< J: initial energy and the error scale
     real(rk) :: t_next_field = 0, t_next_hist = 0, t_next_checkpoint = 0   !< s

@@ -125,6 +125,9 @@ contains
       loc%el_temp = glob%el_temp(ge)
       loc%el_hard = glob%el_hard(ge)
       loc%el_soft = glob%el_soft(ge)
+      loc%el_state = glob%el_state(ge)
+      loc%el_damage = glob%el_damage(ge)
+      loc%el_eps_tot = glob%el_eps_tot(ge)
       loc%el_f = glob%el_f(:,ge)
     end associate
     call build_incidence(loc)

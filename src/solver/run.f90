@@ -12,12 +12,14 @@ module udar_run
   use udar_domain, only: domain_t
   use udar_kinds, only: i8
   use udar_comms, only: comms_barrier, comms_wtime, comms_size, comms_min, comms_max, comms_min_int, comms_max_int, comms_is_root, &
+      comms_sum_int, &
       comms_sum_exact, halo_t, comms_halo_exchange, comms_halo_exchange_scalar
   use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_value
   use udar_fatal, only: fatal, fatal_all, fatal_unless_all_ok, exit_physics, exit_io
   use udar_log, only: log_info
   use udar_element_driver, only: element_volumes, nodal_volumes, element_update, nodal_pressures, &
-      element_forces_averaged, assemble_forces, element_stable_dt
+      element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes
+  use udar_fracture, only: fracture_enabled, el_intact, el_eroded
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions
   use udar_strength, only: von_mises
   use udar_history, only: history_t, history_open, history_reopen, history_write, history_close
@@ -50,6 +52,8 @@ module udar_run
   type :: balance_t
     real(rk) :: kinetic = 0, internal = 0, plastic = 0, wall_work = 0, total = 0, error = 0
     real(rk) :: momentum(3) = 0, wall_force = 0
+    real(rk) :: eroded_energy = 0            !< J, internal energy of the eroded elements (in total)
+    integer :: n_fractured = 0, n_eroded = 0 !< elements fractured (eroded ones included), eroded
     real(rk), allocatable :: contact_normal(:), contact_friction(:)   !< N, per interface
     real(rk), allocatable :: contact_slip(:)                          !< m/s, per interface
     real(rk), allocatable :: part_ke(:), part_com(:,:), part_mass(:)
@@ -86,13 +90,15 @@ contains
     real(rk) :: dt, dt_v, wall0, elapsed, loop0, last_print_wall, left, ckpt_seconds, cycle_seconds, &
                 contact_seconds
     integer :: bad, bad_avg, bad_gidx, bad_tag, bad_part, last_print_cycle, no, k, stop_code, cycles_run, n_slave
-    logical :: ok, done, history_due, print_due, stopping
+    integer :: n_eroded_now(3), n_eroded_by(3)
+    logical :: ok, done, history_due, print_due, stopping, eroded_any, fracture_on
     integer, parameter :: balance_interval = 10
     character(len=:), allocatable :: errmsg, base, why
     character(len=256) :: line
     character(len=300), allocatable :: overlap_lines(:)
 
     wall0 = comms_wtime()
+    fracture_on = any_fracture(dom)
     no = size(dom%el_owned_list)
     allocate(work_svm(no), work_rho(no), work_elem(no))
     base = trim(cfg%output%directory)//'/'//trim(cfg%output%case_name)
@@ -144,6 +150,7 @@ contains
       end do
       call element_stable_dt(dom, st%dt_stable)
       st%dt_stable = comms_min(st%dt_stable)
+      st%dt0 = st%dt_stable
       call compute_balance(dom, walls, ct, bal)
       st%e0 = bal%kinetic + bal%internal
       st%e_ref = max(abs(st%e0), tiny(1.0_rk))
@@ -154,6 +161,11 @@ contains
       st%t_next_hist = cfg%output%dt_history
       st%t_next_checkpoint = cfg%output%dt_checkpoint
     end if
+    ! erosion: elements of eroding materials whose step collapses; the
+    ! nodal reference volumes without the elements already eroded (restart)
+    dom%erode_dt_limit = cfg%numerics%erode_dt_ratio*st%dt0
+    call nodal_reference_volumes(dom)
+    n_eroded_by = 0
     write(line, '(a,i0,a,i0,a,es10.3,a)') 'start: ', dom%n_global_elems, ' elements, ', dom%n_global_nodes, &
       ' nodes, stable step ', st%dt_stable, ' s'
     call log_info(line)
@@ -202,7 +214,9 @@ contains
         call nodal_volumes(dom)
         call comms_halo_exchange_scalar(halo, dom%nd_j)
       end if
-      call element_update(dom, dt, st%dt_stable, bad, bad_avg)
+      call element_update(dom, dt, st%dt_stable, bad, bad_avg, n_eroded_now, eroded_any)
+      n_eroded_by = n_eroded_by + n_eroded_now
+      if (eroded_any) call nodal_reference_volumes(dom)
       ! the lowest global id that inverted itself, else the lowest whose nodal
       ! average did: one reduction a cycle (keys above n_global_elems are the latter)
       bad_gidx = entry_or_huge(dom%el_gidx, bad)
@@ -291,6 +305,11 @@ contains
         write(line, '(a,i8,a,es11.4,a,es10.3,a,es10.2,a,f9.1,a)') 'cycle', st%cycle, '  t ', st%t, ' s  dt ', dt, &
           ' s  energy error ', bal%error, '  wall left ', left, ' s'
         call log_info(line)
+        if (fracture_on) then
+          write(line, '(a,i0,a,i0,a,es10.3,a)') '         fracture: ', bal%n_fractured, ' elements fractured, ', &
+            bal%n_eroded, ' eroded (', bal%eroded_energy, ' J of internal energy eroded)'
+          call log_info(line)
+        end if
         do k = 1, ct%n_interfaces
           if (ct%ifc(k)%n_active == 0) cycle
           write(line, '(a,i0,a,es10.3,a,es10.3,a)') '         contact '//trim(ct%ifc(k)%name)//': ', &
@@ -311,6 +330,15 @@ contains
       call write_status(base, 'max_cycles', '')
     else
       call write_status(base, 'complete', '')
+    end if
+    if (fracture_on) then
+      do k = 1, 3
+        n_eroded_by(k) = int(comms_sum_int(int(n_eroded_by(k), i8)))
+      end do
+      write(line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'fracture: ', bal%n_fractured, ' elements fractured, ', &
+        bal%n_eroded, ' eroded; in this run ', n_eroded_by(1), ' by strain, ', n_eroded_by(2), &
+        ' by time step, ', n_eroded_by(3), ' inverted within a step'
+      call log_info(line)
     end if
     if (ct%n_interfaces > 0) then
       n_slave = 0
@@ -436,6 +464,12 @@ contains
       work_elem = dom%el_temp(dom%el_owned_list)
       if (ok) call fw_elem_scalar(fw, 'temperature', work_elem, ok, msg)
       if (ok) call fw_elem_scalar(fw, 'density', rho, ok, msg)
+      if (ok .and. fracture_on) then
+        work_elem = dom%el_damage(dom%el_owned_list)
+        call fw_elem_scalar(fw, 'damage', work_elem, ok, msg)
+        work_elem = real(dom%el_state(dom%el_owned_list), rk)
+        if (ok) call fw_elem_scalar(fw, 'fracture_state', work_elem, ok, msg)
+      end if
       if (ok .and. ct%n_interfaces > 0) then
         call contact_pressure(ct)
         work_node(:,1) = 0
@@ -513,8 +547,20 @@ contains
     tag = comms_min_int(entry_or_huge(tags, i))
   end subroutine
 
+  !> Whether any material can fracture (history columns, fields, log).
+  logical function any_fracture(dom)
+    type(domain_t), intent(in) :: dom
+    integer :: k
+    any_fracture = .false.
+    do k = 1, size(dom%mat)
+      any_fracture = any_fracture .or. fracture_enabled(dom%mat(k))
+    end do
+  end function
+
   !> Decks with contact get, after the parts, each interface's normal and
-  !> friction force and its largest slip velocity left after the pass.
+  !> friction force and its largest slip velocity left after the pass;
+  !> decks with fracture then the fractured and eroded element counts and
+  !> the eroded internal energy.
   function history_columns(dom, ct) result(cols)
     type(domain_t), intent(in) :: dom
     type(contact_t), intent(in) :: ct
@@ -523,7 +569,8 @@ contains
     character(len=80) :: base(13) = [character(len=80) :: 'time', 'cycle', 'dt', 'kinetic', 'internal', &
       'plastic_work', 'wall_work', 'total', 'energy_error', 'momentum_x', 'momentum_y', 'momentum_z', 'wall_force']
     nc = 3*ct%n_interfaces
-    allocate(cols(13 + 4*dom%n_parts + nc))
+    allocate(cols(13 + 4*dom%n_parts + nc + merge(3, 0, any_fracture(dom))))
+    if (any_fracture(dom)) cols(size(cols)-2:) = [character(len=80) :: 'fractured', 'eroded', 'eroded_energy']
     cols(1:13) = base
     do ip = 1, dom%n_parts
       cols(13 + 4*ip - 3) = 'ke_'//trim(dom%part_name(ip))
@@ -554,6 +601,8 @@ contains
       row(13 + 4*ip - 3) = bal%part_ke(ip)
       row(13 + 4*ip - 2:13 + 4*ip) = bal%part_com(ip,:)
     end do
+    if (size(row) > 13 + 4*np + 3*size(bal%contact_normal)) &
+      row(size(row)-2:) = [real(bal%n_fractured, rk), real(bal%n_eroded, rk), bal%eroded_energy]
     do ip = 1, size(bal%contact_normal)
       row(11 + 4*np + 3*ip) = bal%contact_normal(ip)
       row(12 + 4*np + 3*ip) = bal%contact_friction(ip)
@@ -569,8 +618,8 @@ contains
     type(wall_sums_t), intent(in) :: walls
     type(contact_t), intent(in) :: ct
     type(balance_t), intent(inout) :: bal
-    integer, parameter :: c_kin = 1, c_int = 2, c_pla = 3, c_mom = 4, c_work = 7, c_wall = 8
-    integer :: n, e, ip, i, np, nw, c_part
+    integer, parameter :: c_kin = 1, c_int = 2, c_pla = 3, c_mom = 4, c_work = 7, c_ero = 8, c_wall = 9
+    integer :: n, e, ip, i, np, nw, c_part, n_frac, n_ero
     real(rk) :: ke
     np = dom%n_parts
     nw = size(dom%walls)
@@ -589,11 +638,21 @@ contains
       end do
       call exact_add(bal%acc(:,ip+4), dom%nd_mass(n))
     end do
+    n_frac = 0
+    n_ero = 0
     do i = 1, size(dom%el_owned_list)
       e = dom%el_owned_list(i)
-      call exact_add(bal%acc(:,c_int), dom%el_mass(e)*dom%el_e(e))
+      if (dom%el_state(e) == el_eroded) then
+        call exact_add(bal%acc(:,c_ero), dom%el_mass(e)*dom%el_e(e))
+        n_ero = n_ero + 1
+      else
+        call exact_add(bal%acc(:,c_int), dom%el_mass(e)*dom%el_e(e))
+      end if
+      if (dom%el_state(e) /= el_intact) n_frac = n_frac + 1
       call exact_add(bal%acc(:,c_pla), dom%el_mass(e)*dom%el_wp(e))
     end do
+    bal%n_fractured = int(comms_sum_int(int(n_frac, i8)))
+    bal%n_eroded = int(comms_sum_int(int(n_ero, i8)))
     bal%acc(:,c_work) = walls%work
     do i = 1, nw
       bal%acc(:,c_wall+i-1) = walls%impulse(:,i)
@@ -606,6 +665,7 @@ contains
       bal%momentum(i) = exact_value(bal%acc(:,c_mom+i-1))
     end do
     bal%wall_work = exact_value(bal%acc(:,c_work))
+    bal%eroded_energy = exact_value(bal%acc(:,c_ero))
     ! the wall corrections are part of the velocity update, so they span dt_v
     bal%wall_force = 0.0_rk
     do i = 1, nw
@@ -620,7 +680,7 @@ contains
         if (bal%part_mass(ip) > 0.0_rk) bal%part_com(ip,i) = bal%part_com(ip,i)/bal%part_mass(ip)
       end do
     end do
-    bal%total = bal%kinetic + bal%internal
+    bal%total = bal%kinetic + bal%internal + bal%eroded_energy
     ! the contact pass is replicated: its sums are already the same on every rank
     if (.not. allocated(bal%contact_normal)) allocate(bal%contact_normal(ct%n_interfaces), &
                                                       bal%contact_friction(ct%n_interfaces), bal%contact_slip(ct%n_interfaces))

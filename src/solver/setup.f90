@@ -160,6 +160,8 @@ contains
     dom%nd_f = 0.0_rk; dom%nd_p = 0.0_rk
     dom%el_e = 0.0_rk; dom%el_wp = 0.0_rk; dom%el_p = 0.0_rk; dom%el_q = 0.0_rk; dom%el_s = 0.0_rk
     dom%el_eps_p = 0.0_rk; dom%el_f = 0.0_rk
+    allocate(dom%el_state(ne), source=0)
+    allocate(dom%el_damage(ne), dom%el_eps_tot(ne), source=0.0_rk)
   end subroutine
 
   !> Node -> element lists by counting sort; elements are visited in

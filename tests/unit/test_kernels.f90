@@ -8,6 +8,9 @@ program test_kernels
   use udar_tet4, only: tet_volume, tet_gradients, tet_velocity_gradient
   use udar_strength, only: strength_block, von_mises, yield_stress, thermal_softening, power_ratio
   use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
+  use udar_hydro, only: volumetric_update
+  use udar_fracture, only: fracture_update, jc_fracture_strain
+  use udar_config, only: fracture_plastic_strain, fracture_johnson_cook
   use unit_checks, only: check, check_summary
   implicit none
   real(rk) :: w_test(3) = 0.0_rk   ! spin seen by one_step
@@ -16,6 +19,7 @@ program test_kernels
   call test_rigid_rotation()
   call test_radial_return()
   call test_eos()
+  call test_fracture()
   call check_summary()
 
 contains
@@ -185,6 +189,52 @@ contains
     call eos_mie_gruneisen_ab(8930.0_rk, 3940.0_rk, 1.489_rk, 2.02_rk, 1.01_rk, a, b)
     p = 8930.0_rk*3940.0_rk**2*(-0.01_rk)*(1 + 0.0101_rk)
     call check('eos_mie_gruneisen_tension', abs(a/p - 1) < 1e-12_rk .and. a < 0, 'p = '//r2s(a)//' Pa')
+  end subroutine
+
+  !> Fractured material: no tension, still compression; the criteria.
+  subroutine test_fracture()
+    type(material_cfg_t) :: mat
+    real(rk) :: vol(2), h(2), trd(2), mass(2), j_old(2), j_new(2), w_dev(2), e(2), p(2), q(2), dt_el(2)
+    real(rk) :: e_i(2), p_i(2), q_i(2), damage, ef
+    logical :: fractured
+    mat%rho0 = 7850; mat%bulk_modulus = 160.0e9_rk; mat%shear_modulus = 80.0e9_rk
+    ! element 1 expands (J 1 -> 1.002), element 2 is compressed (J 1 -> 0.998)
+    vol = 1.0e-9_rk; h = 1.0e-3_rk; mass = mat%rho0*vol; j_old = 1; j_new = [1.002_rk, 0.998_rk]
+    trd = (j_new - j_old)/1.0e-8_rk; w_dev = 0; e = 0; p = 0; q = 0
+    e_i = e; p_i = p; q_i = q
+    call volumetric_update(mat, 0.0_rk, 0.0_rk, 2, 2, 1.0e-8_rk, vol, h, trd, mass, j_old, j_new, w_dev, &
+                           [.false., .false.], e_i, p_i, q_i, dt_el)
+    call volumetric_update(mat, 0.0_rk, 0.0_rk, 2, 2, 1.0e-8_rk, vol, h, trd, mass, j_old, j_new, w_dev, &
+                           [.true., .true.], e, p, q, dt_el)
+    call check('fractured_no_tension', p_i(1) < 0 .and. p(1) == 0 .and. e(1) == 0, &
+               'expanding: intact p = '//r2s(p_i(1))//' Pa, fractured p = '//r2s(p(1))//' Pa')
+    call check('fractured_still_compression', p(2) > 0 .and. p(2) == p_i(2) .and. abs(p(2)/(160.0e9_rk*(1/0.998_rk - 1)) - 1) < 1e-12_rk, &
+               'compressed: fractured p = '//r2s(p(2))//' Pa (K (1/J - 1) = '//r2s(160.0e9_rk*(1/0.998_rk - 1))//')')
+    ! plastic strain intensity criterion: fractures when eps_p reaches eps_f
+    mat%fracture = fracture_plastic_strain; mat%eps_f = 0.5_rk
+    damage = 0
+    call fracture_update(mat, 1.0e-8_rk, 0.01_rk, 0.49_rk, 1.0e9_rk, 0.0_rk, 294.0_rk, damage, fractured)
+    call check('plastic_strain_below_eps_f', .not. fractured .and. abs(damage - 0.98_rk) < 1e-15_rk, 'D = '//r2s(damage))
+    call fracture_update(mat, 1.0e-8_rk, 0.01_rk, 0.5_rk, 1.0e9_rk, 0.0_rk, 294.0_rk, damage, fractured)
+    call check('plastic_strain_at_eps_f', fractured, 'D = '//r2s(damage))
+    ! spall: mean stress below -p_spall
+    mat%p_spall = 1.0e9_rk; damage = 0
+    call fracture_update(mat, 1.0e-8_rk, 0.0_rk, 0.0_rk, 0.0_rk, -1.01e9_rk, 294.0_rk, damage, fractured)
+    call check('spall_below_minus_p_spall', fractured, 'p = -1.01 GPa, p_spall = 1 GPa')
+    call fracture_update(mat, 1.0e-8_rk, 0.0_rk, 0.0_rk, 0.0_rk, -0.99e9_rk, 294.0_rk, damage, fractured)
+    call check('no_spall_above_minus_p_spall', .not. fractured, 'p = -0.99 GPa')
+    ! Johnson-Cook 4340 steel (Johnson and Cook 1985): D1..D5 = 0.05, 3.44, -2.12, 0.002, 0.61;
+    ! triaxiality 1/3, rate* = 1000, T* = 0.5 by hand: eps_f = 1.7764 x 1.013816 x 1.305
+    mat%fracture = fracture_johnson_cook; mat%p_spall = 0
+    mat%jc_d1 = 0.05_rk; mat%jc_d2 = 3.44_rk; mat%jc_d3 = -2.12_rk; mat%jc_d4 = 0.002_rk; mat%jc_d5 = 0.61_rk
+    mat%jc_rate0 = 1.0_rk; mat%t_room = 294.0_rk; mat%t_melt = 1794.0_rk
+    ef = (0.05_rk + 3.44_rk*exp(-2.12_rk/3))*(1 + 0.002_rk*log(1000.0_rk))*(1 + 0.61_rk*0.5_rk)
+    call check('jc_fracture_strain', abs(jc_fracture_strain(mat, 1.0_rk/3, 1000.0_rk, 1044.0_rk)/ef - 1) < 1e-14_rk, &
+               'eps_f = '//r2s(jc_fracture_strain(mat, 1.0_rk/3, 1000.0_rk, 1044.0_rk))//' (hand '//r2s(ef)//')')
+    damage = 0
+    call fracture_update(mat, 1.0e-5_rk, 0.01_rk, 0.01_rk, 3.0e9_rk, -1.0e9_rk, 1044.0_rk, damage, fractured)
+    call check('jc_damage_increment', abs(damage - 0.01_rk/ef) < 1e-14_rk .and. .not. fractured, &
+               'D = '//r2s(damage)//' (d_eps/eps_f = '//r2s(0.01_rk/ef)//')')
   end subroutine
 
   pure function cross(a, b)
