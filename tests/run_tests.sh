@@ -56,6 +56,8 @@ run_test "cli/more_ranks_than_elements" tests/cli/more_ranks_than_elements.sh bi
 run_test "cli/ranks_plate_impact" tests/cli/rank_invariance.sh bin/udar plate_impact
 run_test "cli/ranks_blocks_head_on" tests/cli/rank_invariance.sh bin/udar blocks_head_on
 run_test "cli/ranks_spall" tests/cli/rank_invariance.sh bin/udar spall
+run_test "cli/ranks_penetration" tests/cli/rank_invariance.sh bin/udar penetration 2.5e-6
+run_test "cli/restart_erosion" tests/cli/restart_erosion.sh bin/udar
 run_test "cli/tracking_rod_3kms" tests/cli/tracking.sh bin/udar rod_3kms 0.6e-6
 run_test "cli/tracking_oblique_friction" tests/cli/tracking.sh bin/udar oblique_friction
 run_test "cli/ranks_taylor_ofhc" tests/cli/rank_invariance.sh bin/udar taylor_ofhc_baseline 30.0e-6
@@ -70,6 +72,7 @@ run_test "regression/oblique_friction" regression oblique_friction bin/udar-debu
 run_test "regression/oblique_stick" regression oblique_friction bin/udar-debug oblique_stick
 run_test "regression/rod_3kms" regression rod_3kms bin/udar
 run_test "regression/spall" regression spall bin/udar-debug
+run_test "regression/penetration" regression penetration bin/udar
 run_test "regression/taylor_wg" regression taylor_wg bin/udar
 run_test "regression/taylor_ofhc_baseline" regression taylor_ofhc_baseline bin/udar
 

@@ -6,7 +6,8 @@
 !> Replicated work, O(surface nodes) per rank, and bitwise the same on any
 !> number of ranks.
 module udar_contact
-  use udar_kinds, only: rk
+  use udar_kinds, only: rk, i8
+  use udar_exact_sum, only: exact_limbs, exact_add
   use udar_domain, only: domain_t
   use udar_contact_model, only: contact_t, interface_t
   use udar_contact_search, only: grid_build, grid_cell
@@ -14,7 +15,8 @@ module udar_contact
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real
   implicit none
   private
-  public :: contact_distribute, contact_enforce, contact_overlaps, contact_pressure
+  public :: contact_distribute, contact_enforce, contact_overlaps, contact_pressure, contact_keep_velocities, &
+            contact_work
 
   !> a projection this far outside a triangle (in area coordinates) still
   !> counts as on it: no slave node slips through the seam of two triangles
@@ -48,23 +50,37 @@ contains
     call comms_allgatherv_int(ct%owned_pos, owned_counts, ct%gather_pos)
     ct%counts = 6*owned_counts
     allocate(ct%send(6*size(ct%owned_pos) + 1), ct%recv(6*ct%n_nodes))
+    allocate(ct%v_prev(3, size(ct%owned_pos)), ct%v_pre(3, size(ct%owned_pos)))
   end subroutine
 
   !> Slave nodes behind their master surface before the first cycle:
   !> counted, the deepest named, and moved onto the surface if the interface
   !> asks for it. Returns a report line per interface.
-  subroutine contact_overlaps(ct, dom, lines)
+  !> With settle: after surfaces changed (erosion), slave nodes just behind
+  !> the newly exposed faces are put on them, whatever initial_overlap says.
+  subroutine contact_overlaps(ct, dom, lines, settle)
     type(contact_t), intent(inout) :: ct
     type(domain_t), intent(inout) :: dom
     character(len=300), allocatable, intent(out) :: lines(:)
+    logical, intent(in), optional :: settle
     integer :: i, n_found, worst
     real(rk) :: depth
+    logical :: move
+    real(rk) :: reach
     allocate(lines(ct%n_interfaces))
     if (ct%n_interfaces == 0) return
     call gather_state(ct, dom)
     do i = 1, ct%n_interfaces
-      ! anything behind the surface by up to one master element counts
-      call detect(ct, ct%ifc(i), ct%ifc(i)%h_mean, ct%ifc(i)%move_overlaps, 0.0_rk, n_found, depth, worst)
+      move = ct%ifc(i)%move_overlaps
+      ! anything behind the surface by up to one master element counts; when
+      ! settling, a hair (a node deeper came through an element that is gone:
+      ! the next pass takes it with the velocities)
+      reach = ct%ifc(i)%h_mean
+      if (present(settle)) then
+        move = move .or. settle
+        if (settle) reach = 0.01_rk*ct%ifc(i)%h_mean
+      end if
+      call detect(ct, ct%ifc(i), reach, move, 0.0_rk, n_found, depth, worst)
       if (n_found == 0) then
         write(lines(i), '(a)') 'contact '//trim(ct%ifc(i)%name)//': no initial overlap'
       else
@@ -255,7 +271,7 @@ contains
         it%wide_lo(:,t) = minval(xa, dim=2) - reach
         it%wide_hi(:,t) = maxval(xa, dim=2) + reach
       end do
-      call grid_build(it%grid, it%wide_lo, it%wide_hi)
+      call grid_build(it%grid, it%wide_lo(:,1:nt), it%wide_hi(:,1:nt))
       n_cand = 0
       it%cand_start(1) = 1
       do k = 1, size(it%slave)
@@ -358,6 +374,45 @@ contains
         separating = .true.
       end if
     end subroutine
+  end subroutine
+
+  !> Keeps the velocities of this rank's own contact nodes: v(n-1/2) before
+  !> the velocity update (which = 1) or v(n+1/2) just before the contact pass
+  !> (which = 2), for contact_work.
+  subroutine contact_keep_velocities(ct, dom, which)
+    type(contact_t), intent(inout) :: ct
+    type(domain_t), intent(in) :: dom
+    integer, intent(in) :: which
+    integer :: k
+    if (ct%n_interfaces == 0) return
+    do k = 1, size(ct%owned_pos)
+      if (which == 1) then
+        ct%v_prev(:,k) = dom%nd_v(:, ct%local(ct%owned_pos(k)))
+      else
+        ct%v_pre(:,k) = dom%nd_v(:, ct%local(ct%owned_pos(k)))
+      end if
+    end do
+  end subroutine
+
+  !> Work of the contact impulses of the pass on this rank's own nodes into
+  !> the exact accumulator acc: m dv . (v(n-1/2) + v(n+1/2)) / 2, the form
+  !> in which an impulse enters the central-difference kinetic energy
+  !> (KE(n+1/2) - KE(n-1/2) = sum m (v(n+1/2) - v(n-1/2)) . the mean of the
+  !> two), so that KE + IE - contact work is conserved as the element
+  !> forces' part is.
+  subroutine contact_work(ct, dom, acc)
+    type(contact_t), intent(in) :: ct
+    type(domain_t), intent(in) :: dom
+    integer(i8), intent(inout) :: acc(0:exact_limbs)
+    integer :: k, n
+    real(rk) :: dv(3)
+    if (ct%n_interfaces == 0) return
+    do k = 1, size(ct%owned_pos)
+      n = ct%local(ct%owned_pos(k))
+      dv = dom%nd_v(:,n) - ct%v_pre(:,k)
+      if (all(dv == 0.0_rk)) cycle
+      call exact_add(acc, 0.5_rk*dom%nd_mass(n)*dot_product(dv, ct%v_prev(:,k) + dom%nd_v(:,n)))
+    end do
   end subroutine
 
   !> Contact pressure of every contact node in the last pass (into

@@ -10,10 +10,10 @@ module udar_contact_setup
   use udar_deck, only: deck_where
   use udar_setup, only: find_group, group_list
   use udar_strings, only: itoa, to_lower
-  use udar_contact_model, only: contact_t, interface_t
+  use udar_contact_model, only: contact_t, interface_t, size_interface_work
   implicit none
   private
-  public :: build_contact
+  public :: build_contact, tet_face
 
   !> local nodes of the face opposite each tet corner
   integer, parameter :: tet_face(3,4) = reshape([2,3,4, 1,4,3, 1,2,4, 1,3,2], [3,4])
@@ -28,7 +28,8 @@ contains
     type(input_errors_t), intent(inout) :: errs
     integer, allocatable :: face(:,:), face_part(:), master(:,:), slave(:), tri_all(:,:), cn_of(:)
     type(interface_t), allocatable :: ifc(:)
-    integer :: k, n_err0, nf, n_ifc, i, mark_count
+    integer :: k, n_err0, nf, n_ifc, i, mark_count, m_part, s_part, e
+    logical, allocatable :: part_erodes(:)
     logical, allocatable :: is_contact(:), face_used(:)
     character(len=:), allocatable :: mname, sname
 
@@ -44,25 +45,38 @@ contains
     i = 0
     do k = 1, size(cfg%contacts)
       associate (c => cfg%contacts(k))
-        call surface(c%master, 'master', k, master, mname)
-        call surface(c%slave, 'slave', k, tri_all, sname)
+        call surface(c%master, 'master', k, master, mname, m_part)
+        call surface(c%slave, 'slave', k, tri_all, sname, s_part)
         if (errs%count() > n_err0) cycle
         slave = unique_nodes(tri_all)
         i = i + 1
         call make_interface(ifc(i), master, slave, sname//'_on_'//mname)
+        ifc(i)%master_part = eroding_part(m_part)
+        ifc(i)%slave_part = eroding_part(s_part)
         if (c%symmetric) then
           i = i + 1
           call make_interface(ifc(i), tri_all, unique_nodes(master), mname//'_on_'//sname)
+          ifc(i)%master_part = eroding_part(s_part)
+          ifc(i)%slave_part = eroding_part(m_part)
         end if
       end associate
     end do
     if (errs%count() > n_err0) return
 
-    ! contact nodes: every node of a master triangle or a slave set
+    ! contact nodes: every node of a master triangle or a slave set, and
+    ! every node of an eroding part (any may come to the surface)
     allocate(is_contact(glob%n_nodes), source=.false.)
     do i = 1, n_ifc
       is_contact(reshape(ifc(i)%tri, [size(ifc(i)%tri)])) = .true.
       is_contact(ifc(i)%slave) = .true.
+    end do
+    allocate(part_erodes(size(cfg%parts)), source=.false.)
+    do i = 1, n_ifc
+      if (ifc(i)%master_part > 0) part_erodes(ifc(i)%master_part) = .true.
+      if (ifc(i)%slave_part > 0) part_erodes(ifc(i)%slave_part) = .true.
+    end do
+    do e = 1, glob%n_elems
+      if (part_erodes(glob%el_part(e))) is_contact(glob%el_conn(e,:)) = .true.
     end do
     mark_count = count(is_contact)
     ct%gidx = pack([(k, k = 1, glob%n_nodes)], is_contact)
@@ -74,11 +88,16 @@ contains
     end do
     ct%n_nodes = mark_count
     do i = 1, n_ifc
-      allocate(ifc(i)%x_built(3, ct%n_nodes), ifc(i)%cand(4*size(ifc(i)%slave) + 1))
+      allocate(ifc(i)%x_built(3, ct%n_nodes))
     end do
     ! every face of a contact surface once (tributary areas of the nodes)
     ct%faces = face(:, pack([(k, k = 1, nf)], face_used))
     ct%faces = reshape(cn_of(reshape(ct%faces, [size(ct%faces)])), shape(ct%faces))
+    ! the tetrahedra of the eroding parts, their neighbours across each face;
+    ! the faces of the other surfaces stay as they are
+    call eroding_topology(glob, part_erodes, cn_of, ct)
+    ct%fixed_faces = face(:, pack([(k, k = 1, nf)], face_used .and. .not. part_erodes(face_part(1:nf))))
+    ct%fixed_faces = reshape(cn_of(reshape(ct%fixed_faces, [size(ct%fixed_faces)])), shape(ct%fixed_faces))
     allocate(ct%impulse(ct%n_nodes), ct%pressure(ct%n_nodes), ct%work_area(ct%n_nodes), source=0.0_rk)
     ct%n_interfaces = n_ifc
     call move_alloc(ifc, ct%ifc)
@@ -91,19 +110,21 @@ contains
 
     !> The triangles of a part's boundary (name of a part) or of a physical
     !> surface group, in global node indices, oriented out of their body.
-    subroutine surface(name, role, k, tri, label)
+    subroutine surface(name, role, k, tri, label, part)
       character(len=*), intent(in) :: name, role
       integer, intent(in) :: k
       integer, allocatable, intent(out) :: tri(:,:)
       character(len=:), allocatable, intent(out) :: label
+      integer, intent(out) :: part           !< the part whose boundary it is, 0 for a surface group
       integer :: ip, ig
       label = trim(name)
-      ip = 0
+      part = 0
       do ip = 1, size(cfg%parts)
         if (to_lower(trim(cfg%parts(ip)%group)) == to_lower(trim(name))) exit
       end do
       if (ip <= size(cfg%parts)) then
         call take_faces(face_part(1:nf) == ip, tri)
+        part = ip
         return
       end if
       ig = find_group(mesh, trim(name), 2)
@@ -137,6 +158,14 @@ contains
       end do
       call take_faces(in_group(face(1,1:nf)) .and. in_group(face(2,1:nf)) .and. in_group(face(3,1:nf)), tri)
     end subroutine
+
+    !> Part ip if its material erodes (its boundary changes), else 0.
+    integer function eroding_part(ip)
+      integer, intent(in) :: ip
+      eroding_part = 0
+      if (ip == 0) return
+      if (glob%mat(glob%el_mat(findloc(glob%el_part, ip, dim=1)))%eps_erode > 0.0_rk) eroding_part = ip
+    end function
 
     !> The exterior faces selected, remembered as contact faces.
     subroutine take_faces(selected, tri)
@@ -172,12 +201,46 @@ contains
       ! cycles at moderate speeds, every cycle when a node moves half an
       ! element a step (3 km/s)
       if (it%tracking) it%skin = 0.5_rk*it%h_mean
-      allocate(it%box_lo(3, size(tri, 2)), it%box_hi(3, size(tri, 2)), it%active(size(slave_nodes)), &
-               it%on_tri(size(slave_nodes)), it%slot(size(slave_nodes)), it%wide_lo(3, size(tri, 2)), &
-               it%wide_hi(3, size(tri, 2)), it%cand_start(size(slave_nodes) + 1), it%normal(3, size(slave_nodes)), &
-               it%area(3, size(slave_nodes)), &
-               it%share(3, size(slave_nodes)), it%dn_sum(size(slave_nodes)), it%dt_sum(size(slave_nodes)))
+      call size_interface_work(it)
     end subroutine
+  end subroutine
+
+  !> The tetrahedra of the parts that erode (contact-node indices, ascending
+  !> global element), the neighbour across the face opposite each corner
+  !> (same part), all alive.
+  subroutine eroding_topology(glob, part_erodes, cn_of, ct)
+    type(domain_t), intent(in) :: glob
+    logical, intent(in) :: part_erodes(:)
+    integer, intent(in) :: cn_of(:)
+    type(contact_t), intent(inout) :: ct
+    integer, allocatable :: tet_of(:)
+    integer :: e, t, f, k, e2, a, b, c
+    ct%tet_gidx = pack([(e, e = 1, glob%n_elems)], part_erodes(glob%el_part))
+    ct%n_tets = size(ct%tet_gidx)
+    allocate(tet_of(glob%n_elems), source=0)
+    tet_of(ct%tet_gidx) = [(t, t = 1, ct%n_tets)]
+    allocate(ct%tet(4, ct%n_tets), ct%tet_part(ct%n_tets), ct%tet_nbr(4, ct%n_tets), ct%tet_alive(ct%n_tets), &
+             ct%alive_count(ct%n_nodes))
+    ct%tet_alive = .true.
+    ct%tet_nbr = 0
+    do t = 1, ct%n_tets
+      e = ct%tet_gidx(t)
+      ct%tet(:,t) = cn_of(glob%el_conn(e,:))
+      ct%tet_part(t) = glob%el_part(e)
+      do f = 1, 4
+        a = glob%el_conn(e, tet_face(1,f))
+        b = glob%el_conn(e, tet_face(2,f))
+        c = glob%el_conn(e, tet_face(3,f))
+        do k = glob%nd_el_ptr(a), glob%nd_el_ptr(a+1) - 1
+          e2 = glob%nd_el(k)
+          if (e2 == e .or. glob%el_part(e2) /= glob%el_part(e)) cycle
+          if (any(glob%el_conn(e2,:) == b) .and. any(glob%el_conn(e2,:) == c)) then
+            ct%tet_nbr(f,t) = tet_of(e2)
+            exit
+          end if
+        end do
+      end do
+    end do
   end subroutine
 
   !> Faces of each part's boundary: faces of its tetrahedra that no other

@@ -6,7 +6,7 @@
 !> disk is always whole. Layout (C order, as h5py shows it):
 !>   @format 'udar-checkpoint-1', @version, @n_nodes, @n_elems, the scalars of
 !>   run_state_t (@t, @cycle, ...);  hashes int64 (2): model, mesh;
-!>   wall_work int64 (67): exact wall-work accumulator;  /provenance @n_ranks;
+!>   wall_work, contact_work int64 (67): exact work accumulators;  /provenance @n_ranks;
 !>   nodes/{x,v,f} (n_nodes,3);  elems/{vol,j,e,wp,p,q,eps_p,temp,hard,soft}
 !>   (n_elems), elems/s (n_elems,6).
 !> Reading: every rank reads the global arrays and keeps its local entries.
@@ -147,6 +147,8 @@ contains
       wall = st%wall_work
       call write_small_i8(f, 'hashes', hashes)
       call write_small_i8(f, 'wall_work', wall)
+      wall = st%contact_work
+      call write_small_i8(f, 'contact_work', wall)
       call h5gcreate_f(f%id, 'nodes', gid, err); call h5gclose_f(gid, err)
       call h5gcreate_f(f%id, 'elems', gid, err); call h5gclose_f(gid, err)
       call write_rows(f, 'nodes/x', dom%n_global_nodes, 3, node_first, node_count, dom%nd_x(:,1:dom%n_owned_nodes))
@@ -240,12 +242,14 @@ contains
     end if
     if (f%ok) call read_small_i8(f, 'hashes', hashes)
     if (f%ok) call read_small_i8(f, 'wall_work', wall)
+    if (f%ok) st%wall_work = wall
+    if (f%ok) call read_small_i8(f, 'contact_work', wall)
+    if (f%ok) st%contact_work = wall
     if (f%ok) then
       st%t = reals(1); st%dt_old = reals(2); st%dt_stable = reals(3); st%e0 = reals(4); st%e_ref = reals(5)
       st%t_next_field = reals(6); st%t_next_hist = reals(7); st%t_next_checkpoint = reals(8); st%dt0 = reals(9)
       st%cycle = ints(1); st%field_steps = ints(2); st%checkpoints_written = ints(3)
       st%model_hash = hashes(1); st%mesh_hash = hashes(2)
-      st%wall_work = wall
     end if
     ! nodes: all local ones, ghosts included
     allocate(a(3, dom%n_global_nodes))

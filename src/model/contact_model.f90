@@ -8,12 +8,14 @@ module udar_contact_model
   use udar_contact_search, only: bucket_grid_t
   implicit none
   private
+  public :: size_interface_work
 
   !> One direction of an interface: slave nodes against master triangles.
   type, public :: interface_t
     character(len=2*max_name_len+8) :: name = ''  !< 'slave_on_master', for the log and the history
     integer, allocatable :: tri(:,:)       !< (3, n_tri) contact-node indices; counter-clockwise seen from outside
     integer, allocatable :: slave(:)       !< contact-node indices, ascending (= ascending global id)
+    integer :: master_part = 0, slave_part = 0   !< eroding parts whose current boundary is the surface (0: fixed surface)
     real(rk) :: friction = 0
     integer :: iterations = 2, weights = 1
     real(rk) :: tolerance = 0
@@ -53,11 +55,48 @@ module udar_contact_model
     real(rk), allocatable :: pressure(:)   !< Pa, work array: contact pressure of each contact node
     real(rk), allocatable :: work_area(:)  !< m2, work array of contact_pressure
     real(rk) :: dt_last = 0                !< s, the step of the last pass
+    ! eroding surfaces: every tetrahedron of the parts whose boundary changes
+    ! as elements erode (all their nodes are contact nodes)
+    integer :: n_tets = 0
+    integer, allocatable :: tet(:,:)       !< (4, n_tets) contact-node indices
+    integer, allocatable :: tet_part(:), tet_gidx(:)   !< part, global element index (ascending)
+    integer, allocatable :: tet_nbr(:,:)   !< (4, n_tets) tetrahedron across the face opposite each corner, 0 = none
+    logical, allocatable :: tet_alive(:)
+    integer, allocatable :: fixed_faces(:,:)   !< (3, n) faces of the surfaces that do not erode
+    integer, allocatable :: alive_count(:) !< work: alive tetrahedra at each contact node
     ! this rank's share
     integer, allocatable :: local(:)       !< local node of each contact node, 0 if not on this rank
     integer, allocatable :: owned_pos(:)   !< contact nodes this rank owns (their positions in gidx)
     integer, allocatable :: gather_pos(:)  !< position in gidx of each entry of the gathered buffer
     integer, allocatable :: counts(:)      !< reals each rank sends (6 per owned contact node)
     real(rk), allocatable :: send(:), recv(:)
+    real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3, owned contact nodes) m/s: v(n-1/2), v(n+1/2) before the pass
   end type
+contains
+
+  !> The interface's work arrays hold its current triangles and slave nodes
+  !> (grown by half again when too small: no allocation in a steady run).
+  subroutine size_interface_work(it)
+    type(interface_t), intent(inout) :: it
+    integer :: nt, ns
+    nt = size(it%tri, 2)
+    ns = size(it%slave)
+    if (allocated(it%box_lo)) then
+      if (size(it%box_lo, 2) < nt) deallocate(it%box_lo, it%box_hi, it%wide_lo, it%wide_hi)
+    end if
+    if (.not. allocated(it%box_lo)) then
+      nt = max(nt, 3*size(it%tri, 2)/2)
+      allocate(it%box_lo(3,nt), it%box_hi(3,nt), it%wide_lo(3,nt), it%wide_hi(3,nt))
+    end if
+    if (allocated(it%active)) then
+      if (size(it%active) < ns) deallocate(it%active, it%on_tri, it%slot, it%cand_start, it%normal, it%area, &
+                                           it%share, it%dn_sum, it%dt_sum)
+    end if
+    if (.not. allocated(it%active)) then
+      ns = max(ns, 3*size(it%slave)/2)
+      allocate(it%active(ns), it%on_tri(ns), it%slot(ns), it%cand_start(ns + 1), it%normal(3,ns), it%area(3,ns), &
+               it%share(3,ns), it%dn_sum(ns), it%dt_sum(ns))
+    end if
+    if (.not. allocated(it%cand)) allocate(it%cand(4*size(it%slave) + 1))
+  end subroutine
 end module udar_contact_model

@@ -15,6 +15,7 @@ module udar_run_state
     integer :: field_steps = 0                    !< committed field output steps
     integer :: checkpoints_written = 0            !< picks the next rotating checkpoint slot
     integer(i8) :: wall_work(0:exact_limbs) = 0   !< J, exact global wall work (udar_exact_sum)
+    integer(i8) :: contact_work(0:exact_limbs) = 0 !< J, exact global work of the contact impulses
     integer(i8) :: model_hash = 0, mesh_hash = 0  !< what the checkpoint belongs to
   end type
 end module udar_run_state

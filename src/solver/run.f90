@@ -12,7 +12,7 @@ module udar_run
   use udar_domain, only: domain_t
   use udar_kinds, only: i8
   use udar_comms, only: comms_barrier, comms_wtime, comms_size, comms_min, comms_max, comms_min_int, comms_max_int, comms_is_root, &
-      comms_sum_int, &
+      comms_sum_int, comms_allgather_count, comms_allgatherv_int, &
       comms_sum_exact, halo_t, comms_halo_exchange, comms_halo_exchange_scalar
   use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_value
   use udar_fatal, only: fatal, fatal_all, fatal_unless_all_ok, exit_physics, exit_io
@@ -33,7 +33,8 @@ module udar_run
   use udar_hash, only: hash_hex
   use udar_strings, only: itoa
   use udar_contact_model, only: contact_t
-  use udar_contact, only: contact_enforce, contact_overlaps, contact_pressure
+  use udar_contact, only: contact_enforce, contact_overlaps, contact_pressure, contact_keep_velocities, contact_work
+  use udar_contact_erosion, only: contact_erode
   use udar_files, only: rename_file
   implicit none
   private
@@ -51,6 +52,7 @@ module udar_run
   !> Energy and momentum balance at one instant (global).
   type :: balance_t
     real(rk) :: kinetic = 0, internal = 0, plastic = 0, wall_work = 0, total = 0, error = 0
+    real(rk) :: contact_work = 0             !< J, work of the contact impulses (dissipation: negative)
     real(rk) :: momentum(3) = 0, wall_force = 0
     real(rk) :: eroded_energy = 0            !< J, internal energy of the eroded elements (in total)
     integer :: n_fractured = 0, n_eroded = 0 !< elements fractured (eroded ones included), eroded
@@ -65,6 +67,7 @@ module udar_run
   !> until a balance reduces them.
   type :: wall_sums_t
     integer(i8) :: work(0:exact_limbs) = 0
+    integer(i8) :: contact_work(0:exact_limbs) = 0   !< J, work of the contact impulses since the start
     integer(i8), allocatable :: impulse(:,:)
     real(rk) :: dt_v = 1                    !< s, interval of the last impulse
   end type
@@ -91,6 +94,8 @@ contains
                 contact_seconds
     integer :: bad, bad_avg, bad_gidx, bad_tag, bad_part, last_print_cycle, no, k, stop_code, cycles_run, n_slave
     integer :: n_eroded_now(3), n_eroded_by(3)
+    logical, allocatable :: owned_gone(:)                  !< owned elements already passed to the contact surfaces
+    integer, allocatable :: new_gidx(:), all_gidx(:), erosion_counts(:)
     logical :: ok, done, history_due, print_due, stopping, eroded_any, fracture_on
     integer, parameter :: balance_interval = 10
     character(len=:), allocatable :: errmsg, base, why
@@ -138,7 +143,9 @@ contains
       call reopen_outputs()
       ! each rank's accumulator adds to the global sum: the saved total goes to one rank
       walls%work = 0
+      walls%contact_work = 0
       if (comms_is_root()) walls%work = st%wall_work
+      if (comms_is_root()) walls%contact_work = st%contact_work
       write(line, '(a,i0,a,es12.5,a,i0,a)') 'restart from '//trim(restart_path)//' at cycle ', st%cycle, &
         ', t = ', st%t, ' s, on ', comms_size(), ' ranks'
       call log_info(line)
@@ -166,6 +173,12 @@ contains
     dom%erode_dt_limit = cfg%numerics%erode_dt_ratio*st%dt0
     call nodal_reference_volumes(dom)
     n_eroded_by = 0
+    ! eroding contact surfaces: the elements already eroded (restart)
+    if (ct%n_tets > 0) then
+      allocate(owned_gone(no), source=.false.)
+      allocate(new_gidx(no), all_gidx(dom%n_global_elems), erosion_counts(0:comms_size()-1))
+      call share_erosion(.true., .false.)
+    end if
     write(line, '(a,i0,a,i0,a,es10.3,a)') 'start: ', dom%n_global_elems, ' elements, ', dom%n_global_nodes, &
       ' nodes, stable step ', st%dt_stable, ' s'
     call log_info(line)
@@ -192,6 +205,7 @@ contains
       end if
       dt_v = 0.5_rk*(st%dt_old + dt)
       ! ---- nodes: v(n+1/2), conditions, walls, x(n+1); then the ghosts' from their owners
+      call contact_keep_velocities(ct, dom, 1)
       call update_velocities(dom, dt_v)
       call apply_velocity_conditions(dom)
       do k = 1, size(dom%walls)
@@ -201,7 +215,9 @@ contains
       walls%dt_v = dt_v
       call update_positions(dom, dt)
       elapsed = comms_wtime()
+      call contact_keep_velocities(ct, dom, 2)
       call contact_enforce(ct, dom, dt)
+      call contact_work(ct, dom, walls%contact_work)
       contact_seconds = contact_seconds + (comms_wtime() - elapsed)
       call comms_halo_exchange(halo, dom%nd_x, dom%nd_v)
       st%t = st%t + dt
@@ -217,6 +233,7 @@ contains
       call element_update(dom, dt, st%dt_stable, bad, bad_avg, n_eroded_now, eroded_any)
       n_eroded_by = n_eroded_by + n_eroded_now
       if (eroded_any) call nodal_reference_volumes(dom)
+      if (ct%n_tets > 0) call share_erosion(sum(n_eroded_now) > 0, .true.)
       ! the lowest global id that inverted itself, else the lowest whose nodal
       ! average did: one reduction a cycle (keys above n_global_elems are the latter)
       bad_gidx = entry_or_huge(dom%el_gidx, bad)
@@ -250,7 +267,7 @@ contains
       ! the balance costs a pass over the mesh: every few cycles is enough to catch a blow-up
       if (history_due .or. print_due .or. mod(st%cycle, balance_interval) == 0) then
         call compute_balance(dom, walls, ct, bal)
-        bal%error = (bal%total - bal%wall_work - st%e0)/max(st%e_ref, bal%kinetic)
+        bal%error = (bal%total - bal%wall_work - bal%contact_work - st%e0)/max(st%e_ref, bal%kinetic)
       end if
       if (.not. ieee_is_finite(bal%total) .or. abs(bal%error) > cfg%run%energy_error_limit) then
         call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
@@ -363,6 +380,31 @@ contains
     res%wall_seconds = comms_wtime() - wall0
     res%ns_per_element_cycle = 1.0e9_rk*(comms_wtime() - loop0)/(real(dom%n_global_elems, rk)*max(cycles_run, 1))
   contains
+    !> The owned elements eroded since the last call, to every rank, and
+    !> the contact surfaces rebuilt from them (collective).
+    subroutine share_erosion(look, settle)
+      logical, intent(in) :: look     !< this rank eroded some of its elements
+      logical, intent(in) :: settle   !< put slave nodes a hair behind the new faces on them (not at a restart:
+                                      !< the checkpoint holds the settled positions)
+      integer :: i, n_new
+      n_new = 0
+      if (look) then
+        do i = 1, no
+          if (owned_gone(i) .or. dom%el_state(dom%el_owned_list(i)) /= el_eroded) cycle
+          owned_gone(i) = .true.
+          n_new = n_new + 1
+          new_gidx(n_new) = dom%el_gidx(dom%el_owned_list(i))
+        end do
+      end if
+      call comms_allgather_count(n_new, erosion_counts)
+      if (sum(erosion_counts) == 0) return
+      call comms_allgatherv_int(new_gidx(1:n_new), erosion_counts, all_gidx(1:sum(erosion_counts)))
+      call contact_erode(ct, all_gidx(1:sum(erosion_counts)))
+      ! a slave node flush against an eroded element can be a hair behind
+      ! the face its removal exposed: onto it before the next step
+      if (settle) call contact_overlaps(ct, dom, overlap_lines, settle=.true.)
+    end subroutine
+
     !> Next output time after t (several intervals may pass in one step).
     subroutine advance(t_next, interval)
       real(rk), intent(inout) :: t_next
@@ -382,11 +424,13 @@ contains
 
     subroutine write_checkpoint()
       real(rk) :: w0
-      integer(i8) :: acc(0:exact_limbs, 1)
+      integer(i8) :: acc(0:exact_limbs, 2)
       w0 = comms_wtime()
       acc(:,1) = walls%work
+      acc(:,2) = walls%contact_work
       call comms_sum_exact(acc)
       st%wall_work = acc(:,1)
+      st%contact_work = acc(:,2)
       st%checkpoints_written = st%checkpoints_written + 1
       call checkpoint_write(checkpoint_path(st%checkpoints_written), dom, st, ok, errmsg)
       if (.not. ok) call fatal_all(exit_io, errmsg)
@@ -559,8 +603,8 @@ contains
 
   !> Decks with contact get, after the parts, each interface's normal and
   !> friction force and its largest slip velocity left after the pass;
-  !> decks with fracture then the fractured and eroded element counts and
-  !> the eroded internal energy.
+  !> decks with fracture then the fractured and eroded element counts, the
+  !> eroded internal energy and the mass of the mesh (erosion keeps it).
   function history_columns(dom, ct) result(cols)
     type(domain_t), intent(in) :: dom
     type(contact_t), intent(in) :: ct
@@ -568,9 +612,9 @@ contains
     integer :: ip, nc
     character(len=80) :: base(13) = [character(len=80) :: 'time', 'cycle', 'dt', 'kinetic', 'internal', &
       'plastic_work', 'wall_work', 'total', 'energy_error', 'momentum_x', 'momentum_y', 'momentum_z', 'wall_force']
-    nc = 3*ct%n_interfaces
-    allocate(cols(13 + 4*dom%n_parts + nc + merge(3, 0, any_fracture(dom))))
-    if (any_fracture(dom)) cols(size(cols)-2:) = [character(len=80) :: 'fractured', 'eroded', 'eroded_energy']
+    nc = 3*ct%n_interfaces + merge(1, 0, ct%n_interfaces > 0)
+    allocate(cols(13 + 4*dom%n_parts + nc + merge(4, 0, any_fracture(dom))))
+    if (any_fracture(dom)) cols(size(cols)-3:) = [character(len=80) :: 'fractured', 'eroded', 'eroded_energy', 'mass']
     cols(1:13) = base
     do ip = 1, dom%n_parts
       cols(13 + 4*ip - 3) = 'ke_'//trim(dom%part_name(ip))
@@ -585,6 +629,7 @@ contains
       cols(ip + 3*nc - 1) = 'contact_friction_'//trim(ct%ifc(nc)%name)
       cols(ip + 3*nc) = 'contact_slip_'//trim(ct%ifc(nc)%name)
     end do
+    cols(ip + 3*ct%n_interfaces + 1) = 'contact_work'
   end function
 
   subroutine write_history_row(hist, t, cycle, dt, bal, row)
@@ -601,13 +646,14 @@ contains
       row(13 + 4*ip - 3) = bal%part_ke(ip)
       row(13 + 4*ip - 2:13 + 4*ip) = bal%part_com(ip,:)
     end do
-    if (size(row) > 13 + 4*np + 3*size(bal%contact_normal)) &
-      row(size(row)-2:) = [real(bal%n_fractured, rk), real(bal%n_eroded, rk), bal%eroded_energy]
+    if (size(row) > 13 + 4*np + 3*size(bal%contact_normal) + merge(1, 0, size(bal%contact_normal) > 0)) &
+      row(size(row)-3:) = [real(bal%n_fractured, rk), real(bal%n_eroded, rk), bal%eroded_energy, sum(bal%part_mass)]
     do ip = 1, size(bal%contact_normal)
       row(11 + 4*np + 3*ip) = bal%contact_normal(ip)
       row(12 + 4*np + 3*ip) = bal%contact_friction(ip)
       row(13 + 4*np + 3*ip) = bal%contact_slip(ip)
     end do
+    if (size(bal%contact_normal) > 0) row(14 + 4*np + 3*size(bal%contact_normal)) = bal%contact_work
     call history_write(hist, row)
   end subroutine
 
@@ -618,7 +664,8 @@ contains
     type(wall_sums_t), intent(in) :: walls
     type(contact_t), intent(in) :: ct
     type(balance_t), intent(inout) :: bal
-    integer, parameter :: c_kin = 1, c_int = 2, c_pla = 3, c_mom = 4, c_work = 7, c_ero = 8, c_wall = 9
+    integer, parameter :: c_kin = 1, c_int = 2, c_pla = 3, c_mom = 4, c_work = 7, c_ero = 8, c_cwork = 9, &
+                          c_wall = 10
     integer :: n, e, ip, i, np, nw, c_part, n_frac, n_ero
     real(rk) :: ke
     np = dom%n_parts
@@ -654,6 +701,7 @@ contains
     bal%n_fractured = int(comms_sum_int(int(n_frac, i8)))
     bal%n_eroded = int(comms_sum_int(int(n_ero, i8)))
     bal%acc(:,c_work) = walls%work
+    bal%acc(:,c_cwork) = walls%contact_work
     do i = 1, nw
       bal%acc(:,c_wall+i-1) = walls%impulse(:,i)
     end do
@@ -666,6 +714,7 @@ contains
     end do
     bal%wall_work = exact_value(bal%acc(:,c_work))
     bal%eroded_energy = exact_value(bal%acc(:,c_ero))
+    bal%contact_work = exact_value(bal%acc(:,c_cwork))
     ! the wall corrections are part of the velocity update, so they span dt_v
     bal%wall_force = 0.0_rk
     do i = 1, nw

@@ -1,0 +1,149 @@
+!> Eroding contact: as elements of an eroding part erode, the faces they
+!> leave exposed join the part's contact surface, the faces they took with
+!> them leave it, and nodes left without elements (debris) stay slave
+!> nodes that still strike master surfaces. Every rank applies the same
+!> list of eroded elements to the same replicated surfaces, so the surfaces
+!> (and the contact pass) stay the same on any number of ranks.
+module udar_contact_erosion
+  use udar_contact_model, only: contact_t, interface_t, size_interface_work
+  use udar_contact_setup, only: tet_face
+  implicit none
+  private
+  public :: contact_erode
+
+contains
+
+  !> Elements eroded (global element indices, the same list on every rank):
+  !> marks those of the eroding parts and rebuilds the surfaces of the
+  !> interfaces whose parts lost one.
+  subroutine contact_erode(ct, eroded)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: eroded(:)
+    logical, allocatable :: part_changed(:)
+    integer, allocatable :: parts(:), faces(:,:)
+    integer :: i, t, k, n_fixed
+    if (ct%n_tets == 0 .or. size(eroded) == 0) return
+    allocate(part_changed(maxval(ct%tet_part)), source=.false.)
+    do i = 1, size(eroded)
+      t = tet_index(eroded(i))
+      if (t == 0) cycle
+      if (.not. ct%tet_alive(t)) cycle
+      ct%tet_alive(t) = .false.
+      part_changed(ct%tet_part(t)) = .true.
+    end do
+    if (.not. any(part_changed)) return
+    ! alive tetrahedra at each node: 0 = a free node (debris)
+    ct%alive_count = 0
+    do t = 1, ct%n_tets
+      if (ct%tet_alive(t)) ct%alive_count(ct%tet(:,t)) = ct%alive_count(ct%tet(:,t)) + 1
+    end do
+    do k = 1, ct%n_interfaces
+      associate (it => ct%ifc(k))
+        if (.not. (changed(it%master_part) .or. changed(it%slave_part))) cycle
+        if (it%master_part > 0) it%tri = boundary_faces([it%master_part])
+        if (it%slave_part > 0) it%slave = slave_nodes(it%slave_part)
+        call size_interface_work(it)
+        it%reach_built = -1.0       ! a full search on the new surfaces
+      end associate
+    end do
+    ! faces for the contact pressure: the fixed ones and the eroding parts' current ones
+    parts = eroding_parts()
+    n_fixed = size(ct%fixed_faces, 2)
+    allocate(faces(3, n_fixed + count_faces(parts)))
+    faces(:,1:n_fixed) = ct%fixed_faces
+    faces(:,n_fixed+1:) = boundary_faces(parts)
+    call move_alloc(faces, ct%faces)
+
+  contains
+
+    logical function changed(ip)
+      integer, intent(in) :: ip
+      changed = .false.
+      if (ip > 0) changed = part_changed(ip)
+    end function
+
+    !> Index in ct%tet of global element g (ascending tet_gidx), 0 if none.
+    integer function tet_index(g)
+      integer, intent(in) :: g
+      integer :: lo, hi, mid
+      tet_index = 0
+      lo = 1
+      hi = ct%n_tets
+      do while (lo <= hi)
+        mid = (lo + hi)/2
+        if (ct%tet_gidx(mid) == g) then
+          tet_index = mid
+          return
+        else if (ct%tet_gidx(mid) < g) then
+          lo = mid + 1
+        else
+          hi = mid - 1
+        end if
+      end do
+    end function
+
+    !> Whether face f of tetrahedron t is on the current boundary.
+    logical function exposed(t, f)
+      integer, intent(in) :: t, f
+      exposed = ct%tet_alive(t)
+      if (exposed .and. ct%tet_nbr(f,t) > 0) exposed = .not. ct%tet_alive(ct%tet_nbr(f,t))
+    end function
+
+    function eroding_parts() result(parts)
+      integer, allocatable :: parts(:)
+      integer :: ip
+      parts = pack([(ip, ip = 1, size(part_changed))], [(any(ct%tet_part == ip), ip = 1, size(part_changed))])
+    end function
+
+    integer function count_faces(parts)
+      integer, intent(in) :: parts(:)
+      integer :: t, f
+      count_faces = 0
+      do t = 1, ct%n_tets
+        if (.not. any(parts == ct%tet_part(t))) cycle
+        do f = 1, 4
+          if (exposed(t, f)) count_faces = count_faces + 1
+        end do
+      end do
+    end function
+
+    !> The current boundary of the parts: exposed faces of their alive
+    !> tetrahedra in ascending element and face order (the order of the
+    !> initial surface), counter-clockwise seen from outside.
+    function boundary_faces(parts) result(tri)
+      integer, intent(in) :: parts(:)
+      integer, allocatable :: tri(:,:)
+      integer :: t, f, n
+      allocate(tri(3, count_faces(parts)))
+      n = 0
+      do t = 1, ct%n_tets
+        if (.not. any(parts == ct%tet_part(t))) cycle
+        do f = 1, 4
+          if (.not. exposed(t, f)) cycle
+          n = n + 1
+          tri(:,n) = ct%tet(tet_face(:,f), t)
+        end do
+      end do
+    end function
+
+    !> Slave nodes of part ip: the nodes of its current boundary and its
+    !> free nodes, ascending.
+    function slave_nodes(ip) result(nodes)
+      integer, intent(in) :: ip
+      integer, allocatable :: nodes(:)
+      logical, allocatable :: mark(:)
+      integer :: t, f, n
+      allocate(mark(ct%n_nodes), source=.false.)
+      do t = 1, ct%n_tets
+        if (ct%tet_part(t) /= ip) cycle
+        do f = 1, 4
+          if (exposed(t, f)) mark(ct%tet(tet_face(:,f), t)) = .true.
+        end do
+        do f = 1, 4
+          if (ct%alive_count(ct%tet(f,t)) == 0) mark(ct%tet(f,t)) = .true.
+        end do
+      end do
+      nodes = pack([(n, n = 1, ct%n_nodes)], mark)
+    end function
+  end subroutine
+end module udar_contact_erosion

@@ -1,0 +1,25 @@
+"""Geometry helpers of the contact checks."""
+import numpy as np
+
+
+def deepest_inside(points, x, tets):
+    """Largest depth (m) of any point inside any tetrahedron, 0 if none: the
+    depth of a point is its smallest barycentric coordinate times the tet's
+    smallest altitude (positive only when it is strictly inside)."""
+    a, b, c, d = (x[tets[:, k]] for k in range(4))
+    m = np.stack([b - a, c - a, d - a], axis=2)          # (nt, 3, 3), columns are edges
+    inv = np.linalg.inv(m)
+    vol6 = np.abs(np.linalg.det(m))
+    faces = [np.cross(c - b, d - b), np.cross(d - a, c - a), np.cross(b - a, d - a), np.cross(c - a, b - a)]
+    h_min = vol6 / np.max([np.linalg.norm(f, axis=1) for f in faces], axis=0)
+    lo, hi = np.minimum.reduce([a, b, c, d]), np.maximum.reduce([a, b, c, d])
+    worst = 0.0
+    for p in points:
+        near = np.all((p >= lo) & (p <= hi), axis=1)
+        if not near.any():
+            continue
+        lam = np.einsum('nij,nj->ni', inv[near], p - a[near])
+        bary = np.column_stack([1.0 - lam.sum(axis=1), lam])
+        depth = bary.min(axis=1) * h_min[near]
+        worst = max(worst, depth.max())
+    return worst
