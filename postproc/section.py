@@ -259,6 +259,9 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
                                "from the plane span %.6g .. %.6g mm)" % (
                                    path, plane.description, idx, dist.min() * 1e3, dist.max() * 1e3))
         keep = polygon_areas(poly) > 0.0  # tets touching the plane at an edge or a vertex
+        if "fracture_state" in st.fields and not undeformed:
+            # eroded elements (state 2) are gone from the calculation: not drawn
+            keep &= np.asarray(st.fields["fracture_state"])[elem] < 1.5
         elem, poly = elem[keep], poly[keep]
         if elem.size == 0:
             raise SectionError("%s: the plane %s only touches the mesh at step %d (section area "

@@ -10,7 +10,8 @@ module udar_nodal
   use udar_kinds, only: i8
   implicit none
   private
-  public :: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions
+  public :: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions, &
+            keep_constrained_positions, restore_constrained_positions
 
 contains
 
@@ -40,6 +41,39 @@ contains
     do k = 1, size(dom%fixed_nodes)
       dom%nd_v(:,dom%fixed_nodes(k)) = 0.0_rk
     end do
+  end subroutine
+
+  !> Positions of the nodes under velocity conditions (each symmetry entry,
+  !> then each fixed node), before a pass that may move them (contact).
+  subroutine keep_constrained_positions(dom, x_kept)
+    type(domain_t), intent(in) :: dom
+    real(rk), intent(out) :: x_kept(:,:)   !< (3, size(sym_nodes) + size(fixed_nodes))
+    integer :: k, ns
+    ns = size(dom%sym_nodes)
+    do k = 1, ns
+      x_kept(:,k) = dom%nd_x(:,dom%sym_nodes(k))
+    end do
+    do k = 1, size(dom%fixed_nodes)
+      x_kept(:,ns+k) = dom%nd_x(:,dom%fixed_nodes(k))
+    end do
+  end subroutine
+
+  !> After such a pass the conditions hold again: a symmetry node keeps only
+  !> the in-plane part of what the pass did to its position and velocity, a
+  !> fixed node none of it.
+  subroutine restore_constrained_positions(dom, x_kept)
+    type(domain_t), intent(inout) :: dom
+    real(rk), intent(in) :: x_kept(:,:)
+    integer :: k, n, ns
+    ns = size(dom%sym_nodes)
+    do k = 1, ns
+      n = dom%sym_nodes(k)
+      dom%nd_x(:,n) = dom%nd_x(:,n) - dot_product(dom%nd_x(:,n) - x_kept(:,k), dom%sym_normal(k,:))*dom%sym_normal(k,:)
+    end do
+    do k = 1, size(dom%fixed_nodes)
+      dom%nd_x(:,dom%fixed_nodes(k)) = x_kept(:,ns+k)
+    end do
+    call apply_velocity_conditions(dom)
   end subroutine
 
   !> A node that would end the step behind a wall gets the normal velocity

@@ -20,7 +20,8 @@ module udar_run
   use udar_element_driver, only: element_volumes, nodal_volumes, element_update, nodal_pressures, &
       element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes
   use udar_fracture, only: fracture_enabled, el_intact, el_eroded
-  use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions
+  use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions, &
+      keep_constrained_positions, restore_constrained_positions
   use udar_strength, only: von_mises
   use udar_history, only: history_t, history_open, history_reopen, history_write, history_close
   use udar_field_output, only: field_writer_t, fw_open, fw_reopen, fw_begin_step, fw_node_vector, fw_node_scalar, &
@@ -90,6 +91,7 @@ contains
     type(wall_sums_t) :: walls
     type(run_state_t) :: st
     real(rk), allocatable :: work_svm(:), work_rho(:), row(:), work_node(:,:), work_elem(:)
+    real(rk), allocatable :: x_constrained(:,:)   !< positions of the constrained nodes before the contact pass
     real(rk) :: dt, dt_v, wall0, elapsed, loop0, last_print_wall, left, ckpt_seconds, cycle_seconds, &
                 contact_seconds
     integer :: bad, bad_avg, bad_gidx, bad_tag, bad_part, last_print_cycle, no, k, stop_code, cycles_run, n_slave
@@ -110,6 +112,7 @@ contains
     res%field_file = base//'.h5'
     res%history_file = base//'_history.csv'
     allocate(work_node(dom%n_owned_nodes,3))
+    allocate(x_constrained(3, size(dom%sym_nodes) + size(dom%fixed_nodes)))
     allocate(row(size(history_columns(dom, ct))))
     allocate(walls%impulse(0:exact_limbs, size(dom%walls)))
     walls%impulse = 0
@@ -216,7 +219,10 @@ contains
       call update_positions(dom, dt)
       elapsed = comms_wtime()
       call contact_keep_velocities(ct, dom, 2)
+      if (ct%n_interfaces > 0) call keep_constrained_positions(dom, x_constrained)
       call contact_enforce(ct, dom, dt)
+      ! the contact pass knows no velocity conditions: they hold again after it
+      if (ct%n_interfaces > 0) call restore_constrained_positions(dom, x_constrained)
       call contact_work(ct, dom, walls%contact_work)
       contact_seconds = contact_seconds + (comms_wtime() - elapsed)
       call comms_halo_exchange(halo, dom%nd_x, dom%nd_v)

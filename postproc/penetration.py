@@ -1,0 +1,137 @@
+#!/usr/bin/python3
+"""Penetration measurements from a udar field file: crater depth, residual rod length and
+rod velocity at every output step.
+
+The target's impact face is the plane z = 0 (the rod moves along -z). At each step:
+
+* crater depth P: minus the highest z of the target material still there (elements not
+  eroded) near the axis (centroid within --radius of it);
+* residual rod length: the axial extent of the rod elements not eroded;
+* rod velocity: the mean axial velocity of the nodes of the rod elements not eroded;
+* rod tip: the lowest z of those nodes.
+
+    /usr/bin/python3 postproc/penetration.py out/long_rod.h5 --rod rod --target block --radius 1.25e-3
+    /usr/bin/python3 postproc/penetration.py --self-test
+
+Library use: ``measure(fieldfile, rod, target, radius)`` returns one dict per step.
+"""
+
+import argparse
+import os
+import sys
+import tempfile
+
+if __package__:
+    from . import udar_results as ur
+else:
+    import udar_results as ur  # run as a script
+import numpy as np
+
+
+def part_id(ff, name):
+    """Part id of the part called name (from the deck stored in the file)."""
+    names = ff.part_names
+    for pid, pname in names.items():
+        if pname.lower() == name.lower():
+            return pid
+    raise SystemExit("%s: no part '%s' (parts: %s)" % (ff.path, name, ", ".join(names.values()) or "unnamed"))
+
+
+def measure(ff, rod, target, radius):
+    """Per step: time (s), crater depth (m), residual rod length (m), rod velocity (m/s),
+    rod tip z (m), eroded rod and target elements."""
+    conn = ff.connectivity
+    rod_el = ff.part_id == part_id(ff, rod)
+    tgt_el = ff.part_id == part_id(ff, target)
+    rows = []
+    for i in range(ff.n_steps):
+        st = ff.step(i)
+        x = st.coordinates
+        v = np.asarray(st.fields["velocity"])
+        state = (np.asarray(st.fields["fracture_state"]) if "fracture_state" in st.fields
+                 else np.zeros(ff.n_elems))
+        alive = state < 1.5
+        centroid = x[conn].mean(axis=1)
+        near_axis = np.hypot(centroid[:, 0], centroid[:, 1]) < radius
+        tgt_axis = tgt_el & alive & near_axis
+        depth = -min(x[conn[tgt_axis]][:, :, 2].max(), 0.0) if tgt_axis.any() else float("nan")
+        rod_alive = rod_el & alive
+        if rod_alive.any():
+            nodes = np.unique(conn[rod_alive])
+            length = x[nodes, 2].max() - x[nodes, 2].min()
+            vel = v[nodes, 2].mean()
+            tip = x[nodes, 2].min()
+        else:
+            length, vel, tip = 0.0, float("nan"), float("nan")
+        rows.append(dict(time=st.time, depth=depth, rod_length=length, rod_velocity=vel, rod_tip=tip,
+                         rod_eroded=int(np.count_nonzero(rod_el & ~alive)),
+                         target_eroded=int(np.count_nonzero(tgt_el & ~alive))))
+    return rows
+
+
+def self_test():
+    """A synthetic two-part file: a rod column above a target column, some target
+    elements eroded at the second step."""
+    ok = True
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "t.h5")
+        # a stack of single tets along z: target in [-4, 0] (part 2), rod in [0, 4] (part 1)
+        xs, conn = [], []
+        for k in range(8):
+            z0 = -4.0 + k
+            base = len(xs)
+            xs += [[0, 0, z0], [0.1, 0, z0], [0, 0.1, z0], [0, 0, z0 + 1]]
+            conn.append([base, base + 1, base + 2, base + 3])
+        x0 = np.array(xs, float)
+        part = np.array([2] * 4 + [1] * 4, dtype=np.int32)
+        deck = "&part group = 'rod', material = 'w' /\n&part group = 'block', material = 's' /\n"
+        v = np.tile([0.0, 0.0, -5.0], (len(x0), 1))
+        # second step: the top two target tets and the rod's two lowest eroded
+        state2 = np.array([0, 0, 2, 2, 2, 2, 0, 0], float)
+        ur.write_fields(path, x0, conn, [
+            dict(time=0.0, cycle=0, coordinates=x0, fields=dict(velocity=0 * v, fracture_state=np.zeros(8))),
+            dict(time=1.0, cycle=9, coordinates=x0, fields=dict(velocity=v, fracture_state=state2))],
+            part_id=part, deck=deck)
+        ff = ur.open_fields(path)
+        rows = measure(ff, "rod", "block", 0.5)
+        ff.close()
+    want = [(0.0, 4.0, 0, 0), (2.0, 2.0, 2, 2)]
+    for r, (depth, length, re, te) in zip(rows, want):
+        good = abs(r["depth"] - depth) < 1e-12 and abs(r["rod_length"] - length) < 1e-12 \
+            and r["rod_eroded"] == re and r["target_eroded"] == te
+        print("  %s  t = %g: depth %g (%g), rod length %g (%g), eroded %d/%d (%d/%d)"
+              % ("ok  " if good else "FAIL", r["time"], r["depth"], depth, r["rod_length"], length,
+                 r["rod_eroded"], r["target_eroded"], re, te))
+        ok &= good
+    print("penetration self-test: %s" % ("PASS" if ok else "FAIL"))
+    return ok
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("h5", nargs="?", help="udar field file (.h5)")
+    ap.add_argument("--rod", default="rod", help="name of the rod's part (default rod)")
+    ap.add_argument("--target", default="block", help="name of the target's part (default block)")
+    ap.add_argument("--radius", type=float, default=1.0e-3,
+                    help="m, target elements with a centroid this close to the axis measure the crater")
+    ap.add_argument("--length", type=float, default=0.0, help="m, initial rod length: also print P/L")
+    ap.add_argument("--self-test", action="store_true", help="run the built-in checks")
+    a = ap.parse_args(argv)
+    if a.self_test:
+        return 0 if self_test() else 1
+    if not a.h5:
+        ap.error("give a field file or --self-test")
+    ff = ur.open_fields(a.h5)
+    rows = measure(ff, a.rod, a.target, a.radius)
+    print("%10s %12s %14s %14s %12s %10s %10s%s" % ("t_us", "crater_mm", "rod_length_mm", "rod_vz_m_s",
+                                                  "rod_tip_mm", "rod_ero", "tgt_ero", "  P/L" if a.length else ""))
+    for r in rows:
+        print("%10.3f %12.3f %14.3f %14.1f %12.3f %10d %10d%s"
+              % (r["time"] * 1e6, r["depth"] * 1e3, r["rod_length"] * 1e3, r["rod_velocity"], r["rod_tip"] * 1e3,
+                 r["rod_eroded"], r["target_eroded"], "  %.3f" % (r["depth"] / a.length) if a.length else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

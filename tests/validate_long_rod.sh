@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Long-rod penetration against the Lanz-Odermatt fit (part of make
+# validate): the tungsten-alloy rod of input/long_rod (L/D = 10, D = 5 mm)
+# into the thick steel block at 1.5, 2.0 and 2.5 km/s, run two at a time;
+# the crater depth at the end over the rod length (postproc/penetration.py)
+# goes to doc/validation/long_rod.csv next to the reference values.
+#   tests/validate_long_rod.sh [mesh size in m, default 1.0e-3]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+PYTHON=${PYTHON:-/usr/bin/python3}
+W=${VALIDATE_WORK:-$ROOT/build/validate}/long_rod
+JOBS=${JOBS:-2}
+H=${1:-1.0e-3}
+mkdir -p "$W" doc/validation
+cp bin/udar "$W/udar"     # a rebuild during the runs must not change them
+gmsh -3 -v 0 -setnumber h "$H" input/long_rod/long_rod.geo -o "$W/long_rod_h$H.msh"
+# Lanz-Odermatt P/L for tungsten alloy into RHA, L/D = 10 (Anderson, Walker
+# and Hohler 1999, as tabulated in doc/validation.md)
+declare -A ref=([1500]=0.90 [2000]=1.24 [2500]=1.44)
+runs=()
+for v in 1500 2000 2500; do
+  run=v${v}_h$H
+  sed -e "s|file = 'long_rod.msh'|file = '$W/long_rod_h$H.msh'|" -e "s|directory = 'out'|directory = '$W/$run'|" \
+      -e "s|velocity = 0.0, 0.0, -2000.0|velocity = 0.0, 0.0, -$v.0|" -e "s|2.0 km/s'|$v m/s'|" \
+      input/long_rod/long_rod.nml > "$W/$run.nml"
+  grep -q "velocity = 0.0, 0.0, -$v.0" "$W/$run.nml" || { echo "deck edit failed for $v m/s"; exit 1; }
+  runs+=("$run")
+done
+printf '%s\n' "${runs[@]}" | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"
+csv=doc/validation/long_rod.csv
+echo "velocity_m_s,mesh_mm,tets,cycles,wall_s,crater_depth_mm,P_over_L,lanz_odermatt,difference_percent,energy_error" > $csv
+for run in "${runs[@]}"; do
+  v=${run#v}; v=${v%%_h*}
+  depth=$($PYTHON postproc/penetration.py "$W/$run/$run.h5" --radius 1.25e-3 | tail -1 | awk '{print $2}')
+  tets=$(grep -o '[0-9]* tetrahedra' "$W/$run.log" | head -1 | cut -d' ' -f1)
+  cyc=$(grep -o 'done: [0-9]*' "$W/$run.log" | cut -d' ' -f2)
+  wall=$(grep -o '[0-9.]* s wall' "$W/$run.log" | cut -d' ' -f1)
+  err=$(grep -o 'energy error [-0-9.E]*,' "$W/$run.log" | tail -1 | cut -d' ' -f3 | tr -d ,)
+  pl=$(awk -v d="$depth" 'BEGIN{printf "%.3f", d/50.0}')
+  diff=$(awk -v p="$pl" -v r="${ref[$v]}" 'BEGIN{printf "%+.1f", 100*(p/r - 1)}')
+  echo "$v,$(awk -v h=$H 'BEGIN{print h*1000}'),$tets,$cyc,$wall,$depth,$pl,${ref[$v]},$diff,$err" | tee -a $csv
+done
+# section of the 2 km/s run at its last output, by part and by plastic strain
+last=$(printf '%s\n' "${runs[@]}" | grep '^v2000')
+$PYTHON postproc/section.py "$W/$last/$last.h5" --plane y=0 --color part -o doc/validation/long_rod_2000_parts.png
+$PYTHON postproc/section.py "$W/$last/$last.h5" --plane y=0 --color plastic_strain -o doc/validation/long_rod_2000_eps.png
+echo "results in $csv"
