@@ -3,7 +3,8 @@
 # Taylor bars (Wilkins-Guinan; OFHC copper, Johnson and Cook 1983) at several
 # mesh sizes, anti-locking on and off, run two at a time; the measured final
 # length and footprint go to doc/validation/taylor.csv and the pictures to
-# doc/validation/. About 40 minutes on 2 cores.
+# doc/validation/. About 40 minutes on 2 cores. Then the long-rod penetration
+# runs (tests/validate_long_rod.sh, about 8 minutes).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -50,3 +51,4 @@ for name in wg ofhc; do
   $PYTHON postproc/plot_history.py "$W/$run/${run}_history.csv" -o doc/validation/${name}_history.png
 done
 echo "results in $csv and doc/validation/*.png"
+tests/validate_long_rod.sh

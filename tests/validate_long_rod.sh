@@ -36,13 +36,13 @@ for run in "${runs[@]}"; do
   tets=$(grep -o '[0-9]* tetrahedra' "$W/$run.log" | head -1 | cut -d' ' -f1)
   cyc=$(grep -o 'done: [0-9]*' "$W/$run.log" | cut -d' ' -f2)
   wall=$(grep -o '[0-9.]* s wall' "$W/$run.log" | cut -d' ' -f1)
-  err=$(grep -o 'energy error [-0-9.E]*,' "$W/$run.log" | tail -1 | cut -d' ' -f3 | tr -d ,)
+  err=$(grep -o 'energy error *[-0-9.E+]*' "$W/$run.log" | tail -1 | awk '{print $3}')
   pl=$(awk -v d="$depth" 'BEGIN{printf "%.3f", d/50.0}')
   diff=$(awk -v p="$pl" -v r="${ref[$v]}" 'BEGIN{printf "%+.1f", 100*(p/r - 1)}')
   echo "$v,$(awk -v h=$H 'BEGIN{print h*1000}'),$tets,$cyc,$wall,$depth,$pl,${ref[$v]},$diff,$err" | tee -a $csv
 done
 # section of the 2 km/s run at its last output, by part and by plastic strain
 last=$(printf '%s\n' "${runs[@]}" | grep '^v2000')
-$PYTHON postproc/section.py "$W/$last/$last.h5" --plane y=0 --color part -o doc/validation/long_rod_2000_parts.png
-$PYTHON postproc/section.py "$W/$last/$last.h5" --plane y=0 --color plastic_strain -o doc/validation/long_rod_2000_eps.png
+$PYTHON postproc/section.py "$W/$last/$last.h5" --plane y=0 --color part --time 30 -o doc/validation/long_rod_2000_30us_parts.png
+$PYTHON postproc/section.py "$W/$last/$last.h5" --plane y=0 --color plastic_strain --time 30 -o doc/validation/long_rod_2000_30us_eps.png
 echo "results in $csv"
