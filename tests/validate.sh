@@ -4,7 +4,7 @@
 # mesh sizes, anti-locking on and off, run two at a time; the measured final
 # length and footprint go to doc/validation/taylor.csv and the pictures to
 # doc/validation/. About 40 minutes on 2 cores. Then the long-rod penetration
-# runs (tests/validate_long_rod.sh, about 8 minutes).
+# runs (tests/validate_long_rod.sh, about 10 minutes).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD

@@ -29,7 +29,8 @@ for v in 1500 2000 2500; do
 done
 printf '%s\n' "${runs[@]}" | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"
 csv=doc/validation/long_rod.csv
-echo "velocity_m_s,mesh_mm,tets,cycles,wall_s,crater_depth_mm,P_over_L,lanz_odermatt,difference_percent,energy_error" > $csv
+echo "velocity_m_s,mesh_mm,anti_locking,tets,cycles,wall_s,crater_depth_mm,P_over_L,lanz_odermatt,difference_percent,energy_error" > $csv
+al=$(grep -q "anti_locking = .false." input/long_rod/long_rod.nml && echo off || echo on)
 for run in "${runs[@]}"; do
   v=${run#v}; v=${v%%_h*}
   depth=$($PYTHON postproc/penetration.py "$W/$run/$run.h5" --radius 1.25e-3 | tail -1 | awk '{print $2}')
@@ -39,7 +40,7 @@ for run in "${runs[@]}"; do
   err=$(grep -o 'energy error *[-0-9.E+]*' "$W/$run.log" | tail -1 | awk '{print $3}')
   pl=$(awk -v d="$depth" 'BEGIN{printf "%.3f", d/50.0}')
   diff=$(awk -v p="$pl" -v r="${ref[$v]}" 'BEGIN{printf "%+.1f", 100*(p/r - 1)}')
-  echo "$v,$(awk -v h=$H 'BEGIN{print h*1000}'),$tets,$cyc,$wall,$depth,$pl,${ref[$v]},$diff,$err" | tee -a $csv
+  echo "$v,$(awk -v h=$H 'BEGIN{print h*1000}'),$al,$tets,$cyc,$wall,$depth,$pl,${ref[$v]},$diff,$err" | tee -a $csv
 done
 # section of the 2 km/s run at its last output, by part and by plastic strain
 last=$(printf '%s\n' "${runs[@]}" | grep '^v2000')
