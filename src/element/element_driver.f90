@@ -32,19 +32,33 @@ contains
     end do
   end subroutine
 
+  !> Sum over the elements at node n that are not eroded, in ascending
+  !> element id, of a(e) (times w(e) when given).
+  pure real(rk) function alive_incident_sum(dom, n, a, w) result(acc)
+    type(domain_t), intent(in) :: dom
+    integer, intent(in) :: n
+    real(rk), intent(in) :: a(:)
+    real(rk), intent(in), optional :: w(:)
+    integer :: k, e
+    acc = 0.0_rk
+    do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
+      e = dom%nd_el(k)
+      if (dom%el_state(e) == el_eroded) cycle
+      if (present(w)) then
+        acc = acc + w(e)*a(e)
+      else
+        acc = acc + a(e)
+      end if
+    end do
+  end function
+
   !> Nodal reference volumes V0_a: a quarter of each incident element's
   !> reference volume, eroded elements left out (again after each erosion).
   subroutine nodal_reference_volumes(dom)
     type(domain_t), intent(inout) :: dom
-    integer :: n, k, e
-    real(rk) :: acc
+    integer :: n
     do n = 1, dom%n_nodes
-      acc = 0.0_rk
-      do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
-        e = dom%nd_el(k)
-        if (dom%el_state(e) /= el_eroded) acc = acc + dom%el_vol0(e)
-      end do
-      dom%nd_vol0(n) = 0.25_rk*acc
+      dom%nd_vol0(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol0)
     end do
   end subroutine
 
@@ -53,16 +67,10 @@ contains
   !> at a node they all left.
   subroutine nodal_volumes(dom)
     type(domain_t), intent(inout) :: dom
-    integer :: n, k, e
-    real(rk) :: acc
+    integer :: n
     do n = 1, dom%n_owned_nodes
-      acc = 0.0_rk
-      do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
-        e = dom%nd_el(k)
-        if (dom%el_state(e) /= el_eroded) acc = acc + dom%el_vol(e)
-      end do
       dom%nd_j(n) = 1.0_rk
-      if (dom%nd_vol0(n) > 0.0_rk) dom%nd_j(n) = 0.25_rk*acc/dom%nd_vol0(n)
+      if (dom%nd_vol0(n) > 0.0_rk) dom%nd_j(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol)/dom%nd_vol0(n)
     end do
   end subroutine
 
@@ -71,16 +79,11 @@ contains
   !> the averaged-volume energy. Eroded elements left out.
   subroutine nodal_pressures(dom)
     type(domain_t), intent(inout) :: dom
-    integer :: n, k, e
-    real(rk) :: acc
+    integer :: n
     do n = 1, dom%n_owned_nodes
-      acc = 0.0_rk
-      do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
-        e = dom%nd_el(k)
-        if (dom%el_state(e) /= el_eroded) acc = acc + dom%el_vol0(e)*dom%el_p(e)
-      end do
       dom%nd_p(n) = 0.0_rk
-      if (dom%nd_vol0(n) > 0.0_rk) dom%nd_p(n) = 0.25_rk*acc/dom%nd_vol0(n)
+      if (dom%nd_vol0(n) > 0.0_rk) &
+        dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_p, w=dom%el_vol0)/dom%nd_vol0(n)
     end do
   end subroutine
 
