@@ -208,9 +208,7 @@ one row per cycle, which makes them exact sums over the cycles).""")
                    help="output image (png/pdf/svg by extension); default "
                         "<case>_contact_history.png")
     p.add_argument("--title", help="figure title (default: case name from the file name)")
-    p.add_argument("--size", type=float, nargs=2, metavar=("W", "H"),
-                   help="figure size in inches")
-    p.add_argument("--dpi", type=int, default=150, help="image resolution (default 150)")
+    ur.add_figure_arguments(p)
     return ur.add_self_test(p)
 
 

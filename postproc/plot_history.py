@@ -284,8 +284,7 @@ The energy_error column is taken as relative (dimensionless) and drawn in percen
     p.add_argument("--title", help="figure title (default: case name from the file name)")
     p.add_argument("--error-limit", type=float, metavar="FRAC",
                    help="draw +-FRAC lines on the energy error panel (e.g. 0.2, the run's limit)")
-    p.add_argument("--size", type=float, nargs=2, metavar=("W", "H"), help="figure size in inches")
-    p.add_argument("--dpi", type=int, default=150, help="image resolution (default 150)")
+    ur.add_figure_arguments(p)
     return ur.add_self_test(p)
 
 

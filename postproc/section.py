@@ -522,9 +522,7 @@ Element fields are drawn as stored; vector fields as their magnitude; node field
     p.add_argument("--xlim", type=float, nargs=2, metavar=("MIN", "MAX"), help="horizontal range, mm")
     p.add_argument("--ylim", type=float, nargs=2, metavar=("MIN", "MAX"), help="vertical range, mm")
     p.add_argument("--title", help="figure title (default: file, plane, step and time)")
-    p.add_argument("--size", type=float, nargs=2, metavar=("W", "H"),
-                   help="figure size in inches (default: fitted to the section's shape)")
-    p.add_argument("--dpi", type=int, default=150, help="image resolution (default 150)")
+    ur.add_figure_arguments(p, "figure size in inches (default: fitted to the section's shape)")
     p.add_argument("--info", action="store_true", help="list the file's steps and fields, then exit")
     return ur.add_self_test(p, "run the built-in checks (known cut areas), print PASS/FAIL")
 

@@ -867,6 +867,13 @@ def add_fields_argument(parser):
     return group
 
 
+def add_figure_arguments(parser, size_help="figure size in inches"):
+    """Add the --size W H and --dpi options every plotting script takes; returns the parser."""
+    parser.add_argument("--size", type=float, nargs=2, metavar=("W", "H"), help=size_help)
+    parser.add_argument("--dpi", type=int, default=150, help="image resolution (default 150)")
+    return parser
+
+
 def add_self_test(parser, help="run the built-in checks, print PASS/FAIL"):
     """Add the --self-test option that ``cli_main`` acts on (last, as in every script's
     --help); returns the parser."""

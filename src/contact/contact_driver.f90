@@ -10,7 +10,7 @@ module udar_contact
   use udar_exact_sum, only: exact_limbs, exact_add
   use udar_domain, only: domain_t
   use udar_contact_model, only: contact_t, interface_t
-  use udar_contact_search, only: grid_build, grid_cell
+  use udar_contact_search, only: grid_build, grid_cell, ensure
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real
   implicit none
@@ -281,7 +281,7 @@ contains
             t = it%grid%items(s)
             if (any(ct%x(:,it%slave(k)) < it%wide_lo(:,t)) .or. any(ct%x(:,it%slave(k)) > it%wide_hi(:,t))) cycle
             n_cand = n_cand + 1
-            if (n_cand > size(it%cand)) call grow(it%cand, n_cand)
+            if (n_cand > size(it%cand)) call ensure(it%cand, n_cand, keep=.true.)
             it%cand(n_cand) = t
           end do
         end if
@@ -450,16 +450,6 @@ contains
     end do
     where (ct%pressure <= 0.0_rk) ct%pressure = ct%work_area
     where (ct%pressure > 0.0_rk) ct%pressure = ct%impulse/(ct%dt_last*ct%pressure)
-  end subroutine
-
-  !> a keeps its first n - 1 entries and can hold n (grown by half again).
-  subroutine grow(a, n)
-    integer, allocatable, intent(inout) :: a(:)
-    integer, intent(in) :: n
-    integer, allocatable :: b(:)
-    allocate(b(max(n, 3*size(a)/2)))
-    b(1:size(a)) = a
-    call move_alloc(b, a)
   end subroutine
 
   !> x and v of every contact node, from their owners, into ct (collective).

@@ -20,8 +20,8 @@ contains
     type(contact_t), intent(inout) :: ct
     integer, intent(in) :: eroded(:)
     logical, allocatable :: part_changed(:)
-    integer, allocatable :: parts(:), faces(:,:)
-    integer :: i, t, k, n_fixed
+    integer, allocatable :: faces(:,:), face_part(:)
+    integer :: i, t, k, f, n, n_fixed
     if (ct%n_tets == 0 .or. size(eroded) == 0) return
     allocate(part_changed(maxval(ct%tet_part)), source=.false.)
     do i = 1, size(eroded)
@@ -37,22 +37,40 @@ contains
     do t = 1, ct%n_tets
       if (ct%tet_alive(t)) ct%alive_count(ct%tet(:,t)) = ct%alive_count(ct%tet(:,t)) + 1
     end do
+    ! the current boundary of every eroding part, in one sweep: exposed faces
+    ! of alive tetrahedra in ascending element and face order (the order of
+    ! the initial surface), counter-clockwise seen from outside
+    n = 0
+    do t = 1, ct%n_tets
+      do f = 1, 4
+        if (exposed(t, f)) n = n + 1
+      end do
+    end do
+    allocate(faces(3, n), face_part(n))
+    n = 0
+    do t = 1, ct%n_tets
+      do f = 1, 4
+        if (.not. exposed(t, f)) cycle
+        n = n + 1
+        faces(:,n) = ct%tet(tet_face(:,f), t)
+        face_part(n) = ct%tet_part(t)
+      end do
+    end do
     do k = 1, ct%n_interfaces
       associate (it => ct%ifc(k))
         if (.not. (changed(it%master_part) .or. changed(it%slave_part))) cycle
-        if (it%master_part > 0) it%tri = boundary_faces([it%master_part])
+        if (it%master_part > 0) it%tri = faces(:, pack([(i, i = 1, n)], face_part == it%master_part))
         if (it%slave_part > 0) it%slave = slave_nodes(it%slave_part)
         call size_interface_work(it)
         it%reach_built = -1.0       ! a full search on the new surfaces
       end associate
     end do
     ! faces for the contact pressure: the fixed ones and the eroding parts' current ones
-    parts = eroding_parts()
     n_fixed = size(ct%fixed_faces, 2)
-    allocate(faces(3, n_fixed + count_faces(parts)))
-    faces(:,1:n_fixed) = ct%fixed_faces
-    faces(:,n_fixed+1:) = boundary_faces(parts)
-    call move_alloc(faces, ct%faces)
+    deallocate(ct%faces)
+    allocate(ct%faces(3, n_fixed + n))
+    ct%faces(:,1:n_fixed) = ct%fixed_faces
+    ct%faces(:,n_fixed+1:) = faces
 
   contains
 
@@ -89,61 +107,24 @@ contains
       if (exposed .and. ct%tet_nbr(f,t) > 0) exposed = .not. ct%tet_alive(ct%tet_nbr(f,t))
     end function
 
-    function eroding_parts() result(parts)
-      integer, allocatable :: parts(:)
-      integer :: ip
-      parts = pack([(ip, ip = 1, size(part_changed))], [(any(ct%tet_part == ip), ip = 1, size(part_changed))])
-    end function
-
-    integer function count_faces(parts)
-      integer, intent(in) :: parts(:)
-      integer :: t, f
-      count_faces = 0
-      do t = 1, ct%n_tets
-        if (.not. any(parts == ct%tet_part(t))) cycle
-        do f = 1, 4
-          if (exposed(t, f)) count_faces = count_faces + 1
-        end do
-      end do
-    end function
-
-    !> The current boundary of the parts: exposed faces of their alive
-    !> tetrahedra in ascending element and face order (the order of the
-    !> initial surface), counter-clockwise seen from outside.
-    function boundary_faces(parts) result(tri)
-      integer, intent(in) :: parts(:)
-      integer, allocatable :: tri(:,:)
-      integer :: t, f, n
-      allocate(tri(3, count_faces(parts)))
-      n = 0
-      do t = 1, ct%n_tets
-        if (.not. any(parts == ct%tet_part(t))) cycle
-        do f = 1, 4
-          if (.not. exposed(t, f)) cycle
-          n = n + 1
-          tri(:,n) = ct%tet(tet_face(:,f), t)
-        end do
-      end do
-    end function
-
     !> Slave nodes of part ip: the nodes of its current boundary and its
     !> free nodes, ascending.
     function slave_nodes(ip) result(nodes)
       integer, intent(in) :: ip
       integer, allocatable :: nodes(:)
       logical, allocatable :: mark(:)
-      integer :: t, f, n
+      integer :: j, c, t
       allocate(mark(ct%n_nodes), source=.false.)
+      do j = 1, n
+        if (face_part(j) == ip) mark(faces(:,j)) = .true.
+      end do
       do t = 1, ct%n_tets
         if (ct%tet_part(t) /= ip) cycle
-        do f = 1, 4
-          if (exposed(t, f)) mark(ct%tet(tet_face(:,f), t)) = .true.
-        end do
-        do f = 1, 4
-          if (ct%alive_count(ct%tet(f,t)) == 0) mark(ct%tet(f,t)) = .true.
+        do c = 1, 4
+          if (ct%alive_count(ct%tet(c,t)) == 0) mark(ct%tet(c,t)) = .true.
         end do
       end do
-      nodes = pack([(n, n = 1, ct%n_nodes)], mark)
+      nodes = pack([(j, j = 1, ct%n_nodes)], mark)
     end function
   end subroutine
 end module udar_contact_erosion

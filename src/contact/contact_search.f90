@@ -7,7 +7,7 @@ module udar_contact_search
   use udar_kinds, only: rk
   implicit none
   private
-  public :: bucket_grid_t, grid_build, grid_cell
+  public :: bucket_grid_t, grid_build, grid_cell, ensure
 
   type, public :: bucket_grid_t
     real(rk) :: lo(3) = 0, cell = 1       !< m: grid origin, cell edge
@@ -82,15 +82,23 @@ contains
     end do
   end subroutine
 
-  !> a has at least n entries (grown by half again when too small).
-  pure subroutine ensure(a, n)
+  !> a has at least n entries (grown by half again when too small); with
+  !> keep, its entries so far are kept.
+  pure subroutine ensure(a, n, keep)
     integer, allocatable, intent(inout) :: a(:)
     integer, intent(in) :: n
-    if (allocated(a)) then
-      if (size(a) >= n) return
-      deallocate(a)
+    logical, intent(in), optional :: keep
+    integer, allocatable :: b(:)
+    if (.not. allocated(a)) then
+      allocate(a(max(n, 3*n/2, 1)))
+      return
     end if
-    allocate(a(max(n, 3*n/2, 1)))
+    if (size(a) >= n) return
+    allocate(b(max(n, 3*n/2, 1)))
+    if (present(keep)) then
+      if (keep) b(1:size(a)) = a
+    end if
+    call move_alloc(b, a)
   end subroutine
 
   !> The cell holding point p, or 0 when p is outside the grid.

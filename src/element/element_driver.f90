@@ -159,7 +159,8 @@ contains
         if (vol(i) <= 0.0_rk .or. gone(i)) vol(i) = dom%el_vol0(e)
         if (j_new(i) <= 0.0_rk) j_new(i) = dom%el_j(e)
         no_shear(i) = gone(i) .or. dom%el_state(e) == el_fractured
-        if (.not. gone(i)) dom%el_eps_tot(e) = dom%el_eps_tot(e) + dt*deviatoric_rate(d(i,:))
+        ! accumulated total strain: only eroding materials use it
+        if (erodible .and. .not. gone(i)) dom%el_eps_tot(e) = dom%el_eps_tot(e) + dt*deviatoric_rate(d(i,:))
       end do
       do k = 1, 6
         s(1:nb,k) = merge(0.0_rk, dom%el_s(first:last,k), no_shear(1:nb))
