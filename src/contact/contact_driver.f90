@@ -24,6 +24,11 @@ module udar_contact
   !> penetration beyond one step's approach still taken as crossed (of the
   !> mean master edge): rounding and the master triangle's own motion
   real(rk), parameter :: residual_tolerance = 1.0e-3_rk
+  !> a return to the surface moves a slave node by at most this fraction of
+  !> the smallest altitude of its elements: no element loses more than this
+  !> share of its volume to a jump that no velocity (and no work) goes with;
+  !> what is left is taken in the next cycles
+  real(rk), parameter :: return_fraction = 0.02_rk
 
 contains
 
@@ -48,8 +53,8 @@ contains
     allocate(owned_counts(0:np-1), ct%counts(0:np-1), ct%gather_pos(ct%n_nodes))
     call comms_allgather_count(size(ct%owned_pos), owned_counts)
     call comms_allgatherv_int(ct%owned_pos, owned_counts, ct%gather_pos)
-    ct%counts = 6*owned_counts
-    allocate(ct%send(6*size(ct%owned_pos) + 1), ct%recv(6*ct%n_nodes))
+    ct%counts = 7*owned_counts
+    allocate(ct%send(7*size(ct%owned_pos) + 1), ct%recv(7*ct%n_nodes))
     allocate(ct%v_prev(3, size(ct%owned_pos)), ct%v_pre(3, size(ct%owned_pos)))
   end subroutine
 
@@ -141,6 +146,7 @@ contains
                 mismatch, vm(3,3)
     integer :: nt, t, k, c, s, ps, best, iter, a, pa
     logical :: closing, separating
+    real(rk) :: room
     nt = size(it%tri, 2)
     do t = 1, nt
       xa = ct%x(:, it%tri(:,t))
@@ -161,7 +167,10 @@ contains
       if (best == 0) cycle
       if (separating) then
         ! the paper releases it (no velocity change); it only goes back on the surface
-        if (move) ct%x(:,ps) = ct%x(:,ps) - best_dist*best_n
+        if (move) then
+          room = allowance(ps)
+          call put_back(ps, -best_dist*best_n, room)
+        end if
         cycle
       end if
       n_found = n_found + 1
@@ -222,14 +231,15 @@ contains
       t = it%on_tri(k)
       xa = ct%x(:, it%tri(:,t))
       call triangle_projection(xa, ct%x(:,ps), n, dist, g)
-      if (dist < 0.0_rk) ct%x(:,ps) = ct%x(:,ps) - dist*n
+      room = allowance(ps)
+      if (dist < 0.0_rk) call put_back(ps, -dist*n, room)
       ! back on one triangle's plane it may still be just behind a neighbour
       ! facing about the same way (a concave edge, e.g. a crater wall): twice
       ! more onto the shallowest such (not onto the side faces of a convex edge)
       do iter = 1, 2
         call nearest_behind(ps, .true., best, best_dist, best_n, best_g, separating, it%normal(:,k))
-        if (best == 0) exit
-        ct%x(:,ps) = ct%x(:,ps) - best_dist*best_n
+        if (best == 0 .or. room <= 0.0_rk) exit
+        call put_back(ps, -best_dist*best_n, room)
       end do
       if (dt > 0.0_rk) then
         g = max(it%area(:,k), 0.0_rk)/sum(max(it%area(:,k), 0.0_rk))
@@ -240,6 +250,32 @@ contains
     end do
 
   contains
+
+    !> How far slave node ps may be returned in this pass.
+    real(rk) function allowance(ps)
+      integer, intent(in) :: ps
+      if (ct%h(ps) >= huge(1.0_rk)) then
+        allowance = huge(1.0_rk)           ! before the first cycle: initial overlaps
+      else
+        allowance = return_fraction*ct%h(ps)
+      end if
+    end function
+
+    !> Moves slave node ps by u, or as far along u as room allows; room
+    !> shrinks by the distance moved.
+    subroutine put_back(ps, u, room)
+      integer, intent(in) :: ps
+      real(rk), intent(in) :: u(3)
+      real(rk), intent(inout) :: room
+      real(rk) :: length
+      length = norm2(u)
+      if (length <= room) then
+        ct%x(:,ps) = ct%x(:,ps) + u
+      else
+        ct%x(:,ps) = ct%x(:,ps) + (room/length)*u
+      end if
+      room = max(room - length, 0.0_rk)
+    end subroutine
 
     !> Whether the candidate lists still hold every triangle a slave node
     !> can be behind this pass: since the last full search no contact node
@@ -460,20 +496,37 @@ contains
     if (comms_size() == 1) then
       ct%x = dom%nd_x(:, ct%local)
       ct%v = dom%nd_v(:, ct%local)
+      do p = 1, ct%n_nodes
+        ct%h(p) = node_altitude(dom, ct%local(p))
+      end do
       return
     end if
     do k = 1, size(ct%owned_pos)
       n = ct%local(ct%owned_pos(k))
-      ct%send(6*k-5:6*k-3) = dom%nd_x(:,n)
-      ct%send(6*k-2:6*k) = dom%nd_v(:,n)
+      ct%send(7*k-6:7*k-4) = dom%nd_x(:,n)
+      ct%send(7*k-3:7*k-1) = dom%nd_v(:,n)
+      ct%send(7*k) = node_altitude(dom, n)
     end do
     call comms_allgatherv_real(ct%send, ct%counts, ct%recv)
     do k = 1, ct%n_nodes
       p = ct%gather_pos(k)
-      ct%x(:,p) = ct%recv(6*k-5:6*k-3)
-      ct%v(:,p) = ct%recv(6*k-2:6*k)
+      ct%x(:,p) = ct%recv(7*k-6:7*k-4)
+      ct%v(:,p) = ct%recv(7*k-3:7*k-1)
+      ct%h(p) = ct%recv(7*k)
     end do
   end subroutine
+
+  !> Smallest altitude of the elements at owned node n (huge when none is
+  !> left).
+  pure real(rk) function node_altitude(dom, n) result(h)
+    type(domain_t), intent(in) :: dom
+    integer, intent(in) :: n
+    integer :: k
+    h = huge(1.0_rk)
+    do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
+      h = min(h, dom%el_h(dom%nd_el(k)))
+    end do
+  end function
 
   !> The corrected x and v back into this rank's nodes (owned and ghost).
   subroutine scatter_state(ct, dom)

@@ -103,6 +103,7 @@ contains
     call move_alloc(ifc, ct%ifc)
     ct%m = glob%nd_mass(ct%gidx)
     allocate(ct%x(3, ct%n_nodes), ct%v(3, ct%n_nodes))
+    allocate(ct%h(ct%n_nodes), source=huge(1.0_rk))
     ct%x = glob%nd_x(:, ct%gidx)
     ct%v = glob%nd_v(:, ct%gidx)
 

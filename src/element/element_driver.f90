@@ -15,7 +15,8 @@ module udar_element_driver
   implicit none
   private
   public :: element_volumes, nodal_volumes, element_update, nodal_pressures, &
-            element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes
+            element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes, &
+            element_altitudes, rebase_nodal_volumes
 
 contains
 
@@ -29,6 +30,18 @@ contains
         xe(a,:) = dom%nd_x(:,dom%el_conn(e,a))
       end do
       dom%el_vol(e) = tet_volume(xe)
+    end do
+  end subroutine
+
+  !> Smallest altitude of every element from the nodal coordinates (huge
+  !> for eroded elements), as element_update keeps it.
+  subroutine element_altitudes(dom)
+    type(domain_t), intent(inout) :: dom
+    real(rk) :: grad(block_size,4,3), vol(block_size), g2max(block_size)
+    integer :: b, nb, first, last
+    do b = 1, dom%n_blocks
+      call block_geometry(dom, b, first, last, nb, vol, grad, g2max)
+      dom%el_h(first:last) = merge(huge(1.0_rk), 1.0_rk/sqrt(g2max(1:nb)), dom%el_state(first:last) == el_eroded)
     end do
   end subroutine
 
@@ -62,6 +75,18 @@ contains
     end do
   end subroutine
 
+  !> After erosion: each owned node's reference for J is rebased so that its
+  !> volume ratio does not jump when elements leave its average (a jump
+  !> would change the pressures without any work).
+  subroutine rebase_nodal_volumes(dom)
+    type(domain_t), intent(inout) :: dom
+    integer :: n
+    do n = 1, dom%n_owned_nodes
+      dom%nd_vref(n) = 0.0_rk
+      if (dom%nd_vol0(n) > 0.0_rk) dom%nd_vref(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol)/dom%nd_j(n)
+    end do
+  end subroutine
+
   !> Nodal volume ratio J_a = V_a / V0_a, V_a a quarter of each incident
   !> element's volume (Bonet and Burton 1998); eroded elements left out, 1
   !> at a node they all left.
@@ -70,7 +95,7 @@ contains
     integer :: n
     do n = 1, dom%n_owned_nodes
       dom%nd_j(n) = 1.0_rk
-      if (dom%nd_vol0(n) > 0.0_rk) dom%nd_j(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol)/dom%nd_vol0(n)
+      if (dom%nd_vref(n) > 0.0_rk) dom%nd_j(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol)/dom%nd_vref(n)
     end do
   end subroutine
 
@@ -245,6 +270,7 @@ contains
       dom%el_q(first:last) = q(1:nb)
       dom%el_j(first:last) = j_new(1:nb)
       dom%el_vol(first:last) = vol(1:nb)
+      dom%el_h(first:last) = merge(huge(1.0_rk), h(1:nb), gone(1:nb))
       if (.not. dom%anti_locking) then
         p_app(1:nb) = p(1:nb) + q(1:nb)
         call tet_internal_forces(ld, nb, vol, grad, s, p_app, fe)

@@ -4,10 +4,10 @@
 !> One HDF5 file, written collectively with MPI-IO (each rank its owned
 !> rows) to NAME.tmp and renamed to NAME when complete, so a checkpoint on
 !> disk is always whole. Layout (C order, as h5py shows it):
-!>   @format 'udar-checkpoint-1', @version, @n_nodes, @n_elems, the scalars of
+!>   @format 'udar-checkpoint-3', @version, @n_nodes, @n_elems, the scalars of
 !>   run_state_t (@t, @cycle, ...);  hashes int64 (2): model, mesh;
 !>   wall_work, contact_work int64 (67): exact work accumulators;  /provenance @n_ranks;
-!>   nodes/{x,v,f} (n_nodes,3);  elems/{vol,j,e,wp,p,q,eps_p,temp,hard,soft}
+!>   nodes/{x,v,f} (n_nodes,3), nodes/vref (n_nodes);  elems/{vol,j,e,wp,p,q,eps_p,temp,hard,soft}
 !>   (n_elems), elems/s (n_elems,6).
 !> Reading: every rank reads the global arrays and keeps its local entries.
 module udar_checkpoint
@@ -27,7 +27,7 @@ module udar_checkpoint
   private
   public :: checkpoint_write, checkpoint_read, checkpoint_latest, checkpoint_model_hash, checkpoint_mesh_hash
 
-  character(len=*), parameter :: ckpt_format = 'udar-checkpoint-2'
+  character(len=*), parameter :: ckpt_format = 'udar-checkpoint-3'
   character(len=*), parameter :: real_names(9) = [character(len=20) :: 't', 'dt_old', 'dt_stable', 'e0', 'e_ref', &
       't_next_field', 't_next_hist', 't_next_checkpoint', 'dt0']
   !> checkpoints_written (how the run got here, not its state) lives in /provenance
@@ -154,6 +154,8 @@ contains
       call write_rows(f, 'nodes/x', dom%n_global_nodes, 3, node_first, node_count, dom%nd_x(:,1:dom%n_owned_nodes))
       call write_rows(f, 'nodes/v', dom%n_global_nodes, 3, node_first, node_count, dom%nd_v(:,1:dom%n_owned_nodes))
       call write_rows(f, 'nodes/f', dom%n_global_nodes, 3, node_first, node_count, dom%nd_f(:,1:dom%n_owned_nodes))
+      call write_rows(f, 'nodes/vref', dom%n_global_nodes, 0, node_first, node_count, &
+                      reshape(dom%nd_vref(1:dom%n_owned_nodes), [1, dom%n_owned_nodes]))
       allocate(buf(1, no))
       do k = 1, size(elem_names)
         select case (k)
@@ -259,6 +261,10 @@ contains
     if (f%ok) dom%nd_v = a(:,dom%nd_gidx)
     if (f%ok) call read_all(f, 'nodes/f', a)
     if (f%ok) dom%nd_f = a(:,dom%nd_gidx)
+    deallocate(a)
+    allocate(a(1, dom%n_global_nodes))
+    if (f%ok) call read_all(f, 'nodes/vref', a)
+    if (f%ok) dom%nd_vref = a(1,dom%nd_gidx)
     deallocate(a)
     allocate(a(1, dom%n_global_elems))
     do k = 1, size(elem_names)

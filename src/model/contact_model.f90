@@ -50,6 +50,7 @@ module udar_contact_model
     integer :: n_nodes = 0                 !< contact nodes: every master-triangle node and slave node
     integer, allocatable :: gidx(:)        !< their global node indices, ascending
     real(rk), allocatable :: x(:,:), v(:,:), m(:)   !< (3,n), (3,n), (n): gathered state, masses
+    real(rk), allocatable :: h(:)     !< m, smallest altitude of each contact node's elements (bounds its returns)
     integer, allocatable :: faces(:,:)     !< (3, n_faces) every face of a contact surface once
     real(rk), allocatable :: impulse(:)    !< N s, normal contact impulse on each contact node in the last pass
     real(rk), allocatable :: pressure(:)   !< Pa, work array: contact pressure of each contact node
@@ -68,7 +69,7 @@ module udar_contact_model
     integer, allocatable :: local(:)       !< local node of each contact node, 0 if not on this rank
     integer, allocatable :: owned_pos(:)   !< contact nodes this rank owns (their positions in gidx)
     integer, allocatable :: gather_pos(:)  !< position in gidx of each entry of the gathered buffer
-    integer, allocatable :: counts(:)      !< reals each rank sends (6 per owned contact node)
+    integer, allocatable :: counts(:)      !< reals each rank sends (7 per owned contact node)
     real(rk), allocatable :: send(:), recv(:)
     real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3, owned contact nodes) m/s: v(n-1/2), v(n+1/2) before the pass
   end type

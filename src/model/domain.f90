@@ -35,6 +35,7 @@ module udar_domain
     real(rk), allocatable :: nd_x0(:,:), nd_x(:,:), nd_v(:,:), nd_f(:,:)
     real(rk), allocatable :: nd_mass(:)         !< kg, lumped
     real(rk), allocatable :: nd_vol0(:), nd_j(:)     !< m3, -: nodal reference volume and volume ratio (anti-locking)
+    real(rk), allocatable :: nd_vref(:)   !< m3, the volume nd_j is taken against (nd_vol0, rebased at erosion)
     real(rk), allocatable :: nd_p(:)            !< Pa, nodal average pressure (anti-locking)
     ! node -> incident elements, each list ascending in element id (fixed assembly order)
     integer, allocatable :: nd_el_ptr(:), nd_el(:), nd_el_corner(:)
@@ -43,6 +44,7 @@ module udar_domain
     integer, allocatable :: el_id(:), el_part(:), el_mat(:)
     integer, allocatable :: el_conn(:,:)        !< (n,4) node indices
     real(rk), allocatable :: el_vol0(:), el_vol(:), el_mass(:)   !< m3, m3, kg
+    real(rk), allocatable :: el_h(:)   !< m, smallest altitude at the last update (huge when eroded)
     real(rk), allocatable :: el_j(:)            !< -, volume ratio seen by the EOS (nodal-averaged with anti-locking)
     real(rk), allocatable :: el_e(:)            !< J/kg, specific internal energy
     real(rk), allocatable :: el_wp(:)           !< J/kg, specific plastic work

@@ -114,6 +114,7 @@ contains
       dom%el_soft(e) = thermal_softening(dom%mat(dom%el_mat(e)), dom%el_temp(e))
     end do
     dom%el_vol = dom%el_vol0
+    dom%el_h = huge(1.0_rk)
     dom%el_j = 1.0_rk
 
     call build_incidence(dom)
@@ -128,6 +129,7 @@ contains
       dom%nd_part(n) = dom%el_part(dom%nd_el(dom%nd_el_ptr(n)))
       dom%nd_v(:,n) = cfg%parts(dom%nd_part(n))%velocity
     end do
+    dom%nd_vref = dom%nd_vol0
     dom%nd_j = 1.0_rk
     call build_blocks(dom)
     call build_conditions(cfg, mesh, node_new, dom)
@@ -152,9 +154,9 @@ contains
     integer :: nn, ne
     nn = dom%n_nodes; ne = dom%n_elems
     allocate(dom%nd_id(nn), dom%nd_part(nn), dom%nd_x0(3,nn), dom%nd_x(3,nn), dom%nd_v(3,nn), &
-             dom%nd_f(3,nn), dom%nd_mass(nn), dom%nd_vol0(nn), dom%nd_j(nn), dom%nd_p(nn))
+             dom%nd_f(3,nn), dom%nd_mass(nn), dom%nd_vol0(nn), dom%nd_vref(nn), dom%nd_j(nn), dom%nd_p(nn))
     allocate(dom%el_id(ne), dom%el_part(ne), dom%el_mat(ne), dom%el_conn(ne,4), dom%el_vol0(ne), &
-             dom%el_vol(ne), dom%el_mass(ne), dom%el_j(ne), dom%el_e(ne), dom%el_wp(ne), dom%el_p(ne), &
+             dom%el_vol(ne), dom%el_h(ne), dom%el_mass(ne), dom%el_j(ne), dom%el_e(ne), dom%el_wp(ne), dom%el_p(ne), &
              dom%el_q(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_hard(ne), dom%el_soft(ne), &
              dom%el_f(12,ne))
     dom%nd_f = 0.0_rk; dom%nd_p = 0.0_rk
