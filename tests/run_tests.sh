@@ -57,6 +57,7 @@ run_test "cli/ranks_plate_impact" tests/cli/rank_invariance.sh bin/udar plate_im
 run_test "cli/ranks_blocks_head_on" tests/cli/rank_invariance.sh bin/udar blocks_head_on
 run_test "cli/ranks_spall" tests/cli/rank_invariance.sh bin/udar spall
 run_test "cli/ranks_penetration" tests/cli/rank_invariance.sh bin/udar penetration 2.5e-6
+run_test "cli/ranks_self_contact" tests/cli/rank_invariance.sh bin/udar self_contact
 run_test "cli/restart_erosion" tests/cli/restart_erosion.sh bin/udar
 run_test "cli/tracking_rod_3kms" tests/cli/tracking.sh bin/udar rod_3kms 0.6e-6
 run_test "cli/tracking_oblique_friction" tests/cli/tracking.sh bin/udar oblique_friction
@@ -73,6 +74,8 @@ run_test "regression/oblique_stick" regression oblique_friction bin/udar-debug o
 run_test "regression/rod_3kms" regression rod_3kms bin/udar
 run_test "regression/spall" regression spall bin/udar-debug
 run_test "regression/penetration" regression penetration bin/udar
+run_test "regression/self_contact" regression self_contact bin/udar-debug
+run_test "cli/self_contact_off" tests/cli/self_contact_off.sh bin/udar
 run_test "regression/taylor_wg" regression taylor_wg bin/udar
 run_test "regression/taylor_ofhc_baseline" regression taylor_ofhc_baseline bin/udar
 

@@ -144,7 +144,7 @@ contains
     real(rk), intent(out) :: deepest
     real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), dvs(3), dvm(3,3), dn, dtan, &
                 mismatch, vm(3,3)
-    integer :: nt, t, k, c, s, ps, best, iter, a, pa
+    integer :: nt, t, k, ps, best, iter, a, pa
     logical :: closing, separating
     real(rk) :: room
     nt = size(it%tri, 2)
@@ -153,17 +153,24 @@ contains
       it%box_lo(:,t) = minval(xa, dim=2) - depth_limit
       it%box_hi(:,t) = maxval(xa, dim=2) + depth_limit
     end do
+    n_found = 0
+    deepest = 0
+    worst = 0
+    it%n_active = 0
+    ! self-contact acts only on what crosses in a cycle (at rest a part's
+    ! surface is behind the planes of many of its own faces)
+    if (it%self .and. dt <= 0.0_rk) return
     it%passes = it%passes + 1
     if (.not. lists_hold()) call full_search()
     it%dn_sum = 0
     it%dt_sum = 0
-    n_found = 0
-    deepest = 0
-    worst = 0
     ! ---- search: each slave node's master triangle, in ascending global id
     do k = 1, size(it%slave)
       ps = it%slave(k)
+      if (it%self) it%near(it%ring(it%ring_start(k):it%ring_start(k+1)-1)) = .true.
       call nearest_behind(ps, .false., best, best_dist, best_n, best_g, separating, slot=k)
+      if (it%self) it%near(it%ring(it%ring_start(k):it%ring_start(k+1)-1)) = .false.
+      if (it%self) it%touched(k) = best /= 0 .and. .not. separating
       if (best == 0) cycle
       if (separating) then
         ! the paper releases it (no velocity change); it only goes back on the surface
@@ -237,6 +244,7 @@ contains
       ! facing about the same way (a concave edge, e.g. a crater wall): twice
       ! more onto the shallowest such (not onto the side faces of a convex edge)
       do iter = 1, 2
+        if (it%self) exit
         call nearest_behind(ps, .true., best, best_dist, best_n, best_g, separating, it%normal(:,k))
         if (best == 0 .or. room <= 0.0_rk) exit
         call put_back(ps, -best_dist*best_n, room)
@@ -349,7 +357,7 @@ contains
       real(rk) :: closing, best_closing, gc(3), other_closing, other_dist, other_n(3), other_g(3), &
                   sep_dist, sep_n(3)
       integer :: other, sep
-      integer :: t, c, s, a, first, last
+      integer :: t, c, s, first, last
       real(rk) :: xa(3,3), n(3), dist, g(3)
       best = 0; other = 0; sep = 0
       sep_dist = -huge(1.0_rk)
@@ -373,6 +381,9 @@ contains
         end if
         if (any(it%tri(:,t) == ps)) cycle
         if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
+        if (it%self) then
+          if (any(it%near(it%tri(:,t)))) cycle   ! its own neighbourhood
+        end if
         xa = ct%x(:, it%tri(:,t))
         call triangle_projection(xa, ct%x(:,ps), n, dist, g)
         if (dist >= 0.0_rk .or. dist < -depth_limit .or. any(g < -edge_tolerance)) cycle
@@ -384,6 +395,12 @@ contains
           closing = dot_product(n, gc(1)*ct%v(:,it%tri(1,t)) + gc(2)*ct%v(:,it%tri(2,t)) &
                                    + gc(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps))
           if (closing <= 0.0_rk) then
+            ! self-contact: only a node in contact in the last pass (no
+            ! false contact with the part's own far side)
+            if (it%self) then
+              if (.not. present(slot)) cycle
+              if (.not. it%touched(slot)) cycle
+            end if
             ! behind but already moving out: remembered, to be put back on the surface
             if (dist > sep_dist) then
               sep = t; sep_dist = dist; sep_n = n
@@ -391,6 +408,7 @@ contains
             cycle
           end if
           if (-dist > closing*dt + residual_tolerance*it%h_mean) then
+            if (it%self) cycle
             ! behind, but deeper than this step's approach
             if (closing < other_closing .or. (closing == other_closing .and. dist <= other_dist)) cycle
             other = t; other_closing = closing; other_dist = dist; other_n = n; other_g = g

@@ -5,7 +5,7 @@
 !> list of eroded elements to the same replicated surfaces, so the surfaces
 !> (and the contact pass) stay the same on any number of ranks.
 module udar_contact_erosion
-  use udar_contact_model, only: contact_t, interface_t, size_interface_work
+  use udar_contact_model, only: contact_t, interface_t, size_interface_work, on_symmetry_plane, self_neighbourhoods
   use udar_contact_setup, only: tet_face
   implicit none
   private
@@ -59,8 +59,16 @@ contains
     do k = 1, ct%n_interfaces
       associate (it => ct%ifc(k))
         if (.not. (changed(it%master_part) .or. changed(it%slave_part))) cycle
-        if (it%master_part > 0) it%tri = faces(:, pack([(i, i = 1, n)], face_part == it%master_part))
-        if (it%slave_part > 0) it%slave = slave_nodes(it%slave_part)
+        if (it%self) then
+          ! the part's boundary without its faces on symmetry planes; its nodes and free nodes
+          it%tri = faces(:, pack([(i, i = 1, n)], face_part == it%master_part .and. &
+                                 [(.not. on_symmetry_plane(ct, faces(:,i)), i = 1, n)]))
+          it%slave = slave_nodes(it%slave_part, it%tri)
+          call self_neighbourhoods(it, ct%n_nodes)
+        else
+          if (it%master_part > 0) it%tri = faces(:, pack([(i, i = 1, n)], face_part == it%master_part))
+          if (it%slave_part > 0) it%slave = slave_nodes(it%slave_part)
+        end if
         call size_interface_work(it)
         it%reach_built = -1.0       ! a full search on the new surfaces
       end associate
@@ -107,17 +115,24 @@ contains
       if (exposed .and. ct%tet_nbr(f,t) > 0) exposed = .not. ct%tet_alive(ct%tet_nbr(f,t))
     end function
 
-    !> Slave nodes of part ip: the nodes of its current boundary and its
-    !> free nodes, ascending.
-    function slave_nodes(ip) result(nodes)
+    !> Slave nodes of part ip: the nodes of its current boundary (or of the
+    !> faces own) and its free nodes, ascending.
+    function slave_nodes(ip, own) result(nodes)
       integer, intent(in) :: ip
+      integer, intent(in), optional :: own(:,:)   !< (self-contact) the nodes of these faces instead
       integer, allocatable :: nodes(:)
       logical, allocatable :: mark(:)
       integer :: j, c, t
       allocate(mark(ct%n_nodes), source=.false.)
-      do j = 1, n
-        if (face_part(j) == ip) mark(faces(:,j)) = .true.
-      end do
+      if (present(own)) then
+        do j = 1, size(own, 2)
+          mark(own(:,j)) = .true.
+        end do
+      else
+        do j = 1, n
+          if (face_part(j) == ip) mark(faces(:,j)) = .true.
+        end do
+      end if
       do t = 1, ct%n_tets
         if (ct%tet_part(t) /= ip) cycle
         do c = 1, 4

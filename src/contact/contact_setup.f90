@@ -10,7 +10,7 @@ module udar_contact_setup
   use udar_deck, only: deck_where
   use udar_setup, only: find_group, group_list
   use udar_strings, only: itoa, to_lower
-  use udar_contact_model, only: contact_t, interface_t, size_interface_work
+  use udar_contact_model, only: contact_t, interface_t, size_interface_work, self_neighbourhoods
   implicit none
   private
   public :: build_contact, tet_face
@@ -26,7 +26,7 @@ contains
     type(domain_t), intent(in) :: glob
     type(contact_t), intent(out) :: ct
     type(input_errors_t), intent(inout) :: errs
-    integer, allocatable :: face(:,:), face_part(:), master(:,:), slave(:), tri_all(:,:), cn_of(:)
+    integer, allocatable :: face(:,:), face_part(:), master(:,:), slave(:), tri_all(:,:), cn_of(:), sym_planes(:)
     type(interface_t), allocatable :: ifc(:)
     integer :: k, n_err0, nf, n_ifc, i, mark_count, m_part, s_part, e
     logical, allocatable :: part_erodes(:)
@@ -39,6 +39,7 @@ contains
     if (size(cfg%contacts) == 0) return
     n_err0 = errs%count()
     call exterior_faces(glob, face, face_part, nf)
+    sym_planes = symmetry_planes(glob)
     allocate(face_used(nf), source=.false.)
     n_ifc = size(cfg%contacts) + count(cfg%contacts%symmetric)
     allocate(ifc(n_ifc))
@@ -48,6 +49,18 @@ contains
         call surface(c%master, 'master', k, master, mname, m_part)
         call surface(c%slave, 'slave', k, tri_all, sname, s_part)
         if (errs%count() > n_err0) cycle
+        if (to_lower(c%master) == to_lower(c%slave)) then
+          ! self-contact: the surface without its faces on symmetry planes
+          master = master(:, pack([(e, e = 1, size(master, 2))], &
+                                  [(iand(iand(sym_planes(master(1,e)), sym_planes(master(2,e))), &
+                                         sym_planes(master(3,e))) == 0, e = 1, size(master, 2))]))
+          i = i + 1
+          call make_interface(ifc(i), master, unique_nodes(master), sname//'_on_itself')
+          ifc(i)%self = .true.
+          ifc(i)%master_part = eroding_part(m_part)
+          ifc(i)%slave_part = eroding_part(s_part)
+          cycle
+        end if
         slave = unique_nodes(tri_all)
         i = i + 1
         call make_interface(ifc(i), master, slave, sname//'_on_'//mname)
@@ -88,16 +101,22 @@ contains
     end do
     ct%n_nodes = mark_count
     do i = 1, n_ifc
+      if (ifc(i)%self) call self_neighbourhoods(ifc(i), ct%n_nodes)
+    end do
+    do i = 1, n_ifc
       allocate(ifc(i)%x_built(3, ct%n_nodes))
     end do
     ! every face of a contact surface once (tributary areas of the nodes)
     ct%faces = face(:, pack([(k, k = 1, nf)], face_used))
     ct%faces = reshape(cn_of(reshape(ct%faces, [size(ct%faces)])), shape(ct%faces))
+    ! (faces left out of a self-contact surface, on a symmetry plane, may hold non-contact nodes)
+    ct%faces = ct%faces(:, pack([(k, k = 1, size(ct%faces, 2))], all(ct%faces > 0, dim=1)))
     ! the tetrahedra of the eroding parts, their neighbours across each face;
     ! the faces of the other surfaces stay as they are
     call eroding_topology(glob, part_erodes, cn_of, ct)
     ct%fixed_faces = face(:, pack([(k, k = 1, nf)], face_used .and. .not. part_erodes(face_part(1:nf))))
     ct%fixed_faces = reshape(cn_of(reshape(ct%fixed_faces, [size(ct%fixed_faces)])), shape(ct%fixed_faces))
+    ct%fixed_faces = ct%fixed_faces(:, pack([(k, k = 1, size(ct%fixed_faces, 2))], all(ct%fixed_faces > 0, dim=1)))
     allocate(ct%impulse(ct%n_nodes), ct%pressure(ct%n_nodes), ct%work_area(ct%n_nodes), source=0.0_rk)
     ct%n_interfaces = n_ifc
     call move_alloc(ifc, ct%ifc)
@@ -106,6 +125,7 @@ contains
     allocate(ct%h(ct%n_nodes), source=huge(1.0_rk))
     ct%x = glob%nd_x(:, ct%gidx)
     ct%v = glob%nd_v(:, ct%gidx)
+    ct%sym_planes = sym_planes(ct%gidx)
 
   contains
 
@@ -148,7 +168,7 @@ contains
       integer, allocatable, intent(out) :: tri(:,:)
       logical, allocatable :: in_group(:)
       integer, allocatable :: node_g(:)
-      integer :: t, a, f
+      integer :: t, a
       call mesh_to_global(mesh, glob, node_g)
       allocate(in_group(glob%n_nodes), source=.false.)
       do t = 1, mesh%n_tris
@@ -297,6 +317,33 @@ contains
       node_g(lo) = g
     end do
   end subroutine
+
+  !> For every node a bit set of the symmetry planes it lies on (bit p for
+  !> the p-th distinct plane: normal and offset; at most 31 planes).
+  function symmetry_planes(glob) result(bits)
+    type(domain_t), intent(in) :: glob
+    integer, allocatable :: bits(:)
+    real(rk) :: plane(4, 31), nd(4), scale, c
+    integer :: k, p, n_planes
+    allocate(bits(glob%n_nodes), source=0)
+    if (.not. allocated(glob%sym_nodes)) return
+    scale = maxval(abs(glob%nd_x0))
+    n_planes = 0
+    do k = 1, size(glob%sym_nodes)
+      nd(1:3) = glob%sym_normal(k,:)
+      nd(4) = dot_product(nd(1:3), glob%nd_x0(:, glob%sym_nodes(k)))
+      do p = 1, n_planes
+        c = dot_product(plane(1:3,p), nd(1:3))
+        if (abs(c) > 1.0_rk - 1.0e-9_rk .and. abs(plane(4,p) - sign(1.0_rk, c)*nd(4)) <= 1.0e-9_rk*scale) exit
+      end do
+      if (p > n_planes) then
+        if (n_planes == size(plane, 2)) cycle
+        n_planes = n_planes + 1
+        plane(:,n_planes) = nd
+      end if
+      bits(glob%sym_nodes(k)) = ibset(bits(glob%sym_nodes(k)), p - 1)
+    end do
+  end function
 
   !> The distinct nodes of a triangle list, ascending.
   function unique_nodes(tri) result(nodes)

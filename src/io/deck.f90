@@ -1064,8 +1064,8 @@ contains
     associate(c => cfg%contacts(k))
       if (len_trim(c%master) == 0) call need(ctx, inst, 'master', .false., what)
       if (len_trim(c%slave) == 0) call need(ctx, inst, 'slave', .false., what)
-      if (len_trim(c%master) > 0 .and. c%slave == c%master .and. .not. is_bad(inst, 'master')) &
-           call complain(ctx, inst, 'slave', 'the same as master: self-contact is not supported yet')
+      if (len_trim(c%master) > 0 .and. to_lower(c%slave) == to_lower(c%master) .and. c%symmetric) &
+           call complain(ctx, inst, 'symmetric', 'has no meaning for self-contact (slave = master): leave it out')
       ok = choice(ctx, inst, 'weights', weights_txt, weights_words, weights_codes, c%weights)
       ok = choice(ctx, inst, 'initial_overlap', overlap_txt, overlap_words, overlap_codes, c%initial_overlap)
       call check_ranges(ctx, inst, cfg_vals(cfg, g_contact, k))

@@ -8,7 +8,7 @@ module udar_contact_model
   use udar_contact_search, only: bucket_grid_t
   implicit none
   private
-  public :: size_interface_work
+  public :: size_interface_work, on_symmetry_plane, self_neighbourhoods
 
   !> One direction of an interface: slave nodes against master triangles.
   type, public :: interface_t
@@ -16,6 +16,14 @@ module udar_contact_model
     integer, allocatable :: tri(:,:)       !< (3, n_tri) contact-node indices; counter-clockwise seen from outside
     integer, allocatable :: slave(:)       !< contact-node indices, ascending (= ascending global id)
     integer :: master_part = 0, slave_part = 0   !< eroding parts whose current boundary is the surface (0: fixed surface)
+    !> self-contact: master and slave are one part's boundary (without its
+    !> faces on symmetry planes); a node meets only triangles with no node
+    !> within two surface edges of it, and only when it crossed them in
+    !> this step
+    logical :: self = .false.
+    integer, allocatable :: ring_start(:), ring(:)   !< CSR over slave nodes: the nodes within two surface edges
+    logical, allocatable :: near(:)        !< (contact nodes) work: the current slave node's ring
+    logical, allocatable :: touched(:)     !< (slave nodes) in contact in the last pass (self-contact)
     real(rk) :: friction = 0
     integer :: iterations = 2, weights = 1
     real(rk) :: tolerance = 0
@@ -51,6 +59,7 @@ module udar_contact_model
     integer, allocatable :: gidx(:)        !< their global node indices, ascending
     real(rk), allocatable :: x(:,:), v(:,:), m(:)   !< (3,n), (3,n), (n): gathered state, masses
     real(rk), allocatable :: h(:)     !< m, smallest altitude of each contact node's elements (bounds its returns)
+    integer, allocatable :: sym_planes(:)   !< bit p set: the node lies on symmetry plane p
     integer, allocatable :: faces(:,:)     !< (3, n_faces) every face of a contact surface once
     real(rk), allocatable :: impulse(:)    !< N s, normal contact impulse on each contact node in the last pass
     real(rk), allocatable :: pressure(:)   !< Pa, work array: contact pressure of each contact node
@@ -74,6 +83,14 @@ module udar_contact_model
     real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3, owned contact nodes) m/s: v(n-1/2), v(n+1/2) before the pass
   end type
 contains
+
+  !> Whether triangle tri (contact-node indices) lies on a symmetry plane:
+  !> the mirrored body continues there, it is no contact surface.
+  pure logical function on_symmetry_plane(ct, tri)
+    type(contact_t), intent(in) :: ct
+    integer, intent(in) :: tri(3)
+    on_symmetry_plane = iand(iand(ct%sym_planes(tri(1)), ct%sym_planes(tri(2))), ct%sym_planes(tri(3))) /= 0
+  end function
 
   !> The interface's work arrays hold its current triangles and slave nodes
   !> (grown by half again when too small: no allocation in a steady run).
@@ -100,4 +117,82 @@ contains
     end if
     if (.not. allocated(it%cand)) allocate(it%cand(4*size(it%slave) + 1))
   end subroutine
+
+  !> Self-contact: for every slave node the contact nodes within two edges
+  !> of it along the current surface (it%tri), ascending: the
+  !> neighbourhood it cannot be in contact with. n_nodes: contact nodes.
+  subroutine self_neighbourhoods(it, n_nodes)
+    type(interface_t), intent(inout) :: it
+    integer, intent(in) :: n_nodes
+    integer, allocatable :: tri_start(:), tri_of(:), fill(:), ring1(:)
+    logical, allocatable :: mark(:)
+    integer :: t, a, k, j, n_ring, n1, pass
+    ! triangles at each node (CSR)
+    allocate(tri_start(n_nodes + 1), source=0)
+    do t = 1, size(it%tri, 2)
+      tri_start(it%tri(:,t) + 1) = tri_start(it%tri(:,t) + 1) + 1
+    end do
+    tri_start(1) = 1
+    do a = 1, n_nodes
+      tri_start(a+1) = tri_start(a+1) + tri_start(a)
+    end do
+    allocate(tri_of(tri_start(n_nodes+1) - 1), fill(n_nodes))
+    fill = tri_start(1:n_nodes)
+    do t = 1, size(it%tri, 2)
+      do a = 1, 3
+        tri_of(fill(it%tri(a,t))) = t
+        fill(it%tri(a,t)) = fill(it%tri(a,t)) + 1
+      end do
+    end do
+    allocate(mark(n_nodes), source=.false.)
+    if (allocated(it%ring_start)) deallocate(it%ring_start, it%ring)
+    allocate(it%ring_start(size(it%slave) + 1), ring1(64))
+    ! twice: count, then fill
+    do pass = 1, 2
+      it%ring_start(1) = 1
+      do k = 1, size(it%slave)
+        ! first ring: the nodes of the triangles at the slave node; second: of theirs
+        n_ring = 0
+        call add_nodes_of_triangles_at(it%slave(k))
+        n1 = n_ring
+        do j = 1, n1
+          call add_nodes_of_triangles_at(ring1(j))
+        end do
+        mark(ring1(1:n_ring)) = .false.
+        if (pass == 2) it%ring(it%ring_start(k):it%ring_start(k) + n_ring - 1) = ring1(1:n_ring)
+        it%ring_start(k+1) = it%ring_start(k) + n_ring
+      end do
+      if (pass == 1) allocate(it%ring(it%ring_start(size(it%slave) + 1) - 1))
+    end do
+    if (allocated(it%touched)) deallocate(it%touched)
+    allocate(it%touched(size(it%slave)), source=.false.)   ! the slave list changed
+    if (.not. allocated(it%near)) allocate(it%near(n_nodes), source=.false.)
+    if (size(it%near) < n_nodes) then
+      deallocate(it%near)
+      allocate(it%near(n_nodes), source=.false.)
+    end if
+
+  contains
+
+    subroutine add_nodes_of_triangles_at(p)
+      integer, intent(in) :: p
+      integer :: jj, aa, q
+      integer, allocatable :: grown(:)
+      do jj = tri_start(p), tri_start(p+1) - 1
+        do aa = 1, 3
+          q = it%tri(aa, tri_of(jj))
+          if (mark(q)) cycle
+          mark(q) = .true.
+          n_ring = n_ring + 1
+          if (n_ring > size(ring1)) then
+            allocate(grown(2*size(ring1)))
+            grown(1:size(ring1)) = ring1
+            call move_alloc(grown, ring1)
+          end if
+          ring1(n_ring) = q
+        end do
+      end do
+    end subroutine
+  end subroutine
+
 end module udar_contact_model

@@ -179,7 +179,7 @@ contains
     call has(f//":7: &contact #1 'plate': slave is required", 'physical surface group')
     call has(f//":8: &contact #2 'plate': weights = 'nearest'", "unknown choice; valid: 'distance', 'area'")
     call has(f//":9: &contact #3 'plate': friction = -1", 'must be >= 0')
-    call has(f//":10: &contact #4 'sphere': slave = 'sphere'", 'self-contact is not supported yet')
+    call has(f//":10: &contact #4 'sphere': symmetric = .true.", 'has no meaning for self-contact')
     call has(f//":11: &contact #5 'plate': master is required", 'a part')
     call has(f//':11:', 'iterations = 0', 'must be >= 1')
     call has(f//':11:', "initial_overlap = 'ignore'", "unknown choice; valid: 'report', 'move'")

@@ -1,0 +1,76 @@
+"""Self-contact: an elastic C-shaped clamp (nu = 0) falls onto a rigid
+wall; its lower arm rebounds and strikes the upper arm. Checked against 1D
+elastic wave theory: the arms meet at t/c + g/(2v); while they touch, the
+pressure in the arms' far part (away from the bridge) is rho c (v_up -
+v_low)/2 with the arms' measured approach velocities; no node of one arm
+ever lies inside the other (at the free corners, where a corner can slip
+under a corner, by at most 1e-3 of the element size); the energy balance (with the contact work)
+moves by less than 2 % over the contact (until the lower arm, sent back
+down, strikes the wall again). With `expect_penetration` (the
+same deck without the &contact group) the arms must pass into each other:
+the check can fail."""
+import math
+import os
+import sys
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', 'tools'))
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'rod_3kms'))
+import checks  # noqa: E402
+import udar_results  # noqa: E402
+from check_geometry import deepest_inside  # noqa: E402
+
+E, RHO, V, T, GAP, H = 200e9, 7850.0, 100.0, 0.004, 0.2e-3, 1.0e-3
+c = math.sqrt(E / RHO)
+out = os.path.join(sys.argv[1], 'out')
+negative = len(sys.argv) > 3 and sys.argv[3] == 'expect_penetration'
+with h5py.File(os.path.join(out, 'self_contact.h5'), 'r') as f:
+    conn, x0 = f['mesh/connectivity'][...], f['mesh/x0'][...]
+centre = x0[conn].mean(axis=1)
+lower = conn[(centre[:, 0] > 0) & (centre[:, 2] < T)]
+upper = conn[(centre[:, 0] > 0) & (centre[:, 2] > T + GAP)]
+lower_nodes, upper_nodes = np.unique(lower), np.unique(upper)
+# the arms' far part: the bridge's disturbance has not reached it during the contact
+far_low = lower_nodes[x0[lower_nodes, 0] > 0.022]
+far_up = upper_nodes[x0[upper_nodes, 0] > 0.022]
+face_up = upper_nodes[(x0[upper_nodes, 0] > 0.015) & (x0[upper_nodes, 0] < 0.028)
+                      & (np.abs(x0[upper_nodes, 2] - T - GAP) < 1e-6)]
+fld = udar_results.open_fields(os.path.join(out, 'self_contact.h5'))
+# the arms' faces away from their free edges (x = 30 mm, y = 4 mm): a
+# node-on-surface contact does not see a corner slipping under a corner
+inner = lambda n: n[(x0[n, 0] < 0.029) & (x0[n, 1] < 0.0039)]  # noqa: E731
+deepest, deepest_inner, rows = 0.0, 0.0, []
+for k in range(fld.n_steps):
+    s = fld.step(k)
+    x, v = s.coordinates, np.asarray(s.fields['velocity'])
+    depth = max(deepest_inside(x[upper_nodes], x, lower), deepest_inside(x[lower_nodes], x, upper))
+    deepest = max(deepest, depth)
+    deepest_inner = max(deepest_inner, deepest_inside(x[inner(upper_nodes)], x, lower),
+                        deepest_inside(x[inner(lower_nodes)], x, upper))
+    p = np.median(np.asarray(s.fields['contact_pressure'])[face_up]) if 'contact_pressure' in s.fields else 0.0
+    rows.append((s.time, depth, p, v[far_up, 2].mean(), v[far_low, 2].mean()))
+    print(f"MEASURED t = {s.time * 1e6:.2f} us: deepest arm node inside the other arm {depth:.3g} m, "
+          f"contact pressure (far part, median) {p / 1e9:.3f} GPa, far-part velocity upper {rows[-1][3]:.1f} "
+          f"lower {rows[-1][4]:.1f} m/s")
+if negative:
+    checks.above('arms_pass_into_each_other_without_self_contact_m', deepest, 0.05e-3, 'm')
+    checks.finish()
+h = udar_results.read_history(os.path.join(out, 'self_contact_history.csv'))
+t, force = h['time'], h['contact_normal_clamp_on_itself']
+touch = np.nonzero(force > 0)[0]
+checks.compare('contact_start_t_over_c_plus_gap_over_2v', t[touch[0]], T / c + GAP / (2 * V), 0.05, 's')
+checks.below('arm_nodes_inside_other_arm_over_h_away_from_free_edges', deepest_inner / H, 1e-6)
+checks.below('arm_nodes_inside_other_arm_over_h_corners_included', deepest / H, 1e-3)
+rows = np.array(rows)
+before = rows[rows[:, 0] < t[touch[0]]][-1]
+during = rows[(rows[:, 0] > t[touch[0]] + 0.1e-6) & (rows[:, 0] < t[touch[0]] + 2 * T / c - 0.2e-6)]
+p_theory = RHO * c * (before[4] - before[3]) / 2
+checks.compare('contact_pressure_far_part_vs_rho_c_dv_over_2', during[:, 2].mean(), p_theory, 0.10, 'Pa')
+# over the contact, until the lower arm strikes the wall again (the wall's
+# node-on-plane stops are inelastic and not part of this check)
+window = (t > t[touch[0]] - 0.1e-6) & (t < t[touch[0]] + 2 * T / c - 0.2e-6)
+err = h['energy_error'][window]
+checks.below('energy_error_change_over_contact', err.max() - err.min(), 0.02)
+checks.finish()
