@@ -8,7 +8,14 @@ The target's impact face is the plane z = 0 (the rod moves along -z). At each st
   eroded) near the axis (centroid within --radius of it);
 * residual rod length: the axial extent of the rod elements not eroded;
 * rod velocity: the mean axial velocity of the nodes of the rod elements not eroded;
-* rod tip: the lowest z of those nodes.
+* rod tip: the lowest z of those nodes;
+* along --axis (the projectile's initial axis, pointing into the target; default 0 0 -1):
+  the residual rod length is the extent along it, and the intact length the same for the
+  rod elements not fractured;
+* deepest crater point anywhere: minus the lowest centroid of the upward-facing boundary
+  faces of the target material still there (the crater floor); crater diameter: twice
+  the smallest distance from the z axis of those faces within --radius of the impact
+  face's level (the hole's rim, for an impact on the axis).
 
     /usr/bin/python3 postproc/penetration.py out/long_rod.h5 --rod rod --target block --radius 1.25e-3
     /usr/bin/python3 postproc/penetration.py --self-test
@@ -37,9 +44,27 @@ def part_id(ff, name):
     raise SystemExit("%s: no part '%s' (parts: %s)" % (ff.path, name, ", ".join(names.values()) or "unnamed"))
 
 
-def measure(ff, rod, target, radius):
+def upward_boundary(x, conn, elements):
+    """Centroids of the faces of the given elements that are on their boundary
+    (not shared by two of them) and face upwards (outward normal z > 0.3)."""
+    tets = conn[elements]
+    faces = np.concatenate([tets[:, [0, 1, 2]], tets[:, [0, 1, 3]], tets[:, [0, 2, 3]], tets[:, [1, 2, 3]]])
+    opposite = np.concatenate([tets[:, 3], tets[:, 2], tets[:, 1], tets[:, 0]])
+    _, inv, count = np.unique(np.sort(faces, axis=1), axis=0, return_inverse=True, return_counts=True)
+    outer = count[inv.ravel()] == 1
+    f, o = faces[outer], opposite[outer]
+    a, b, c = x[f[:, 0]], x[f[:, 1]], x[f[:, 2]]
+    n = np.cross(b - a, c - a)
+    n *= np.where(np.einsum("ij,ij->i", n, x[o] - a) > 0, -1.0, 1.0)[:, None]
+    up = n[:, 2] > 0.3 * np.linalg.norm(n, axis=1)
+    return (a + b + c)[up] / 3.0
+
+
+def measure(ff, rod, target, radius, axis=(0.0, 0.0, -1.0)):
     """Per step: time (s), crater depth (m), residual rod length (m), rod velocity (m/s),
-    rod tip z (m), eroded rod and target elements."""
+    rod tip z (m), eroded rod and target elements, intact rod length (m), deepest crater
+    point anywhere (m), crater diameter (m)."""
+    axis = np.asarray(axis, float) / np.linalg.norm(axis)
     conn = ff.connectivity
     rod_el = ff.part_id == part_id(ff, rod)
     tgt_el = ff.part_id == part_id(ff, target)
@@ -58,14 +83,29 @@ def measure(ff, rod, target, radius):
         rod_alive = rod_el & alive
         if rod_alive.any():
             nodes = np.unique(conn[rod_alive])
-            length = x[nodes, 2].max() - x[nodes, 2].min()
-            vel = v[nodes, 2].mean()
+            along = x[nodes] @ axis
+            length = along.max() - along.min()
+            vel = (v[nodes] @ -axis).mean()     # the z velocity for the default axis
             tip = x[nodes, 2].min()
         else:
             length, vel, tip = 0.0, float("nan"), float("nan")
+        intact = rod_el & (state < 0.5)
+        if intact.any():
+            along = x[np.unique(conn[intact])] @ axis
+            intact_length = along.max() - along.min()
+        else:
+            intact_length = 0.0
+        if (tgt_el & alive).any():
+            floor = upward_boundary(x, conn, tgt_el & alive)
+            deepest = -min(floor[:, 2].min(), 0.0)
+            rim = floor[np.abs(floor[:, 2]) < radius]
+            diameter = 2.0 * np.hypot(rim[:, 0], rim[:, 1]).min() if len(rim) else float("nan")
+        else:
+            deepest, diameter = float("nan"), float("nan")
         rows.append(dict(time=st.time, depth=depth, rod_length=length, rod_velocity=vel, rod_tip=tip,
                          rod_eroded=int(np.count_nonzero(rod_el & ~alive)),
-                         target_eroded=int(np.count_nonzero(tgt_el & ~alive))))
+                         target_eroded=int(np.count_nonzero(tgt_el & ~alive)),
+                         rod_intact_length=intact_length, crater_deepest=deepest, crater_diameter=diameter))
     return rows
 
 
@@ -80,7 +120,8 @@ def self_test():
         for k in range(8):
             z0 = -4.0 + k
             base = len(xs)
-            xs += [[0, 0, z0], [0.1, 0, z0], [0, 0.1, z0], [0, 0, z0 + 1]]
+            # base on top (an upward-facing face at z0 + 1), apex below
+            xs += [[0, 0, z0 + 1], [0.1, 0, z0 + 1], [0, 0.1, z0 + 1], [0, 0, z0]]
             conn.append([base, base + 1, base + 2, base + 3])
         x0 = np.array(xs, float)
         part = np.array([2] * 4 + [1] * 4, dtype=np.int32)
@@ -95,13 +136,21 @@ def self_test():
         ff = ur.open_fields(path)
         rows = measure(ff, "rod", "block", 0.5)
         ff.close()
-    want = [(0.0, 4.0, 0, 0), (2.0, 2.0, 2, 2)]
-    for r, (depth, length, re, te) in zip(rows, want):
+    # (depth, rod length, eroded rod, eroded target, intact length, deepest, crater diameter):
+    # the target tets' top faces (upward, on the boundary: the tets touch only at corners)
+    # are at z = -3 .. 0; the rim is the one at z = 0, centroid (0.1/3, 0.1/3)
+    rim = 2.0 * np.hypot(0.1 / 3, 0.1 / 3)
+    want = [(0.0, 4.0, 0, 0, 4.0, 3.0, rim), (2.0, 2.0, 2, 2, 2.0, 3.0, float("nan"))]
+    for r, (depth, length, re, te, intact, deepest, diam) in zip(rows, want):
         good = abs(r["depth"] - depth) < 1e-12 and abs(r["rod_length"] - length) < 1e-12 \
-            and r["rod_eroded"] == re and r["target_eroded"] == te
-        print("  %s  t = %g: depth %g (%g), rod length %g (%g), eroded %d/%d (%d/%d)"
+            and r["rod_eroded"] == re and r["target_eroded"] == te \
+            and abs(r["rod_intact_length"] - intact) < 1e-12 and abs(r["crater_deepest"] - deepest) < 1e-12 \
+            and (abs(r["crater_diameter"] - diam) < 1e-12 or (np.isnan(diam) and np.isnan(r["crater_diameter"])))
+        print("  %s  t = %g: depth %g (%g), rod length %g (%g), eroded %d/%d (%d/%d), intact %g (%g), "
+              "deepest %g (%g), diameter %g (%g)"
               % ("ok  " if good else "FAIL", r["time"], r["depth"], depth, r["rod_length"], length,
-                 r["rod_eroded"], r["target_eroded"], re, te))
+                 r["rod_eroded"], r["target_eroded"], re, te, r["rod_intact_length"], intact,
+                 r["crater_deepest"], deepest, r["crater_diameter"], diam))
         ok &= good
     print("penetration self-test: %s" % ("PASS" if ok else "FAIL"))
     return ok
@@ -116,6 +165,8 @@ def main(argv=None):
     ap.add_argument("--radius", type=float, default=1.0e-3,
                     help="m, target elements with a centroid this close to the axis measure the crater")
     ap.add_argument("--length", type=float, default=0.0, help="m, initial rod length: also print P/L")
+    ap.add_argument("--axis", type=float, nargs=3, default=(0.0, 0.0, -1.0), metavar=("AX", "AY", "AZ"),
+                    help="the projectile's initial axis, into the target (default 0 0 -1)")
     ap.add_argument("--self-test", action="store_true", help="run the built-in checks")
     a = ap.parse_args(argv)
     if a.self_test:
@@ -123,13 +174,15 @@ def main(argv=None):
     if not a.h5:
         ap.error("give a field file or --self-test")
     ff = ur.open_fields(a.h5)
-    rows = measure(ff, a.rod, a.target, a.radius)
-    print("%10s %12s %14s %14s %12s %10s %10s%s" % ("t_us", "crater_mm", "rod_length_mm", "rod_vz_m_s",
-                                                  "rod_tip_mm", "rod_ero", "tgt_ero", "  P/L" if a.length else ""))
+    rows = measure(ff, a.rod, a.target, a.radius, a.axis)
+    print("%10s %12s %14s %14s %12s %10s %10s %10s %12s %12s%s"
+          % ("t_us", "crater_mm", "rod_length_mm", "rod_vz_m_s", "rod_tip_mm", "rod_ero", "tgt_ero",
+             "intact_mm", "deepest_mm", "crater_d_mm", "  P/L" if a.length else ""))
     for r in rows:
-        print("%10.3f %12.3f %14.3f %14.1f %12.3f %10d %10d%s"
+        print("%10.3f %12.3f %14.3f %14.1f %12.3f %10d %10d %10.3f %12.3f %12.3f%s"
               % (r["time"] * 1e6, r["depth"] * 1e3, r["rod_length"] * 1e3, r["rod_velocity"], r["rod_tip"] * 1e3,
-                 r["rod_eroded"], r["target_eroded"], "  %.3f" % (r["depth"] / a.length) if a.length else ""))
+                 r["rod_eroded"], r["target_eroded"], r["rod_intact_length"] * 1e3, r["crater_deepest"] * 1e3,
+                 r["crater_diameter"] * 1e3, "  %.3f" % (r["depth"] / a.length) if a.length else ""))
     return 0
 
 

@@ -52,3 +52,4 @@ for name in wg ofhc; do
 done
 echo "results in $csv and doc/validation/*.png"
 tests/validate_long_rod.sh
+tests/validate_paper.sh

@@ -87,9 +87,9 @@ contains
     end do
   end subroutine
 
-  !> Nodal volume ratio J_a = V_a / V0_a, V_a a quarter of each incident
-  !> element's volume (Bonet and Burton 1998); eroded elements left out, 1
-  !> at a node they all left.
+  !> Nodal volume ratio J_a = V_a / Vref_a, V_a a quarter of each incident
+  !> element's volume (Bonet and Burton 1998), Vref_a = V0_a until erosion
+  !> rebases it; eroded elements left out, 1 at a node they all left.
   subroutine nodal_volumes(dom)
     type(domain_t), intent(inout) :: dom
     integer :: n

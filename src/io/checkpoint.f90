@@ -229,7 +229,8 @@ contains
     call open_file(f, path, .false.)
     if (f%ok) then
       call read_attr_text(f, 'format', fmt)
-      if (f%ok .and. fmt /= ckpt_format) call fail(f, 'not a udar checkpoint (format '''//fmt//''')')
+      if (f%ok .and. fmt /= ckpt_format) call fail(f, 'format '''//fmt//''' is not this version''s '''// &
+        ckpt_format//''' (a checkpoint of another udar version, or not a udar checkpoint)')
     end if
     do k = 1, size(real_names)
       if (f%ok) call read_attr_real(f, trim(real_names(k)), reals(k))

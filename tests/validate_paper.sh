@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# The seed paper's calculations (part of make validate): the compact steel
+# cylinder at 30 degrees with f = 0.18 and f = 0 (Fig. 3), its normal impact,
+# and the yawed W-Ni-Fe rod through a plate (Fig. 4), run two at a time;
+# the numbers of doc/validation.md 4j-4l go to doc/validation/paper_decks.csv
+# and the sections at the paper's times to doc/validation/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+PYTHON=${PYTHON:-/usr/bin/python3}
+W=${VALIDATE_WORK:-$ROOT/build/validate}/paper
+JOBS=${JOBS:-2}
+mkdir -p "$W" doc/validation
+cp bin/udar "$W/udar"     # a rebuild during the runs must not change them
+# deck, folder, name of the projectile part, its initial axis (into the plate)
+decks=("oblique_cylinder oblique_cylinder cylinder 0.5 0 -0.8660254"
+       "oblique_cylinder_f0 oblique_cylinder cylinder 0.5 0 -0.8660254"
+       "normal_cylinder normal_cylinder cylinder 0 0 -1"
+       "yawed_rod yawed_rod rod 0.70710678 0 -0.70710678")
+for d in "${decks[@]}"; do
+  set -- $d
+  mkdir -p "$W/$1"
+  cp "input/$2/$2.msh" "$W/$1/"
+  sed "s|directory = '[^']*'|directory = 'out'|" "input/$2/$1.nml" > "$W/$1/$1.nml"
+done
+printf '%s\n' "${decks[@]}" | cut -d' ' -f1 | \
+  xargs -P "$JOBS" -I{} sh -c "cd '$W/{}' && '$W/udar' {}.nml > run.log 2>&1 || echo 'FAILED {}'"
+csv=doc/validation/paper_decks.csv
+echo "deck,t_us,crater_on_axis_mm,projectile_left_along_axis_mm,intact_along_axis_mm,crater_deepest_mm,crater_rim_diameter_mm,projectile_velocity_along_axis_m_s,eroded_projectile,eroded_plate,energy_error,wall_s" > $csv
+for d in "${decks[@]}"; do
+  set -- $d
+  line=$($PYTHON postproc/penetration.py "$W/$1/out/$1.h5" --rod $3 --target plate --radius 0.5e-3 --axis $4 $5 $6 | tail -1)
+  err=$(grep -o 'energy error *[-0-9.E+]*' "$W/$1/run.log" | tail -1 | awk '{print $3}')
+  wall=$(grep -o '[0-9.]* s wall' "$W/$1/run.log" | cut -d' ' -f1)
+  echo "$line" | awk -v n=$1 -v e=$err -v w=$wall '{print n","$1","$2","$3","$8","$9","$10","$4","$6","$7","e","w}' | tee -a $csv
+done
+S="$PYTHON postproc/section.py --plane y=0.3mm"
+for f in f18:oblique_cylinder f0:oblique_cylinder_f0; do
+  n=${f%%:*}; run=${f#*:}
+  $S "$W/$run/out/$run.h5" --time 12 --color part --xlim -20 40 --ylim -25 20 \
+     --title "Fig. 3 deck (30 deg, 3 km/s), ${n/f18/f = 0.18}, 12 us, section y = 0.3 mm" \
+     -o doc/validation/oblique_cylinder_${n}_12us_parts.png
+  $S "$W/$run/out/$run.h5" --time 12 --color fracture_state --xlim -20 40 --ylim -25 20 \
+     --title "Fig. 3 deck (30 deg, 3 km/s), ${n/f18/f = 0.18}, 12 us: 0 intact, 1 fractured" \
+     -o doc/validation/oblique_cylinder_${n}_12us_fracture.png
+done
+$S "$W/oblique_cylinder/out/oblique_cylinder.h5" --time 0 --color part --xlim -20 40 --ylim -25 20 \
+   --title "Fig. 3 deck (30 deg, 3 km/s), 0 us" -o doc/validation/oblique_cylinder_0us_parts.png
+$S "$W/normal_cylinder/out/normal_cylinder.h5" --time 30 --color part --xlim -30 30 --ylim -30 15 \
+   --title "normal impact, 3 km/s, f = 0.18, 30 us, section y = 0.3 mm" -o doc/validation/normal_cylinder_30us_parts.png
+$S "$W/normal_cylinder/out/normal_cylinder.h5" --time 9 --color fracture_state --xlim -30 30 --ylim -30 15 \
+   --title "normal impact, 3 km/s, 9 us: 0 intact, 1 fractured" -o doc/validation/normal_cylinder_9us_fracture.png
+for t in 0 16 44.03; do
+  $S "$W/yawed_rod/out/yawed_rod.h5" --time $t --color part --xlim -30 80 --ylim -70 30 \
+     --title "Fig. 4 deck (W-Ni-Fe rod, 2 km/s, 35 deg obliquity, 10 deg yaw), $t us" \
+     -o doc/validation/yawed_rod_${t%%.*}us_parts.png
+done
+$S "$W/yawed_rod/out/yawed_rod.h5" --time 16 --color plastic_strain --vmax 2 --xlim -30 80 --ylim -70 30 \
+   --title "Fig. 4 deck, 16 us: plastic strain" -o doc/validation/yawed_rod_16us_eps.png
+echo "results in $csv"
