@@ -36,12 +36,12 @@ for d in "${decks[@]}"; do
 done
 S="$PYTHON postproc/section.py --plane y=0.3mm"
 for f in f18:oblique_cylinder f0:oblique_cylinder_f0; do
-  n=${f%%:*}; run=${f#*:}
+  n=${f%%:*}; run=${f#*:}; fr="f = 0.18"; [ $n = f0 ] && fr="f = 0"
   $S "$W/$run/out/$run.h5" --time 12 --color part --xlim -20 40 --ylim -25 20 \
-     --title "Fig. 3 deck (30 deg, 3 km/s), ${n/f18/f = 0.18}, 12 us, section y = 0.3 mm" \
+     --title "Fig. 3 deck (30 deg, 3 km/s), $fr, 12 us, section y = 0.3 mm" \
      -o doc/validation/oblique_cylinder_${n}_12us_parts.png
   $S "$W/$run/out/$run.h5" --time 12 --color fracture_state --xlim -20 40 --ylim -25 20 \
-     --title "Fig. 3 deck (30 deg, 3 km/s), ${n/f18/f = 0.18}, 12 us: 0 intact, 1 fractured" \
+     --title "Fig. 3 deck (30 deg, 3 km/s), $fr, 12 us: 0 intact, 1 fractured" \
      -o doc/validation/oblique_cylinder_${n}_12us_fracture.png
 done
 $S "$W/oblique_cylinder/out/oblique_cylinder.h5" --time 0 --color part --xlim -20 40 --ylim -25 20 \
