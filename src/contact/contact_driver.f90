@@ -15,8 +15,8 @@ module udar_contact
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real
   implicit none
   private
-  public :: contact_distribute, contact_enforce, contact_overlaps, contact_pressure, contact_keep_velocities, &
-            contact_work
+  public :: contact_distribute, contact_enforce, contact_overlaps, contact_settle, contact_pressure, &
+            contact_keep_velocities, contact_work
 
   !> a projection this far outside a triangle (in area coordinates) still
   !> counts as on it: no slave node slips through the seam of two triangles
@@ -61,45 +61,44 @@ contains
   !> Slave nodes behind their master surface before the first cycle:
   !> counted, the deepest named, and moved onto the surface if the interface
   !> asks for it. Returns a report line per interface.
-  !> With settle: after surfaces changed (erosion), slave nodes just behind
-  !> the newly exposed faces are put on them, whatever initial_overlap says.
-  subroutine contact_overlaps(ct, dom, lines, settle)
+  subroutine contact_overlaps(ct, dom, lines)
     type(contact_t), intent(inout) :: ct
     type(domain_t), intent(inout) :: dom
     character(len=300), allocatable, intent(out) :: lines(:)
-    logical, intent(in), optional :: settle
     integer :: i, n_found, worst
     real(rk) :: depth
-    logical :: move
-    real(rk) :: reach
     allocate(lines(ct%n_interfaces))
     if (ct%n_interfaces == 0) return
     call gather_state(ct, dom)
     do i = 1, ct%n_interfaces
-      move = ct%ifc(i)%move_overlaps
-      ! anything behind the surface by up to one master element counts; when
-      ! settling, a hair (a node deeper came through an element that is gone:
-      ! the next pass takes it with the velocities)
-      reach = ct%ifc(i)%h_mean
-      if (present(settle)) then
-        move = move .or. settle
-        if (settle) reach = 0.01_rk*ct%ifc(i)%h_mean
-      end if
-      call detect(ct, ct%ifc(i), reach, move, 0.0_rk, n_found, depth, worst)
+      ! anything behind the surface by up to one master element counts
+      call detect(ct, ct%ifc(i), ct%ifc(i)%h_mean, ct%ifc(i)%move_overlaps, 0.0_rk, n_found, depth, worst)
       if (n_found == 0) then
         write(lines(i), '(a)') 'contact '//trim(ct%ifc(i)%name)//': no initial overlap'
       else
         write(lines(i), '(a,i0,a,es10.3,a,i0,a,3es11.3,a)') 'contact '//trim(ct%ifc(i)%name)//': ', n_found, &
-          ' slave nodes start behind the master surface, deepest ', depth, ' m (node ', dom_tag(worst), ' at ', &
+          ' slave nodes start behind the master surface, deepest ', depth, ' m (node ', ct%gidx(worst), ' at ', &
           ct%x(:,worst), ' m)'//merge('; moved onto the surface', '                        ', ct%ifc(i)%move_overlaps)
       end if
     end do
     call scatter_state(ct, dom)
-  contains
-    integer function dom_tag(p)
-      integer, intent(in) :: p
-      dom_tag = ct%gidx(p)
-    end function
+  end subroutine
+
+  !> After the surfaces changed (erosion): slave nodes a hair (1 % of the
+  !> mean master edge) behind a newly exposed face are put on it (a node
+  !> flush against an element that is gone); deeper ones came through an
+  !> element that is gone, and the next pass takes them with the velocities.
+  subroutine contact_settle(ct, dom)
+    type(contact_t), intent(inout) :: ct
+    type(domain_t), intent(inout) :: dom
+    integer :: i, n_found, worst
+    real(rk) :: depth
+    if (ct%n_interfaces == 0) return
+    call gather_state(ct, dom)
+    do i = 1, ct%n_interfaces
+      call detect(ct, ct%ifc(i), 0.01_rk*ct%ifc(i)%h_mean, .true., 0.0_rk, n_found, depth, worst)
+    end do
+    call scatter_state(ct, dom)
   end subroutine
 
   !> One contact pass (every rank, same data, same order).

@@ -35,7 +35,8 @@ module udar_run
   use udar_hash, only: hash_hex
   use udar_strings, only: itoa
   use udar_contact_model, only: contact_t
-  use udar_contact, only: contact_enforce, contact_overlaps, contact_pressure, contact_keep_velocities, contact_work
+  use udar_contact, only: contact_enforce, contact_overlaps, contact_settle, contact_pressure, contact_keep_velocities, &
+      contact_work
   use udar_contact_erosion, only: contact_erode
   use udar_files, only: rename_file
   implicit none
@@ -411,7 +412,7 @@ contains
       call contact_erode(ct, all_gidx(1:sum(erosion_counts)))
       ! a slave node flush against an eroded element can be a hair behind
       ! the face its removal exposed: onto it before the next step
-      if (settle) call contact_overlaps(ct, dom, overlap_lines, settle=.true.)
+      if (settle) call contact_settle(ct, dom)
     end subroutine
 
     !> Next output time after t (several intervals may pass in one step).
