@@ -16,7 +16,7 @@ module udar_element_driver
   private
   public :: element_volumes, nodal_volumes, element_update, nodal_pressures, &
             element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes, &
-            element_altitudes, rebase_nodal_volumes
+            element_altitudes
 
 contains
 
@@ -67,23 +67,22 @@ contains
 
   !> Nodal reference volumes V0_a: a quarter of each incident element's
   !> reference volume, eroded elements left out (again after each erosion).
-  subroutine nodal_reference_volumes(dom)
+  !> With rebase (after erosion, anti-locking): each owned node that lost an
+  !> element also has the volume its J is taken against rebased so that J
+  !> does not jump (a jump would change the pressures without any work);
+  !> the other nodes keep theirs to the bit, whatever the partition.
+  subroutine nodal_reference_volumes(dom, rebase)
     type(domain_t), intent(inout) :: dom
+    logical, intent(in) :: rebase
+    real(rk) :: v0
     integer :: n
     do n = 1, dom%n_nodes
-      dom%nd_vol0(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol0)
-    end do
-  end subroutine
-
-  !> After erosion: each owned node's reference for J is rebased so that its
-  !> volume ratio does not jump when elements leave its average (a jump
-  !> would change the pressures without any work).
-  subroutine rebase_nodal_volumes(dom)
-    type(domain_t), intent(inout) :: dom
-    integer :: n
-    do n = 1, dom%n_owned_nodes
-      dom%nd_vref(n) = 0.0_rk
-      if (dom%nd_vol0(n) > 0.0_rk) dom%nd_vref(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol)/dom%nd_j(n)
+      v0 = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol0)
+      if (rebase .and. n <= dom%n_owned_nodes .and. v0 /= dom%nd_vol0(n)) then
+        dom%nd_vref(n) = 0.0_rk
+        if (v0 > 0.0_rk) dom%nd_vref(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol)/dom%nd_j(n)
+      end if
+      dom%nd_vol0(n) = v0
     end do
   end subroutine
 

@@ -7,7 +7,7 @@
 !>   @format 'udar-checkpoint-3', @version, @n_nodes, @n_elems, the scalars of
 !>   run_state_t (@t, @cycle, ...);  hashes int64 (2): model, mesh;
 !>   wall_work, contact_work int64 (67): exact work accumulators;  /provenance @n_ranks;
-!>   nodes/{x,v,f} (n_nodes,3), nodes/vref (n_nodes);  elems/{vol,j,e,wp,p,q,eps_p,temp,hard,soft}
+!>   nodes/{x,v,f} (n_nodes,3), nodes/vref (n_nodes); elems/h (the altitudes the contact bounds its returns by);  elems/{vol,j,e,wp,p,q,eps_p,temp,hard,soft}
 !>   (n_elems), elems/s (n_elems,6).
 !> Reading: every rank reads the global arrays and keeps its local entries.
 module udar_checkpoint
@@ -33,8 +33,8 @@ module udar_checkpoint
   !> checkpoints_written (how the run got here, not its state) lives in /provenance
   character(len=*), parameter :: int_names(5) = [character(len=30) :: 'cycle', 'field_steps', &
       'provenance/checkpoints_written', 'n_nodes', 'n_elems']
-  character(len=*), parameter :: elem_names(13) = [character(len=8) :: 'vol', 'j', 'e', 'wp', 'p', 'q', 'eps_p', &
-      'temp', 'hard', 'soft', 'state', 'damage', 'eps_tot']
+  character(len=*), parameter :: elem_names(14) = [character(len=8) :: 'vol', 'j', 'e', 'wp', 'p', 'q', 'eps_p', &
+      'temp', 'hard', 'soft', 'state', 'damage', 'eps_tot', 'h']
 
   type :: ckpt_file_t
     integer(hid_t) :: id = -1, dxpl = -1
@@ -172,6 +172,7 @@ contains
         case (11); buf(1,:) = real(dom%el_state(dom%el_owned_list), rk)
         case (12); buf(1,:) = dom%el_damage(dom%el_owned_list)
         case (13); buf(1,:) = dom%el_eps_tot(dom%el_owned_list)
+        case (14); buf(1,:) = dom%el_h(dom%el_owned_list)
         end select
         call write_rows(f, 'elems/'//trim(elem_names(k)), dom%n_global_elems, 0, elem_first, elem_count, buf)
       end do
@@ -286,6 +287,7 @@ contains
       case (11); dom%el_state = nint(a(1,dom%el_gidx))
       case (12); dom%el_damage = a(1,dom%el_gidx)
       case (13); dom%el_eps_tot = a(1,dom%el_gidx)
+      case (14); dom%el_h = a(1,dom%el_gidx)
       end select
     end do
     deallocate(a)

@@ -19,7 +19,7 @@ module udar_run
   use udar_log, only: log_info
   use udar_element_driver, only: element_volumes, nodal_volumes, element_update, nodal_pressures, &
       element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes, &
-      element_altitudes, rebase_nodal_volumes
+      element_altitudes
   use udar_fracture, only: fracture_enabled, el_intact, el_eroded
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions, &
       keep_constrained_positions, restore_constrained_positions
@@ -176,8 +176,10 @@ contains
     ! erosion: elements of eroding materials whose step collapses; the
     ! nodal reference volumes without the elements already eroded (restart)
     dom%erode_dt_limit = cfg%numerics%erode_dt_ratio*st%dt0
-    call nodal_reference_volumes(dom)
-    call element_altitudes(dom)
+    call nodal_reference_volumes(dom, rebase=.false.)
+    ! the altitudes of the last element pass (a restart reads them: slave
+    ! nodes settled after that pass have moved since)
+    if (len_trim(restart_path) == 0) call element_altitudes(dom)
     n_eroded_by = 0
     ! eroding contact surfaces: the elements already eroded (restart)
     if (ct%n_tets > 0) then
@@ -241,8 +243,7 @@ contains
       end if
       call element_update(dom, dt, st%dt_stable, bad, bad_avg, n_eroded_now, eroded_any)
       n_eroded_by = n_eroded_by + n_eroded_now
-      if (eroded_any) call nodal_reference_volumes(dom)
-      if (eroded_any .and. dom%anti_locking) call rebase_nodal_volumes(dom)
+      if (eroded_any) call nodal_reference_volumes(dom, rebase=dom%anti_locking)
       if (ct%n_tets > 0) call share_erosion(sum(n_eroded_now) > 0, .true.)
       ! the lowest global id that inverted itself, else the lowest whose nodal
       ! average did: one reduction a cycle (keys above n_global_elems are the latter)
