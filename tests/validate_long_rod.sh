@@ -5,15 +5,8 @@
 # the crater depth at the end over the rod length (postproc/penetration.py)
 # goes to doc/validation/long_rod.csv next to the reference values.
 #   tests/validate_long_rod.sh [mesh size in m, default 1.0e-3]
-set -euo pipefail
-cd "$(dirname "$0")/.."
-ROOT=$PWD
-PYTHON=${PYTHON:-/usr/bin/python3}
-W=${VALIDATE_WORK:-$ROOT/build/validate}/long_rod
-JOBS=${JOBS:-2}
+source "$(dirname "$0")/validate_common.sh" long_rod
 H=${1:-1.0e-3}
-mkdir -p "$W" doc/validation
-cp bin/udar "$W/udar"     # a rebuild during the runs must not change them
 gmsh -3 -v 0 -setnumber h "$H" input/long_rod/long_rod.geo -o "$W/long_rod_h$H.msh"
 # Lanz-Odermatt P/L for tungsten alloy into RHA, L/D = 10 (Anderson, Walker
 # and Hohler 1999, as tabulated in doc/validation.md)

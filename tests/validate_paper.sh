@@ -4,14 +4,7 @@
 # and the yawed W-Ni-Fe rod through a plate (Fig. 4), run two at a time;
 # the numbers of doc/validation.md 4j-4l go to doc/validation/paper_decks.csv
 # and the sections at the paper's times to doc/validation/.
-set -euo pipefail
-cd "$(dirname "$0")/.."
-ROOT=$PWD
-PYTHON=${PYTHON:-/usr/bin/python3}
-W=${VALIDATE_WORK:-$ROOT/build/validate}/paper
-JOBS=${JOBS:-2}
-mkdir -p "$W" doc/validation
-cp bin/udar "$W/udar"     # a rebuild during the runs must not change them
+source "$(dirname "$0")/validate_common.sh" paper
 # deck, folder, name of the projectile part, its initial axis (into the plate)
 decks=("oblique_cylinder oblique_cylinder cylinder 0.5 0 -0.8660254"
        "oblique_cylinder_f0 oblique_cylinder cylinder 0.5 0 -0.8660254"

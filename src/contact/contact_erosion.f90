@@ -62,7 +62,7 @@ contains
         if (it%self) then
           ! the part's boundary without its faces on symmetry planes; its nodes and free nodes
           it%tri = faces(:, pack([(i, i = 1, n)], face_part == it%master_part .and. &
-                                 [(.not. on_symmetry_plane(ct, faces(:,i)), i = 1, n)]))
+                                 [(.not. on_symmetry_plane(ct%sym_planes, faces(:,i)), i = 1, n)]))
           it%slave = slave_nodes(it%slave_part, it%tri)
           call self_neighbourhoods(it, ct%n_nodes)
         else

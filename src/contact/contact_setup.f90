@@ -10,7 +10,7 @@ module udar_contact_setup
   use udar_deck, only: deck_where
   use udar_setup, only: find_group, group_list
   use udar_strings, only: itoa, to_lower
-  use udar_contact_model, only: contact_t, interface_t, size_interface_work, self_neighbourhoods
+  use udar_contact_model, only: contact_t, interface_t, size_interface_work, self_neighbourhoods, on_symmetry_plane
   implicit none
   private
   public :: build_contact, tet_face
@@ -52,8 +52,7 @@ contains
         if (to_lower(c%master) == to_lower(c%slave)) then
           ! self-contact: the surface without its faces on symmetry planes
           master = master(:, pack([(e, e = 1, size(master, 2))], &
-                                  [(iand(iand(sym_planes(master(1,e)), sym_planes(master(2,e))), &
-                                         sym_planes(master(3,e))) == 0, e = 1, size(master, 2))]))
+                                  [(.not. on_symmetry_plane(sym_planes, master(:,e)), e = 1, size(master, 2))]))
           i = i + 1
           call make_interface(ifc(i), master, unique_nodes(master), sname//'_on_itself')
           ifc(i)%self = .true.

@@ -84,12 +84,12 @@ module udar_contact_model
   end type
 contains
 
-  !> Whether triangle tri (contact-node indices) lies on a symmetry plane:
-  !> the mirrored body continues there, it is no contact surface.
-  pure logical function on_symmetry_plane(ct, tri)
-    type(contact_t), intent(in) :: ct
-    integer, intent(in) :: tri(3)
-    on_symmetry_plane = iand(iand(ct%sym_planes(tri(1)), ct%sym_planes(tri(2))), ct%sym_planes(tri(3))) /= 0
+  !> Whether triangle tri lies on a symmetry plane, given each node's bit
+  !> set of planes (sym_planes, indexed like tri): the mirrored body
+  !> continues there, it is no contact surface.
+  pure logical function on_symmetry_plane(sym_planes, tri)
+    integer, intent(in) :: sym_planes(:), tri(3)
+    on_symmetry_plane = iand(iand(sym_planes(tri(1)), sym_planes(tri(2))), sym_planes(tri(3))) /= 0
   end function
 
   !> The interface's work arrays hold its current triangles and slave nodes
