@@ -7,7 +7,8 @@ program udar
       halo_t, comms_max_int
   use udar_distribution, only: distribute_domain
   use udar_fatal, only: fatal_all, exit_input
-  use udar_log, only: log_info, log_warn
+  use udar_log, only: log_info, log_warn, log_to_stderr
+  use udar_files, only: is_directory, can_write_into, nearest_existing_parent
   use udar_version, only: program_version
   use udar_config, only: config_t
   use udar_input_errors, only: input_errors_t, input_errors_report
@@ -22,7 +23,8 @@ program udar
   use udar_contact, only: contact_distribute
   use udar_partition, only: partition_elements, partition_stats_t
   use udar_decomposition, only: rank_counts_t, decomposition_counts
-  use udar_strings, only: itoa
+  use udar_strings, only: itoa, fixed
+  use udar_signals, only: signals_install
   implicit none
 
   type(config_t) :: cfg
@@ -44,6 +46,8 @@ program udar
   integer(i8) :: model_hash, mesh_hash
 
   call comms_init()
+  ! from the start: a batch system's signal during set-up is kept, not fatal
+  call signals_install()
   check_only = .false.
   deck_path = ''
   pending = ''
@@ -91,8 +95,10 @@ program udar
     call fatal_all(exit_input, 'no input deck given')
   end if
 
+  if (check_only) call log_to_stderr()
   ! ---- input: every mistake in the deck and its mesh reported at once
   call deck_read(trim(deck_path), cfg, errs)
+  if (errs%count() == 0) call check_output_directory()
   if (errs%count() == 0) then
     call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg)
     if (.not. ok) then
@@ -141,9 +147,9 @@ program udar
   call decompose(dom, local, halo)
   call contact_distribute(contacts, local)
   call run_simulation(cfg, local, halo, contacts, restart_path, model_hash, mesh_hash, res)
-  write(line, '(a,i0,a,es12.5,a,es10.3,a,f0.2,a,f0.1,a)') 'udar: done: ', res%cycles, ' cycles to t = ', &
-    res%time, ' s, energy error ', res%energy_error, ', ', res%wall_seconds, ' s wall (', &
-    res%ns_per_element_cycle, ' ns per element-cycle); fields '// &
+  write(line, '(a,i0,a,es12.5,a,es10.3,a)') 'udar: done: ', res%cycles, ' cycles to t = ', &
+    res%time, ' s, energy error ', res%energy_error, ', '//fixed(res%wall_seconds, 2)//' s wall ('// &
+    fixed(res%ns_per_element_cycle, 1)//' ns per element-cycle); fields '// &
     trim(res%field_file)//', history '//trim(res%history_file)
   call log_info(line)
   call comms_finalize()
@@ -223,6 +229,27 @@ contains
       'can use); they only take part in the collective steps')
   end subroutine
 
+  !> The output folder must exist as a writable directory or be creatable
+  !> (its nearest existing parent a writable directory): found now, before
+  !> anything runs, and by --check too.
+  subroutine check_output_directory()
+    character(len=:), allocatable :: dir, parent
+    dir = trim(cfg%output%directory)
+    if (is_directory(dir)) then
+      if (.not. can_write_into(dir)) call errs%add(trim(deck_path)//': &output: directory = '''//dir// &
+        ''': the folder exists but this user cannot write into it')
+      return
+    end if
+    parent = nearest_existing_parent(dir)
+    if (.not. is_directory(parent)) then
+      call errs%add(trim(deck_path)//': &output: directory = '''//dir//''': cannot be created, '''//parent// &
+        ''' is a file, not a folder')
+    else if (.not. can_write_into(parent)) then
+      call errs%add(trim(deck_path)//': &output: directory = '''//dir//''': cannot be created, this user '// &
+        'cannot write into '''//parent//'''')
+    end if
+  end subroutine
+
   subroutine usage()
     call log_info('usage: [mpirun -np N] udar [--restart CKPT|auto] [--wall-limit S] DECK.nml')
     call log_info('       udar --check [--ranks N] DECK.nml | --help | --version')
@@ -233,7 +260,8 @@ contains
     call log_info('  --check           validate the deck and its mesh, print the resolved deck, run nothing')
     call log_info('  --ranks N         with --check: show how the mesh would be split over N MPI ranks')
     call log_info('  --help            this text;  --version  the program version')
-    call log_info('SIGTERM or SIGUSR1 make a run checkpoint and stop (exit 0), as a wall-time limit does.')
+    call log_info('SIGUSR1 (also through mpirun, which forwards it), SIGTERM or SIGINT sent to the udar')
+    call log_info('processes make a run checkpoint and stop (exit 0), as a wall-time limit does.')
     call log_info('Exit codes: 0 done (or stopped with a checkpoint), 1 input error, 2 the run went bad')
     call log_info('(physics), 3 I/O error (including a missing, damaged or foreign checkpoint).')
   end subroutine

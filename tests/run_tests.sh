@@ -64,6 +64,10 @@ run_test "cli/tracking_rod_3kms" tests/cli/tracking.sh bin/udar rod_3kms 0.6e-6
 run_test "cli/tracking_oblique_friction" tests/cli/tracking.sh bin/udar oblique_friction
 run_test "cli/ranks_taylor_ofhc" tests/cli/rank_invariance.sh bin/udar taylor_ofhc_baseline 30.0e-6
 run_test "cli/restart" tests/cli/restart.sh bin/udar
+run_test "cli/hard_kill" tests/cli/hard_kill.sh bin/udar 8
+run_test "cli/damaged_checkpoint" tests/cli/damaged_checkpoint.sh bin/udar
+run_test "cli/run_control" tests/cli/run_control.sh bin/udar
+run_test "cli/full_disk" tests/cli/full_disk.sh bin/udar
 run_test "cli/slurm_chain" tests/cli/slurm_chain.sh bin/udar
 # ---- regressions against analytic and experimental references
 run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug

@@ -10,7 +10,7 @@ module udar_fatal
   use udar_comms, only: comms_abort, comms_exit, comms_size, comms_rank, comms_is_root, comms_min_int, comms_barrier
   implicit none
   private
-  public :: fatal, fatal_all, fatal_unless_all_ok, exit_input, exit_physics, exit_io
+  public :: fatal, fatal_all, fatal_unless_all_ok, log_error_here, exit_input, exit_physics, exit_io
 
   integer, parameter :: exit_input = 1, exit_physics = 2, exit_io = 3
 
@@ -21,10 +21,21 @@ contains
     character(len=*), intent(in) :: msg
     character(len=16) :: who
     who = ''
-    if (comms_size() > 1) write(who, '(a,i0,a)') 'rank ', comms_rank(), ': '
-    write(error_unit, '(a)') 'udar: error: '//trim(who)//trim(msg)
+    if (comms_size() > 1) write(who, '(a,i0,a)') 'rank ', comms_rank(), ':'
+    write(error_unit, '(a)') 'udar: error: '//trim(who)//repeat(' ', min(len_trim(who), 1))//trim(msg)
     flush(error_unit)
     call comms_abort(code)
+  end subroutine
+
+  !> This rank's own part of a failure that all ranks then share
+  !> (fatal_all follows): printed by whichever rank saw it, named.
+  subroutine log_error_here(msg)
+    character(len=*), intent(in) :: msg
+    character(len=16) :: who
+    who = ''
+    if (comms_size() > 1) write(who, '(a,i0,a)') 'rank ', comms_rank(), ':'
+    write(error_unit, '(a)') 'udar: error: '//trim(who)//repeat(' ', min(len_trim(who), 1))//trim(msg)
+    flush(error_unit)
   end subroutine
 
   subroutine fatal_all(code, msg)

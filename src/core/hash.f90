@@ -5,7 +5,7 @@ module udar_hash
   use udar_kinds, only: rk, i8
   implicit none
   private
-  public :: fnv_offset, hash_text, hash_ints, hash_reals, hash_hex
+  public :: fnv_offset, hash_text, hash_ints, hash_i8s, hash_reals, hash_hex
 
   integer(i8), parameter :: fnv_offset = -3750763034362895579_i8   ! 0xcbf29ce484222325
 
@@ -29,6 +29,16 @@ contains
     r = h
     do i = 1, size(a)
       r = mix_word(r, int(a(i), i8))
+    end do
+  end function
+
+  pure integer(i8) function hash_i8s(h, a) result(r)
+    integer(i8), intent(in) :: h
+    integer(i8), intent(in) :: a(:)
+    integer :: i
+    r = h
+    do i = 1, size(a)
+      r = mix_word(r, a(i))
     end do
   end function
 

@@ -1,13 +1,15 @@
 !> SIGTERM and SIGUSR1 (what batch systems send before they kill a job)
-!> only set a flag; the time loop polls it, writes a checkpoint and stops
-!> cleanly. Nothing else is safe inside a signal handler.
+!> and SIGINT (Ctrl-C) only set a flag; the time loop polls it, writes a
+!> checkpoint and stops cleanly. A second one of them while the first is
+!> being served takes the default action (an impatient Ctrl-C still
+!> stops the program). Nothing else is safe inside a signal handler.
 module udar_signals
-  use, intrinsic :: iso_c_binding, only: c_int, c_funptr, c_funloc
+  use, intrinsic :: iso_c_binding, only: c_int, c_funptr, c_funloc, c_null_funptr
   implicit none
   private
   public :: signals_install, signal_received
 
-  integer(c_int), parameter :: sigusr1 = 10, sigterm = 15   ! Linux numbers
+  integer(c_int), parameter :: sigint = 2, sigusr1 = 10, sigterm = 15   ! Linux numbers
   integer(c_int), volatile, save :: caught = 0
 
   interface
@@ -17,6 +19,11 @@ module udar_signals
       type(c_funptr), value :: handler
       type(c_funptr) :: previous
     end function
+    function c_raise(signum) bind(c, name='raise') result(r)
+      import :: c_int
+      integer(c_int), value :: signum
+      integer(c_int) :: r
+    end function
   end interface
 
 contains
@@ -25,6 +32,7 @@ contains
     type(c_funptr) :: previous
     previous = c_signal(sigterm, c_funloc(on_signal))
     previous = c_signal(sigusr1, c_funloc(on_signal))
+    previous = c_signal(sigint, c_funloc(on_signal))
   end subroutine
 
   !> The signal number caught so far (0: none).
@@ -34,6 +42,12 @@ contains
 
   subroutine on_signal(signum) bind(c)
     integer(c_int), value :: signum
+    type(c_funptr) :: previous
+    integer(c_int) :: r
+    if (caught /= 0 .and. signum /= sigusr1) then
+      previous = c_signal(signum, c_null_funptr)     ! SIG_DFL
+      r = c_raise(signum)
+    end if
     caught = signum
   end subroutine
 end module udar_signals

@@ -7,7 +7,7 @@ module udar_strings
   use udar_kinds, only: rk
   implicit none
   private
-  public :: itoa, r2s, to_lower, replace, shorten, is_letter, is_digit, dir_name, base_name
+  public :: itoa, fixed, r2s, to_lower, replace, shorten, is_letter, is_digit, dir_name, base_name
 
   !> An integer as text without blanks, for default and 64-bit integers.
   interface itoa
@@ -15,6 +15,23 @@ module udar_strings
   end interface itoa
 
 contains
+
+  !> x with d decimals and no blanks, always with a digit before the point
+  !> ("0.05", not gfortran's ".05").
+  pure function fixed(x, d) result(s)
+    real(rk), intent(in) :: x
+    integer, intent(in) :: d
+    character(len=:), allocatable :: s
+    character(len=64) :: buf
+    character(len=16) :: fmt
+    write(fmt, '(a,i0,a)') '(f0.', d, ')'
+    write(buf, fmt) x
+    s = trim(adjustl(buf))
+    if (s(1:1) == '.') s = '0'//s
+    if (len(s) > 1) then
+      if (s(1:2) == '-.') s = '-0'//s(2:)
+    end if
+  end function fixed
 
   pure function itoa_i4(i) result(s)
     integer(int32), intent(in) :: i

@@ -122,10 +122,11 @@ contains
   !> 0 (elements of eroding materials are eroded instead), the owned
   !> elements eroded this cycle by reason (udar_fracture erode_*), and
   !> whether any local element was eroded.
-  subroutine element_update(dom, dt, dt_stable, bad_elem, bad_j, n_eroded, eroded_any)
+  subroutine element_update(dom, dt, dt_stable, dt_elem, bad_elem, bad_j, n_eroded, eroded_any)
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
     real(rk), intent(out) :: dt_stable
+    integer, intent(out) :: dt_elem          !< the (first) element setting dt_stable, 0 if none
     integer, intent(out) :: bad_elem, bad_j, n_eroded(3)
     logical, intent(out) :: eroded_any
     integer, parameter :: ld = block_size
@@ -136,6 +137,7 @@ contains
     real(rk) :: t_old, d_eps
     integer :: b, i, e, nb, first, last, k
     dt_stable = huge(1.0_rk)
+    dt_elem = 0
     bad_elem = 0
     bad_j = 0
     n_eroded = 0
@@ -256,7 +258,9 @@ contains
         end if
       end associate
       do i = 1, nb
-        if (.not. gone(i)) dt_stable = min(dt_stable, dt_el(i))
+        if (gone(i) .or. dt_el(i) >= dt_stable) cycle
+        dt_stable = dt_el(i)
+        dt_elem = first + i - 1
       end do
       do k = 1, 6
         dom%el_s(first:last,k) = s(1:nb,k)

@@ -4,12 +4,16 @@
 !> One HDF5 file, written collectively with MPI-IO (each rank its owned
 !> rows) to NAME.tmp and renamed to NAME when complete, so a checkpoint on
 !> disk is always whole. Layout (C order, as h5py shows it):
-!>   @format 'udar-checkpoint-3', @version, @n_nodes, @n_elems, the scalars of
+!>   @format 'udar-checkpoint-4', @version, @n_nodes, @n_elems, the scalars of
 !>   run_state_t (@t, @cycle, ...);  hashes int64 (2): model, mesh;
 !>   wall_work, contact_work int64 (67): exact work accumulators;  /provenance @n_ranks;
 !>   nodes/{x,v,f} (n_nodes,3), nodes/vref (n_nodes); elems/h (the altitudes the contact bounds its returns by);  elems/{vol,j,e,wp,p,q,eps_p,temp,hard,soft}
-!>   (n_elems), elems/s (n_elems,6).
+!>   (n_elems), elems/s (n_elems,6);  checksum int64 (1).
 !> Reading: every rank reads the global arrays and keeps its local entries.
+!> The checksum covers every number the restart uses: the scalars, the
+!> small datasets and every row (dataset name, global index, values) of the
+!> big ones, rows combined by exclusive or so each rank hashes its own rows
+!> in any order; a checkpoint whose content does not match it is refused.
 module udar_checkpoint
   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc
   use hdf5
@@ -17,9 +21,9 @@ module udar_checkpoint
   use udar_domain, only: domain_t
   use udar_run_state, only: run_state_t
   use udar_exact_sum, only: exact_limbs
-  use udar_hash, only: fnv_offset, hash_text, hash_ints, hash_reals
+  use udar_hash, only: fnv_offset, hash_text, hash_ints, hash_i8s, hash_reals
   use udar_comms, only: comms_world_handle, comms_info_null_handle, comms_is_root, comms_size, comms_max_int, &
-      comms_barrier
+      comms_barrier, comms_xor_i8
   use udar_files, only: rename_file, remove_if_present
   use udar_version, only: program_version
   use udar_strings, only: itoa
@@ -28,11 +32,11 @@ module udar_checkpoint
   public :: checkpoint_write, checkpoint_read, checkpoint_latest, checkpoint_model_hash, checkpoint_mesh_hash
 
   character(len=*), parameter :: ckpt_format = 'udar-checkpoint-3'
-  character(len=*), parameter :: real_names(9) = [character(len=20) :: 't', 'dt_old', 'dt_stable', 'e0', 'e_ref', &
-      't_next_field', 't_next_hist', 't_next_checkpoint', 'dt0']
+  character(len=*), parameter :: real_names(10) = [character(len=20) :: 't', 'dt_old', 'dt_stable', 'e0', 'e_ref', &
+      't_next_field', 't_next_hist', 't_next_checkpoint', 'dt0', 'ke_peak']
   !> checkpoints_written (how the run got here, not its state) lives in /provenance
-  character(len=*), parameter :: int_names(5) = [character(len=30) :: 'cycle', 'field_steps', &
-      'provenance/checkpoints_written', 'n_nodes', 'n_elems']
+  character(len=*), parameter :: int_names(6) = [character(len=30) :: 'cycle', 'field_steps', &
+      'provenance/checkpoints_written', 'n_nodes', 'n_elems', 'history_rows']
   character(len=*), parameter :: elem_names(14) = [character(len=8) :: 'vol', 'j', 'e', 'wp', 'p', 'q', 'eps_p', &
       'temp', 'hard', 'soft', 'state', 'damage', 'eps_tot', 'h']
 
@@ -41,6 +45,7 @@ module udar_checkpoint
     character(len=:), allocatable :: path
     logical :: ok = .true.
     character(len=:), allocatable :: errmsg
+    integer(i8) :: rows_hash = 0      !< exclusive or of the row hashes this rank wrote or read
   end type
 
 contains
@@ -129,8 +134,9 @@ contains
       call attr_text(f, 'format', ckpt_format)
       call attr_text(f, 'version', program_version)
       reals = [st%t, st%dt_old, st%dt_stable, st%e0, st%e_ref, st%t_next_field, st%t_next_hist, st%t_next_checkpoint, &
-               st%dt0]
-      ints = [st%cycle, st%field_steps, st%checkpoints_written, dom%n_global_nodes, dom%n_global_elems]
+               st%dt0, st%ke_peak]
+      ints = [st%cycle, st%field_steps, st%checkpoints_written, dom%n_global_nodes, dom%n_global_elems, &
+              st%history_rows]
       do k = 1, size(real_names)
         call attr_real(f, f%id, trim(real_names(k)), reals(k))
       end do
@@ -151,11 +157,13 @@ contains
       call write_small_i8(f, 'contact_work', wall)
       call h5gcreate_f(f%id, 'nodes', gid, err); call h5gclose_f(gid, err)
       call h5gcreate_f(f%id, 'elems', gid, err); call h5gclose_f(gid, err)
-      call write_rows(f, 'nodes/x', dom%n_global_nodes, 3, node_first, node_count, dom%nd_x(:,1:dom%n_owned_nodes))
-      call write_rows(f, 'nodes/v', dom%n_global_nodes, 3, node_first, node_count, dom%nd_v(:,1:dom%n_owned_nodes))
-      call write_rows(f, 'nodes/f', dom%n_global_nodes, 3, node_first, node_count, dom%nd_f(:,1:dom%n_owned_nodes))
-      call write_rows(f, 'nodes/vref', dom%n_global_nodes, 0, node_first, node_count, &
-                      reshape(dom%nd_vref(1:dom%n_owned_nodes), [1, dom%n_owned_nodes]))
+      associate (ng => dom%nd_gidx(1:dom%n_owned_nodes))
+        call write_rows(f, 'nodes/x', dom%n_global_nodes, 3, node_first, node_count, ng, dom%nd_x(:,1:dom%n_owned_nodes))
+        call write_rows(f, 'nodes/v', dom%n_global_nodes, 3, node_first, node_count, ng, dom%nd_v(:,1:dom%n_owned_nodes))
+        call write_rows(f, 'nodes/f', dom%n_global_nodes, 3, node_first, node_count, ng, dom%nd_f(:,1:dom%n_owned_nodes))
+        call write_rows(f, 'nodes/vref', dom%n_global_nodes, 0, node_first, node_count, ng, &
+                        reshape(dom%nd_vref(1:dom%n_owned_nodes), [1, dom%n_owned_nodes]))
+      end associate
       allocate(buf(1, no))
       do k = 1, size(elem_names)
         select case (k)
@@ -174,12 +182,17 @@ contains
         case (13); buf(1,:) = dom%el_eps_tot(dom%el_owned_list)
         case (14); buf(1,:) = dom%el_h(dom%el_owned_list)
         end select
-        call write_rows(f, 'elems/'//trim(elem_names(k)), dom%n_global_elems, 0, elem_first, elem_count, buf)
+        call write_rows(f, 'elems/'//trim(elem_names(k)), dom%n_global_elems, 0, elem_first, elem_count, &
+                        dom%el_gidx(dom%el_owned_list), buf)
       end do
       deallocate(buf)
       allocate(buf(6, no))
       buf = transpose(dom%el_s(dom%el_owned_list,:))
-      call write_rows(f, 'elems/s', dom%n_global_elems, 6, elem_first, elem_count, buf)
+      call write_rows(f, 'elems/s', dom%n_global_elems, 6, elem_first, elem_count, &
+                      dom%el_gidx(dom%el_owned_list), buf)
+      hashes(1) = ieor(scalars_hash(reals, ints, [st%model_hash, st%mesh_hash], st%wall_work, st%contact_work), &
+                       comms_xor_i8(f%rows_hash))
+      call write_small_i8(f, 'checksum', hashes(1:1))
     end if
     call close_file(f)
     ! every rank must have succeeded before the checkpoint replaces the old one
@@ -218,7 +231,7 @@ contains
     real(rk), allocatable :: a(:,:)
     real(rk) :: reals(size(real_names))
     integer :: ints(size(int_names)), k
-    integer(i8), target :: hashes(2), wall(0:exact_limbs)
+    integer(i8), target :: hashes(2), wall(0:exact_limbs), stored_sum(1)
     character(len=:), allocatable :: fmt
 
     ok = .false.
@@ -249,9 +262,12 @@ contains
     if (f%ok) st%wall_work = wall
     if (f%ok) call read_small_i8(f, 'contact_work', wall)
     if (f%ok) st%contact_work = wall
+    if (f%ok) call read_small_i8(f, 'checksum', stored_sum)
     if (f%ok) then
+      st%history_rows = ints(6)
       st%t = reals(1); st%dt_old = reals(2); st%dt_stable = reals(3); st%e0 = reals(4); st%e_ref = reals(5)
       st%t_next_field = reals(6); st%t_next_hist = reals(7); st%t_next_checkpoint = reals(8); st%dt0 = reals(9)
+      st%ke_peak = reals(10)
       st%cycle = ints(1); st%field_steps = ints(2); st%checkpoints_written = ints(3)
       st%model_hash = hashes(1); st%mesh_hash = hashes(2)
     end if
@@ -294,6 +310,11 @@ contains
     allocate(a(6, dom%n_global_elems))
     if (f%ok) call read_all(f, 'elems/s', a)
     if (f%ok) dom%el_s = transpose(a(:,dom%el_gidx))
+    if (f%ok) then
+      if (ieor(scalars_hash(reals, ints, hashes, st%wall_work, st%contact_work), f%rows_hash) /= stored_sum(1)) &
+        call fail(f, 'it is damaged: its content does not match the checksum written with it (bytes changed '// &
+                  'on disk or in transfer); refused')
+    end if
     call close_file(f)
     ok = comms_max_int(merge(0, 1, f%ok)) == 0
     errmsg = ''
@@ -420,11 +441,12 @@ contains
 
   !> A global float64 dataset, (n_global) for width 0 or (n_global, width),
   !> each rank writing its rows a(max(width,1), n_local) (collective).
-  subroutine write_rows(f, name, n_global, width, first, count, a)
+  subroutine write_rows(f, name, n_global, width, first, count, gidx, a)
     type(ckpt_file_t), intent(inout) :: f
     character(len=*), intent(in) :: name
     integer, intent(in) :: n_global, width
     integer(hsize_t), intent(in) :: first(:), count(:)
+    integer, intent(in) :: gidx(:)            !< global index of each column of a
     real(rk), intent(in), target :: a(:,:)
     integer(hsize_t) :: fdims(2), start(2), cnt(2)
     integer(hid_t) :: fsid, msid, did
@@ -471,7 +493,37 @@ contains
     call h5sclose_f(msid, e2)
     call h5sclose_f(fsid, e2)
     call h5dclose_f(did, e2)
+    f%rows_hash = ieor(f%rows_hash, rows_hash(name, gidx, a))
   end subroutine
+
+  !> Exclusive or of one hash per row (dataset name, global index, values):
+  !> the same for any split of the rows over ranks.
+  pure integer(i8) function rows_hash(name, gidx, a) result(h)
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: gidx(:)
+    real(rk), intent(in) :: a(:,:)
+    integer(i8) :: h_name
+    integer :: k
+    h_name = hash_text(fnv_offset, name)
+    h = 0
+    do k = 1, size(gidx)
+      h = ieor(h, hash_reals(hash_ints(h_name, gidx(k:k)), a(:,k)))
+    end do
+  end function
+
+  !> Hash of what every rank holds alike: the scalars and small datasets
+  !> (not the provenance: checkpoints_written differs between a chain of
+  !> runs and the straight run, and only names the next slot).
+  pure integer(i8) function scalars_hash(reals, ints_in, hashes, wall_work, contact_work) result(h)
+    real(rk), intent(in) :: reals(:)
+    integer, intent(in) :: ints_in(:)
+    integer(i8), intent(in) :: hashes(:), wall_work(:), contact_work(:)
+    integer :: ints(size(ints_in))
+    ints = ints_in
+    ints(3) = 0
+    h = hash_i8s(hash_i8s(hash_i8s(hash_reals(hash_ints(fnv_offset, ints), reals), hashes), wall_work), &
+                 contact_work)
+  end function
 
   !> A small int64 dataset with the same value on every rank (rank 0 writes).
   subroutine write_small_i8(f, name, a)
@@ -550,7 +602,7 @@ contains
     character(len=*), intent(in) :: name
     real(rk), intent(out), target :: a(:,:)
     integer(hid_t) :: did
-    integer :: err, e2
+    integer :: err, e2, k
     type(c_ptr) :: p
     if (size(a, 1) == 1) then
       call open_dataset(f, name, [size(a, 2)], did)
@@ -562,6 +614,7 @@ contains
     call h5dread_f(did, h5kind_to_type(rk, H5_REAL_KIND), p, err)
     if (err < 0) call fail(f, 'cannot read dataset '//name//' (file damaged?)')
     call h5dclose_f(did, e2)
+    if (f%ok) f%rows_hash = ieor(f%rows_hash, rows_hash(name, [(k, k = 1, size(a, 2))], a))
   end subroutine
 
   subroutine attr_real(f, loc, name, v)

@@ -34,6 +34,8 @@ module udar_config
     integer  :: cycle_print = 100          !< -, stdout progress line every N cycles
     real(rk) :: energy_error_limit = 0.2_rk !< -, |energy error| above this stops the run
     real(rk) :: wall_limit = 0.0_rk        !< s of wall time, 0 = none: checkpoint and stop before it
+    real(rk) :: end_kinetic_fraction = 0.0_rk !< -, end when the kinetic energy falls below this share of its peak (0 = never)
+    real(rk) :: dt_warn_ratio = 0.1_rk     !< -, warn when the stable step falls below this share of the first one (0 = never)
   end type
 
   type :: mesh_cfg_t

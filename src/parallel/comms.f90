@@ -8,7 +8,7 @@ module udar_comms
   use udar_exact_sum, only: exact_limbs, exact_normalize
   implicit none
   private
-  public :: comms_init, comms_finalize, comms_abort, comms_exit, comms_rank, comms_size, &
+  public :: comms_init, comms_finalize, comms_abort, comms_exit, comms_xor_i8, comms_rank, comms_size, &
             comms_is_root, comms_barrier, comms_min, comms_max, comms_wtime, &
             comms_min_int, comms_max_int, comms_sum_int, comms_sum_exact, comms_alltoall_counts, &
             comms_alltoallv_int, comms_bcast_int, comms_halo_exchange, comms_halo_exchange_scalar, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, comms_world_handle, comms_info_null_handle
@@ -61,10 +61,27 @@ contains
     integer :: ierr
     if (initialised) then
       call MPI_Barrier(MPI_COMM_WORLD, ierr)
-      call MPI_Finalize(ierr)
+      if (code == 0) call MPI_Finalize(ierr)
     end if
     initialised = .false.
+    if (code /= 0) call quick_exit_process(code)
     call exit_process(code)
+  end subroutine
+
+  !> Exit without the library clean-ups (atexit, MPI_Finalize): after an I/O
+  !> failure HDF5 would try again to flush a file on a full disk and crash.
+  !> Fortran units are flushed first; the ranks have met at a barrier.
+  subroutine quick_exit_process(code)
+    integer, intent(in) :: code
+    interface
+      subroutine c_exit_now(status) bind(c, name='_exit')
+        import :: c_int
+        integer(c_int), value :: status
+      end subroutine
+    end interface
+    flush(output_unit)
+    flush(error_unit)
+    call c_exit_now(int(code, c_int))
   end subroutine
 
   !> The C library's exit: the status without ERROR STOP's banner and backtrace.
@@ -124,6 +141,14 @@ contains
   end function
 
   !> Integer sums are exact, so any reduction order gives the same result.
+  !> Bitwise exclusive or over the ranks (order-free: checksums of rows
+  !> held by different ranks).
+  integer(i8) function comms_xor_i8(a)
+    integer(i8), intent(in) :: a
+    integer :: ierr
+    call MPI_Allreduce(a, comms_xor_i8, 1, MPI_INTEGER8, MPI_BXOR, MPI_COMM_WORLD, ierr)
+  end function
+
   integer(i8) function comms_sum_int(a)
     integer(i8), intent(in) :: a
     integer :: ierr

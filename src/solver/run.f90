@@ -15,8 +15,8 @@ module udar_run
       comms_sum_int, comms_allgather_count, comms_allgatherv_int, &
       comms_sum_exact, halo_t, comms_halo_exchange, comms_halo_exchange_scalar
   use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_value
-  use udar_fatal, only: fatal, fatal_all, fatal_unless_all_ok, exit_physics, exit_io
-  use udar_log, only: log_info
+  use udar_fatal, only: fatal, fatal_all, fatal_unless_all_ok, exit_physics, exit_io, log_error_here
+  use udar_log, only: log_info, log_warn
   use udar_element_driver, only: element_volumes, nodal_volumes, element_update, nodal_pressures, &
       element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes, &
       element_altitudes
@@ -24,21 +24,21 @@ module udar_run
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions, &
       keep_constrained_positions, restore_constrained_positions
   use udar_strength, only: von_mises
-  use udar_history, only: history_t, history_open, history_reopen, history_write, history_close
+  use udar_history, only: history_t, history_open, history_reopen, history_write, history_sync, history_close
   use udar_field_output, only: field_writer_t, fw_open, fw_reopen, fw_begin_step, fw_node_vector, fw_node_scalar, &
       fw_elem_scalar, &
       fw_end_step, fw_close
   use udar_version, only: program_version
   use udar_run_state, only: run_state_t
   use udar_checkpoint, only: checkpoint_write, checkpoint_read
-  use udar_signals, only: signals_install, signal_received
+  use udar_signals, only: signal_received
   use udar_hash, only: hash_hex
-  use udar_strings, only: itoa
+  use udar_strings, only: itoa, fixed
   use udar_contact_model, only: contact_t
   use udar_contact, only: contact_enforce, contact_overlaps, contact_settle, contact_pressure, contact_keep_velocities, &
       contact_work
   use udar_contact_erosion, only: contact_erode
-  use udar_files, only: rename_file
+  use udar_files, only: rename_file, remove_if_present, make_directories
   implicit none
   private
   public :: run_simulation, run_result_t
@@ -95,12 +95,13 @@ contains
     real(rk), allocatable :: work_svm(:), work_rho(:), row(:), work_node(:,:), work_elem(:)
     real(rk), allocatable :: x_constrained(:,:)   !< positions of the constrained nodes before the contact pass
     real(rk) :: dt, dt_v, wall0, elapsed, loop0, last_print_wall, left, ckpt_seconds, cycle_seconds, &
-                contact_seconds
-    integer :: bad, bad_avg, bad_gidx, bad_tag, bad_part, last_print_cycle, no, k, stop_code, cycles_run, n_slave
+                contact_seconds, dt_local
+    integer :: bad, bad_avg, bad_gidx, bad_tag, bad_part, last_print_cycle, no, k, stop_code, cycles_run, n_slave, &
+               dt_elem, dt_warn_level
     integer :: n_eroded_now(3), n_eroded_by(3)
     logical, allocatable :: owned_gone(:)                  !< owned elements already passed to the contact surfaces
     integer, allocatable :: new_gidx(:), all_gidx(:), erosion_counts(:)
-    logical :: ok, done, history_due, print_due, stopping, eroded_any, fracture_on
+    logical :: ok, done, history_due, print_due, stopping, eroded_any, fracture_on, fields_due, ended
     integer, parameter :: balance_interval = 10
     character(len=:), allocatable :: errmsg, base, why
     character(len=256) :: line
@@ -145,6 +146,16 @@ contains
         res%cycles = st%cycle
         return
       end if
+      ! a run that ended by the kinetic-energy criterion checkpointed at its end
+      call compute_balance(dom, walls, ct, bal)
+      if (mod(st%cycle, balance_interval) == 0 .and. bal%kinetic < cfg%run%end_kinetic_fraction*st%ke_peak) then
+        call log_info('checkpoint '//trim(restart_path)//' is at the end of the event (kinetic energy below '// &
+                      'end_kinetic_fraction of its peak): nothing to do')
+        call write_status(base, 'complete', '')
+        res%time = st%t
+        res%cycles = st%cycle
+        return
+      end if
       call reopen_outputs()
       ! each rank's accumulator adds to the global sum: the saved total goes to one rank
       walls%work = 0
@@ -152,7 +163,7 @@ contains
       if (comms_is_root()) walls%work = st%wall_work
       if (comms_is_root()) walls%contact_work = st%contact_work
       write(line, '(a,i0,a,es12.5,a,i0,a)') 'restart from '//trim(restart_path)//' at cycle ', st%cycle, &
-        ', t = ', st%t, ' s, on ', comms_size(), ' ranks'
+        ', t = ', st%t, ' s, on ', comms_size(), trim(merge(' rank ', ' ranks', comms_size() == 1))
       call log_info(line)
     else
       call open_outputs()
@@ -168,7 +179,9 @@ contains
       st%e_ref = max(abs(st%e0), tiny(1.0_rk))
       call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
       st%field_steps = st%field_steps + 1
-      if (comms_is_root()) call write_history_row(hist, st%t, st%cycle, 0.0_rk, bal, row)
+      st%ke_peak = bal%kinetic
+      call history_row(0.0_rk)
+      st%history_rows = st%history_rows + 1
       st%t_next_field = cfg%output%dt_field
       st%t_next_hist = cfg%output%dt_history
       st%t_next_checkpoint = cfg%output%dt_checkpoint
@@ -190,7 +203,11 @@ contains
     write(line, '(a,i0,a,i0,a,es10.3,a)') 'start: ', dom%n_global_elems, ' elements, ', dom%n_global_nodes, &
       ' nodes, stable step ', st%dt_stable, ' s'
     call log_info(line)
-    call signals_install()
+    ! the stable step is watched from here on: the first warning below
+    ! dt_warn_ratio of the starting step, then one per further factor of 10
+    dt_warn_level = 0
+    call write_status(base, 'running', 'since cycle '//itoa(st%cycle)//'; a run killed hard (out of memory, '// &
+      'node failure, kill -9) leaves this: continue with --restart auto')
 
     done = .false.
     stopping = .false.
@@ -241,7 +258,7 @@ contains
         call nodal_volumes(dom)
         call comms_halo_exchange_scalar(halo, dom%nd_j)
       end if
-      call element_update(dom, dt, st%dt_stable, bad, bad_avg, n_eroded_now, eroded_any)
+      call element_update(dom, dt, st%dt_stable, dt_elem, bad, bad_avg, n_eroded_now, eroded_any)
       n_eroded_by = n_eroded_by + n_eroded_now
       if (eroded_any) call nodal_reference_volumes(dom, rebase=dom%anti_locking)
       if (ct%n_tets > 0) call share_erosion(sum(n_eroded_now) > 0, .true.)
@@ -263,7 +280,11 @@ contains
         call write_status(base, 'failed', line)
         call fatal_all(exit_physics, line)
       end if
+      dt_local = st%dt_stable
       st%dt_stable = comms_min(st%dt_stable)
+      if (cfg%run%dt_warn_ratio > 0.0_rk) then
+        if (st%dt_stable < cfg%run%dt_warn_ratio*st%dt0/10.0_rk**dt_warn_level) call warn_small_step()
+      end if
       if (dom%anti_locking) then
         call nodal_pressures(dom)
         call comms_halo_exchange_scalar(halo, dom%nd_p)
@@ -280,6 +301,18 @@ contains
         call compute_balance(dom, walls, ct, bal)
         bal%error = (bal%total - bal%wall_work - bal%contact_work - st%e0)/max(st%e_ref, bal%kinetic)
       end if
+      ! ---- end of the event: the kinetic energy below a share of its peak
+      ! (looked at on the balance cycles only, so &run cycle_print cannot change the answer)
+      ended = .false.
+      if (mod(st%cycle, balance_interval) == 0) then
+        st%ke_peak = max(st%ke_peak, bal%kinetic)
+        if (.not. done .and. bal%kinetic < cfg%run%end_kinetic_fraction*st%ke_peak) then
+          ended = .true.
+          done = .true.
+          history_due = .true.
+          print_due = .true.
+        end if
+      end if
       if (.not. ieee_is_finite(bal%total) .or. abs(bal%error) > cfg%run%energy_error_limit) then
         call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
         call fw_close(fw); call history_close(hist)
@@ -289,10 +322,12 @@ contains
         call fatal_all(exit_physics, line)
       end if
       if (history_due) then
-        if (comms_is_root()) call write_history_row(hist, st%t, st%cycle, dt, bal, row)
+        call history_row(dt)
+        st%history_rows = st%history_rows + 1
         call advance(st%t_next_hist, cfg%output%dt_history)
       end if
-      if (done .or. (cfg%output%dt_field > 0.0_rk .and. st%t >= st%t_next_field*(1.0_rk - 1.0e-12_rk))) then
+      fields_due = done .or. (cfg%output%dt_field > 0.0_rk .and. st%t >= st%t_next_field*(1.0_rk - 1.0e-12_rk))
+      if (fields_due) then
         elapsed = comms_wtime()
         call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
         st%field_steps = st%field_steps + 1
@@ -322,6 +357,15 @@ contains
           (done .or. st%t >= st%t_next_checkpoint*(1.0_rk - 1.0e-12_rk)))) then
         call advance(st%t_next_checkpoint, cfg%output%dt_checkpoint)
         call write_checkpoint()
+      end if
+      ! the last picture of a stopped run is its last state: a history row
+      ! and a field step after the checkpoint (a restart drops them and goes on
+      ! as if never stopped)
+      if (stopping) then
+        call compute_balance(dom, walls, ct, bal)
+        bal%error = (bal%total - bal%wall_work - bal%contact_work - st%e0)/max(st%e_ref, bal%kinetic)
+        if (.not. history_due) call history_row(dt)
+        if (.not. fields_due) call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
       end if
       if (print_due .and. .not. stopping) then
         ! wall time left at the current step size and the recent cost of a cycle
@@ -354,6 +398,12 @@ contains
         ' s; continue with: udar --restart '//checkpoint_path(st%checkpoints_written)//' DECK'
       call log_info(line)
       call write_status(base, 'checkpointed', checkpoint_path(st%checkpoints_written))
+    else if (ended) then
+      line = 'the kinetic energy ('//real_text(bal%kinetic, 3)//' J) fell below end_kinetic_fraction of its '// &
+        'peak ('//real_text(st%ke_peak, 3)//' J) at cycle '//itoa(st%cycle)//', t = '//real_text(st%t, 5)// &
+        ' s: the event is over; run ended'
+      call log_info(line)
+      call write_status(base, 'complete', line)
     else if (st%t < cfg%run%t_end*(1.0_rk - 1.0e-12_rk)) then
       call write_status(base, 'max_cycles', '')
     else
@@ -373,9 +423,9 @@ contains
       do k = 1, ct%n_interfaces
         n_slave = n_slave + size(ct%ifc(k)%slave)
       end do
-      write(line, '(a,f0.3,a,f0.1,a,i0,a,f0.1,a)') 'contact: ', contact_seconds, ' s (', &
-        100.0_rk*contact_seconds/max(comms_wtime() - loop0, tiny(1.0_rk)), ' % of the cycle loop), ', n_slave, &
-        ' slave nodes, ', 1.0e9_rk*contact_seconds/(real(n_slave, rk)*max(cycles_run, 1)), &
+      line = 'contact: '//fixed(contact_seconds, 3)//' s ('// &
+        fixed(100.0_rk*contact_seconds/max(comms_wtime() - loop0, tiny(1.0_rk)), 1)//' % of the cycle loop), '// &
+        itoa(n_slave)//' slave nodes, '//fixed(1.0e9_rk*contact_seconds/(real(n_slave, rk)*max(cycles_run, 1)), 1)// &
         ' ns per slave node-cycle'
       call log_info(line)
       do k = 1, ct%n_interfaces
@@ -416,6 +466,73 @@ contains
       if (settle) call contact_settle(ct, dom)
     end subroutine
 
+    !> The stable step fell below dt_warn_ratio of the first one (times a
+    !> further 1/10 for each warning already given): say which element sets
+    !> it, how distorted it and its nodes are, and what can be done. The
+    !> element is the lowest global id with the smallest step (collective).
+    subroutine warn_small_step()
+      integer :: g, i, e, tag, part
+      real(rk) :: j_el, j_lo, j_hi
+      character(len=600) :: msg
+      g = huge(1)
+      if (dt_elem > 0) then
+        if (dt_local == st%dt_stable) g = dom%el_gidx(dt_elem)
+      end if
+      g = comms_min_int(g)
+      e = findloc(dom%el_gidx, g, dim=1)
+      tag = comms_min_int(entry_or_huge(dom%el_id, e))
+      part = comms_min_int(entry_or_huge(dom%el_part, e))
+      j_el = huge(1.0_rk); j_lo = huge(1.0_rk); j_hi = -huge(1.0_rk)
+      if (e > 0) then
+        j_el = dom%el_vol(e)/dom%el_vol0(e)
+        if (dom%anti_locking) then
+          do i = 1, 4
+            j_lo = min(j_lo, dom%nd_j(dom%el_conn(e,i)))
+            j_hi = max(j_hi, dom%nd_j(dom%el_conn(e,i)))
+          end do
+        end if
+      end if
+      j_el = comms_min(j_el); j_lo = comms_min(j_lo); j_hi = comms_max(j_hi)
+      do while (st%dt_stable < cfg%run%dt_warn_ratio*st%dt0/10.0_rk**dt_warn_level)
+        dt_warn_level = dt_warn_level + 1
+      end do
+      msg = 'time-step collapse: stable step '//real_text(st%dt_stable, 3)//' s, '// &
+        real_text(st%dt_stable/st%dt0, 2)//' of the first ('//real_text(st%dt0, 3)//' s), at cycle '// &
+        itoa(st%cycle)//', t = '//real_text(st%t, 5)//' s; set by element '//itoa(tag)//' (part '''// &
+        trim(dom%part_name(part))//''') at volume ratio '//fixed(j_el, 4)
+      if (dom%anti_locking) msg = trim(msg)//', its nodes'' averaged volume ratios '//fixed(j_lo, 4)//' to '// &
+        fixed(j_hi, 4)
+      call log_warn(trim(msg)//'. The run goes on (next warning at '// &
+        real_text(cfg%run%dt_warn_ratio/10.0_rk**dt_warn_level, 1)//' of the first step). What can be done: '// &
+        'doc/user-guide.md, "When the time step collapses"')
+    end subroutine
+
+    !> A history row (rank 0 writes; every rank learns whether it could).
+    subroutine history_row(dt)
+      real(rk), intent(in) :: dt
+      ok = .true.
+      errmsg = ''
+      if (comms_is_root()) call write_history_row(hist, st%t, st%cycle, dt, bal, row, ok, errmsg)
+      if (comms_max_int(merge(0, 1, ok)) /= 0) call output_failed(errmsg, ok)
+    end subroutine
+
+    !> An output file cannot be written (full disk, quota, lost mount): each
+    !> rank that failed says why, the status file says so, everything open
+    !> is closed (HDF5 must not flush at MPI's exit), exit 3 on every rank.
+    !> Collective; ok: this rank's part succeeded.
+    subroutine output_failed(msg, ok)
+      character(len=*), intent(in) :: msg
+      logical, intent(in) :: ok
+      character(len=:), allocatable :: full
+      full = 'at cycle '//itoa(st%cycle)//', t = '//real_text(st%t, 5)//' s; the checkpoints already written '// &
+             'are intact: free space and continue with --restart auto'
+      if (.not. ok) call log_error_here(msg)
+      call write_status(base, 'failed', 'output could not be written '//full)
+      call fw_close(fw)
+      call history_close(hist)
+      call fatal_all(exit_io, 'output could not be written '//full)
+    end subroutine
+
     !> Next output time after t (several intervals may pass in one step).
     subroutine advance(t_next, interval)
       real(rk), intent(inout) :: t_next
@@ -443,18 +560,28 @@ contains
       st%wall_work = acc(:,1)
       st%contact_work = acc(:,2)
       st%checkpoints_written = st%checkpoints_written + 1
+      ! a checkpoint is never ahead of the history on disk (the field file
+      ! is synced at every step it commits)
+      ok = .true.
+      errmsg = ''
+      if (comms_is_root()) call history_sync(hist, ok, errmsg)
+      if (comms_max_int(merge(0, 1, ok)) /= 0) call output_failed(errmsg, ok)
       call checkpoint_write(checkpoint_path(st%checkpoints_written), dom, st, ok, errmsg)
-      if (.not. ok) call fatal_all(exit_io, errmsg)
+      if (.not. ok) call output_failed(errmsg, .not. comms_is_root())   ! the same verdict everywhere: root says it
       ckpt_seconds = comms_wtime() - w0
-      write(line, '(a,i0,a,es12.5,a,f0.2,a)') 'checkpoint at cycle ', st%cycle, ', t = ', st%t, ' s: '// &
-        checkpoint_path(st%checkpoints_written)//' (', ckpt_seconds, ' s)'
+      write(line, '(a,i0,a,es12.5,a)') 'checkpoint at cycle ', st%cycle, ', t = ', st%t, ' s: '// &
+        checkpoint_path(st%checkpoints_written)//' ('//fixed(ckpt_seconds, 2)//' s)'
       call log_info(line)
     end subroutine
 
     subroutine open_outputs()
       integer, allocatable :: conn_global(:,:)
-      if (comms_is_root()) call execute_command_line('mkdir -p "'//trim(cfg%output%directory)//'"')
-      call comms_barrier()
+      ok = .true.
+      errmsg = ''
+      if (comms_is_root()) call make_directories(trim(cfg%output%directory), ok, errmsg)
+      call fatal_unless_all_ok(exit_io, ok, '&output directory: '//errmsg)
+      ! first, while there is room: a full disk can then still say 'failed' in it
+      call write_status(base, 'running', 'since cycle 0')
       ! the field file gets each rank's owned nodes (1..n_owned_nodes) and elements
       work_node = transpose(dom%nd_x0(:,1:dom%n_owned_nodes))
       allocate(conn_global(no,4))
@@ -466,11 +593,9 @@ contains
                    dom%nd_id(1:dom%n_owned_nodes), dom%el_id(dom%el_owned_list), conn_global, &
                    dom%el_part(dom%el_owned_list), work_node, &
                    cfg%resolved_text, program_version, trim(cfg%run%title), comms_size(), ok, errmsg)
-      call fatal_unless_all_ok(exit_io, ok, errmsg)
-      if (comms_is_root()) then
-        call history_open(hist, base//'_history.csv', history_columns(dom, ct), ok, errmsg)
-        if (.not. ok) call fatal(exit_io, errmsg)
-      end if
+      if (comms_max_int(merge(0, 1, ok)) /= 0) call output_failed(errmsg, ok)
+      if (comms_is_root()) call history_open(hist, base//'_history.csv', history_columns(dom, ct), ok, errmsg)
+      if (comms_max_int(merge(0, 1, ok)) /= 0) call output_failed(errmsg, ok)
     end subroutine
 
     !> Continue the field file and the history of the run the checkpoint
@@ -480,8 +605,13 @@ contains
       bad_out = 0
       errmsg = ''
       if (comms_is_root()) then
-        call history_reopen(hist, base//'_history.csv', history_columns(dom, ct), st%cycle, ok, errmsg)
+        call history_reopen(hist, base//'_history.csv', history_columns(dom, ct), st%history_rows, st%cycle, &
+                            ok, errmsg)
         if (.not. ok) bad_out = 1
+        if (ok .and. hist%rows < st%history_rows) call log_warn('restart: the history '//base// &
+          '_history.csv holds '//itoa(hist%rows)//' rows up to the checkpoint, which was written after row '// &
+          itoa(st%history_rows)//': '//itoa(st%history_rows - hist%rows)//' rows were lost (the file was '// &
+          'damaged or cut after the checkpoint); the run goes on from the checkpoint')
       end if
       if (comms_max_int(bad_out) /= 0) call fatal_all(exit_io, 'restart: '//errmsg)
       call fw_reopen(fw, base//'.h5', base//'.xmf', dom%n_global_nodes, dom%n_global_elems, &
@@ -534,9 +664,20 @@ contains
         call fw_node_scalar(fw, 'contact_pressure', work_node(:,1), ok, msg)
       end if
       if (ok) call fw_end_step(fw, ok, msg)
-      call fatal_unless_all_ok(exit_io, ok, msg)
+      if (comms_max_int(merge(0, 1, ok)) /= 0) call output_failed(msg, ok)
     end subroutine
   end subroutine
+
+  !> r in scientific notation with d decimals, no blanks.
+  pure function real_text(r, d) result(txt)
+    real(rk), intent(in) :: r
+    integer, intent(in) :: d
+    character(len=:), allocatable :: txt
+    character(len=32) :: buf, fmt
+    write(fmt, '(a,i0,a,i0,a)') '(es', d + 8, '.', d, ')'
+    write(buf, fmt) r
+    txt = trim(adjustl(buf))
+  end function
 
   !> a(k), or huge when k = 0 (this rank does not hold the entry): the
   !> operand of a global minimum that finds the rank that does.
@@ -546,19 +687,36 @@ contains
     if (k > 0) v = a(k)
   end function
 
-  !> <case>.status, for batch scripts: 'complete', 'checkpointed' (with the
+  !> <case>.status, for batch scripts: 'running' (from the first cycle; a
+  !> run killed hard leaves it), 'complete', 'checkpointed' (with the
   !> checkpoint to continue from), 'max_cycles' or 'failed' (with why).
-  !> Written whole to a temporary name and renamed (rank 0).
+  !> Written whole to a temporary name and renamed (rank 0); when that
+  !> fails (a full disk), the old file is overwritten in place, which needs
+  !> no new space (its first block is already there), the rest blank lines.
   subroutine write_status(base, status, detail)
     character(len=*), intent(in) :: base, status, detail
-    integer :: u, ios
+    character(len=:), allocatable :: text
+    integer :: u, ios, old_size, new_size
     if (.not. comms_is_root()) return
-    open(newunit=u, file=base//'.status.tmp', status='replace', action='write', iostat=ios)
-    if (ios /= 0) return
-    write(u, '(a)') 'status = '//status
-    if (len(detail) > 0) write(u, '(a)') 'detail = '//detail
-    close(u)
-    if (.not. rename_file(base//'.status.tmp', base//'.status')) return
+    text = 'status = '//status//new_line('a')
+    if (len_trim(detail) > 0) text = text//'detail = '//detail(1:min(len_trim(detail), 3000))//new_line('a')
+    open(newunit=u, file=base//'.status.tmp', status='replace', access='stream', form='unformatted', &
+         action='write', iostat=ios)
+    if (ios == 0) write(u, iostat=ios) text
+    if (ios == 0) close(u, iostat=ios)
+    new_size = -1
+    if (ios == 0) inquire(file=base//'.status.tmp', size=new_size)
+    ! a full file system may accept the write and the close yet keep nothing
+    if (new_size == len(text)) then
+      if (rename_file(base//'.status.tmp', base//'.status')) return
+    end if
+    call remove_if_present(base//'.status.tmp')
+    inquire(file=base//'.status', size=old_size)
+    if (old_size > len(text)) text = text//repeat(new_line('a'), old_size - len(text))
+    open(newunit=u, file=base//'.status', status='old', access='stream', form='unformatted', action='write', &
+         iostat=ios)
+    if (ios == 0) write(u, pos=1, iostat=ios) text
+    close(u, iostat=ios)
   end subroutine
 
   !> Where a run that lost its energy balance is worst: the element with the
@@ -643,12 +801,14 @@ contains
     cols(ip + 3*ct%n_interfaces + 1) = 'contact_work'
   end function
 
-  subroutine write_history_row(hist, t, cycle, dt, bal, row)
+  subroutine write_history_row(hist, t, cycle, dt, bal, row, ok, errmsg)
     type(history_t), intent(inout) :: hist
     real(rk), intent(in) :: t, dt
     integer, intent(in) :: cycle
     type(balance_t), intent(in) :: bal
     real(rk), intent(inout) :: row(:)
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: errmsg
     integer :: ip, np
     np = size(bal%part_ke)
     row(1:13) = [t, real(cycle, rk), dt, bal%kinetic, bal%internal, bal%plastic, bal%wall_work, bal%total, &
@@ -665,7 +825,7 @@ contains
       row(13 + 4*np + 3*ip) = bal%contact_slip(ip)
     end do
     if (size(bal%contact_normal) > 0) row(14 + 4*np + 3*size(bal%contact_normal)) = bal%contact_work
-    call history_write(hist, row)
+    call history_write(hist, row, ok, errmsg)
   end subroutine
 
   !> Global sums over the owned nodes and elements, exact (udar_exact_sum),

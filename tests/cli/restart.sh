@@ -50,7 +50,7 @@ same restart_1_to_3_ranks_bitwise "$W/straight" "$W/run/out"
 # 2. stopped by a wall-time limit on 2 ranks, resumed with --restart auto on 4 (limit 120 s: a
 # loaded machine must not make the chain endless)
 rm -rf "$W/run/out"; : > "$W/run/run.log"
-run 2 --wall-limit 2.5 $case.nml || { cat "$W/run/run.log"; bad "wall-limit run"; }
+run 2 --wall-limit 1.5 $case.nml || { cat "$W/run/run.log"; bad "wall-limit run"; }
 if [ "$(status)" = checkpointed ] && grep -q 'stopped by the wall-time limit' "$W/run/run.log"; then
   ok "wall_limit_stops_with_checkpoint"
 else
@@ -73,6 +73,12 @@ wait $pid; rc=$?
 echo "MEASURED signal: exit $rc, status $(status), $(grep 'stopped by' "$W/run/run.log")"
 if [ $rc = 0 ] && [ "$(status)" = checkpointed ]; then
   ok "sigusr1_stops_with_checkpoint"
+  # the last picture is the last state: a field step and a history row at the stop
+  stop_cycle=$(sed -n 's/.*stopped by .* at cycle \([0-9]*\),.*/\1/p' "$W/run/run.log")
+  last=$($PYTHON -c "import h5py,sys; s=h5py.File(sys.argv[1])['steps']; print(s[sorted(s)[-1]].attrs['cycle'])" "$W/run/out/$case.h5")
+  row=$(tail -1 "$W/run/out/${case}_history.csv" | cut -d, -f2)
+  if [ -n "$stop_cycle" ] && [ "$last" = "$stop_cycle" ] && [ "$row" = "$stop_cycle" ]; then ok "stop_writes_last_state (cycle $stop_cycle)"
+  else bad "stop_writes_last_state: stopped at cycle '$stop_cycle', last field step at $last, last history row at $row"; fi
   run 1 --restart auto $case.nml || bad "resume after signal"
   same signal_resume_bitwise "$W/straight" "$W/run/out"
 else

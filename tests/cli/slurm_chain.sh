@@ -25,7 +25,7 @@ sed -i 's/^\( *\)t_end = .*/\1t_end = 30.0e-6/' "$W/run/$case.nml"
 # the straight run, for reference
 (cd "$W/run" && timeout 600 "$EXE" $case.nml > straight.log 2>&1) || { cat "$W/run/straight.log"; bad "straight run"; exit 1; }
 mv "$W/run/out" "$W/straight"
-export PATH=$W/fake:$PATH FAKE_LOG=$W/sbatch.log UDAR=$EXE MPIRUN="timeout 600 mpirun" UDAR_ARGS="--wall-limit 2.5"
+export PATH=$W/fake:$PATH FAKE_LOG=$W/sbatch.log UDAR=$EXE MPIRUN="timeout 600 mpirun" UDAR_ARGS="--wall-limit 1.5"
 (cd "$W" && SLURM_SUBMIT_DIR=$W SLURM_NTASKS=2 SLURM_JOB_ID=1 bash "$ROOT/input/batch/udar.slurm" run/$case.nml > job.log 2>&1)
 rc=$?
 grep '^udar' "$W/job.log"
