@@ -167,7 +167,8 @@ def main(argv):
         return 2
     exp = (int(r['nodes']), int(r['tetrahedra']), r['sha256'])
     if exp == (n, t, h):
-        print(f'mesh {r["deck"]} ({geo} {options}) as in the manifest: {n} nodes, {t} tetrahedra, sha256 {h[:16]}')
+        print(f'mesh {r["deck"]} ({" ".join([geo, options]).strip()}) as in the manifest: '
+              f'{n} nodes, {t} tetrahedra, sha256 {h[:16]}')
         return 0
     print(f'MESH DIFFERS from {opt["--manifest"]} for {r["deck"]} ({geo}, gmsh options "{options}"):\n'
           f'  expected {exp[0]} nodes, {exp[1]} tetrahedra, sha256 {exp[2]}\n'
