@@ -7,7 +7,7 @@
     mesh_digest.py mesh.msh --manifest doc/validation/meshes.csv --geo G [--options "..."]
         compares with the manifest row of that .geo and gmsh options;
         exit 0 when equal, 1 (and says what differs) when not, 2 when the
-        manifest has no such row
+        manifest has no such row, 3 when the mesh cannot be read
 
 The hash does not depend on node or element numbering, element orientation
 or the file format, so that a gmsh that only renumbers gives the same hash:
@@ -155,7 +155,11 @@ def main(argv):
     if len(args) != 1:
         print(__doc__)
         return 2
-    n, t, h = digest(args[0])
+    try:
+        n, t, h = digest(args[0])
+    except (OSError, ValueError, IndexError, KeyError) as e:
+        print(f'{args[0]}: cannot read the mesh ({type(e).__name__}: {e})')
+        return 3
     if '--manifest' not in opt:
         print(f'nodes {n} tetrahedra {t} sha256 {h}')
         return 0
