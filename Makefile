@@ -108,6 +108,8 @@ MSH := $(GEO:.geo=.msh)
 %.msh: %.geo
 	gmsh -3 -format msh41 -v 2 $< -o $@ > $@.log 2>&1 || (cat $@.log; exit 1)
 	@rm -f $@.log
+# normal_cylinder.geo includes the oblique one: remesh when that changes
+input/normal_cylinder/normal_cylinder.msh: input/oblique_cylinder/oblique_cylinder.geo
 meshes: deps-quiet $(MSH)
 
 # ---- run the default deck: OFHC copper Taylor bar (Johnson and Cook 1983)

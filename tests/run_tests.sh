@@ -46,6 +46,8 @@ done
 run_test "cli/deck_errors" tests/cli/deck_errors.sh bin/udar-debug
 run_test "cli/run_goes_bad" tests/cli/run_goes_bad.sh bin/udar-debug
 run_test "cli/repeatable" tests/cli/repeatable.sh bin/udar-debug
+# the meshes behind doc/validation.md, against doc/validation/meshes.csv
+run_test "cli/validation_meshes" tests/cli/validation_meshes.sh
 # ---- parallel: one file from any number of writers; bitwise the same results
 # on 1, 2, 3 and 4 ranks; checkpoint/restart on another rank count
 run_test "unit/test_distribution_mpi_np3" mpirun -np 3 build/debug/tests/test_distribution_mpi "$ROOT/tests/unit" "$WORK"

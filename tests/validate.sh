@@ -4,22 +4,21 @@
 # mesh sizes, anti-locking on and off, run two at a time; the measured final
 # length and footprint go to doc/validation/taylor.csv and the pictures to
 # doc/validation/. About 40 minutes on 2 cores. Then the long-rod penetration
-# runs (tests/validate_long_rod.sh, about 10 minutes).
-set -euo pipefail
-cd "$(dirname "$0")/.."
-ROOT=$PWD
-PYTHON=${PYTHON:-/usr/bin/python3}
-W=${VALIDATE_WORK:-$ROOT/build/validate}   # not tests/work: make check empties that
-JOBS=${JOBS:-2}
-mkdir -p "$W" doc/validation
-cp bin/udar "$W/udar"     # a rebuild during the runs must not change them
+# runs (tests/validate_long_rod.sh, about 17 minutes) and the seed paper's
+# decks (tests/validate_paper.sh). Every mesh is first compared with
+# doc/validation/meshes.csv.
+source "$(dirname "$0")/validate_common.sh" taylor
+# every mesh of make validate against doc/validation/meshes.csv first, so a
+# wrong one stops it before the first run, not after 45 minutes
+MESHES_ONLY=1 tests/validate_long_rod.sh
+MESHES_ONLY=1 tests/validate_paper.sh
 # case  geo  deck  mesh sizes (mm)
 cases="wg tests/regression/taylor_wg/taylor_wg.geo tests/regression/taylor_wg/taylor_wg.nml 0.6,0.4,0.3
 ofhc input/taylor_ofhc/taylor_ofhc.geo input/taylor_ofhc/taylor_ofhc.nml 0.6,0.45,0.3"
 jobs=()
 while read -r name geo deck sizes; do
   for h in ${sizes//,/ }; do
-    gmsh -3 -v 0 -setnumber h "$h" "$geo" -o "$W/${name}_h$h.msh"
+    mesh_checked "$W/${name}_h$h.msh" "$geo" -setnumber h "$h"
     for al in on off; do
       run=${name}_h${h}_al$al
       flag=$([ $al = on ] && echo .true. || echo .false.)

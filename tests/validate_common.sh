@@ -11,3 +11,25 @@ W=${VALIDATE_WORK:-$ROOT/build/validate}/$1
 JOBS=${JOBS:-2}
 mkdir -p "$W" doc/validation
 cp bin/udar "$W/udar"
+
+# Mesh a .geo and compare the mesh with its row of doc/validation/meshes.csv
+# (the mesh the documented numbers were computed on): a different gmsh or an
+# edited .geo must stop make validate before anything runs, not change the
+# numbers silently. Options with no row (a mesh study) get a warning.
+#   mesh_checked OUT.msh GEO [gmsh options...]
+MANIFEST=doc/validation/meshes.csv
+mesh_checked() {
+  local out=$1 geo=$2 rc=0; shift 2
+  gmsh -3 -format msh41 -v 0 "$@" "$geo" -o "$out"
+  $PYTHON tests/tools/mesh_digest.py "$out" --manifest $MANIFEST --geo "$geo" --options "$*" || rc=$?
+  case $rc in
+    0) ;;
+    2) echo "warning: numbers from this mesh are not those of doc/validation.md" ;;
+    *) echo "stopped: $geo${*:+ $*} does not give the mesh of $MANIFEST; nothing was run"; exit 1 ;;
+  esac
+}
+# MESHES_ONLY=1: check the meshes and stop (make validate checks every
+# script's meshes before its first run)
+meshes_checked() {
+  if [ "${MESHES_ONLY:-0}" = 1 ]; then exit 0; fi
+}

@@ -7,7 +7,9 @@
 #   tests/validate_long_rod.sh [mesh size in m, default 1.0e-3]
 source "$(dirname "$0")/validate_common.sh" long_rod
 H=${1:-1.0e-3}
-gmsh -3 -v 0 -setnumber h "$H" input/long_rod/long_rod.geo -o "$W/long_rod_h$H.msh"
+# h of long_rod.geo is in metres, like H
+mesh_checked "$W/long_rod_h$H.msh" input/long_rod/long_rod.geo -setnumber h "$H"
+meshes_checked
 # Lanz-Odermatt P/L for tungsten alloy into RHA, L/D = 10 (Anderson, Walker
 # and Hohler 1999, as tabulated in doc/validation.md)
 declare -A ref=([1500]=0.90 [2000]=1.24 [2500]=1.44)

@@ -13,9 +13,12 @@ decks=("oblique_cylinder oblique_cylinder cylinder 0.5 0 -0.8660254"
 for d in "${decks[@]}"; do
   set -- $d
   mkdir -p "$W/$1"
-  cp "input/$2/$2.msh" "$W/$1/"
+  # meshed here from the .geo, not copied: a stale input/*.msh once stood
+  # for the wrong mesh (validation.md 4j)
+  mesh_checked "$W/$1/$2.msh" "input/$2/$2.geo"
   sed "s|directory = '[^']*'|directory = 'out'|" "input/$2/$1.nml" > "$W/$1/$1.nml"
 done
+meshes_checked
 printf '%s\n' "${decks[@]}" | cut -d' ' -f1 | \
   xargs -P "$JOBS" -I{} sh -c "cd '$W/{}' && '$W/udar' {}.nml > run.log 2>&1 || echo 'FAILED {}'"
 csv=doc/validation/paper_decks.csv

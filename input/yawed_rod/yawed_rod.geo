@@ -5,9 +5,13 @@
 // plane y = 0), metres. The rod's lowest point starts 0.1 mm above the
 // plate face z = 0.
 SetFactory("OpenCASCADE");
-DefineConstant[ h = {0.8e-3, Name "element size near the impact"},
-                axis_angle = {45, Name "rod axis from the plate normal (degrees): obliquity + yaw"} ];
-D = 0.006; L = 5*D; T = D; gap = 0.1e-3;
+DefineConstant[ h = {0.8e-3, Name "element size near the impact (m)"},
+                axis_angle = {45, Name "rod axis from the plate normal (degrees): obliquity + yaw"},
+                D = {0.006, Name "rod diameter (m)"} ];
+// separate, so that their defaults follow a D set on the command line
+DefineConstant[ L = {5*D, Name "rod length (m)"},
+                T = {D, Name "plate thickness (m)"},
+                gap = {0.1e-3, Name "gap between rod and plate (m)"} ];
 th = axis_angle*Pi/180;
 ax = Sin(th); az = -Cos(th);                 // unit rod axis, nose first
 cx = 0; cz = gap + 0.5*D*Sin(th);            // centre of the front face

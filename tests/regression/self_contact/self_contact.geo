@@ -3,8 +3,12 @@
 // long, 0.2 mm apart, joined by a 4 mm bridge at x < 0; a slab 4 mm deep
 // (y), half of it modelled (symmetry plane y = 0), metres.
 SetFactory("OpenCASCADE");
-DefineConstant[ h = {1.0e-3, Name "element size"} ];
-L = 0.03; t = 0.004; g = 0.2e-3; b = 0.004; W = 0.004;
+DefineConstant[ h = {1.0e-3, Name "element size (m)"},
+                L = {0.03, Name "arm length (m)"},
+                t = {0.004, Name "arm thickness (m)"},
+                g = {0.2e-3, Name "gap between the arms (m)"},
+                b = {0.004, Name "bridge thickness (m)"},
+                W = {0.004, Name "half depth of the slab (m)"} ];
 Box(1) = {0, 0, 0, L, W, t};
 Box(2) = {0, 0, t + g, L, W, t};
 Box(3) = {-b, 0, 0, b, W, 2*t + g};
