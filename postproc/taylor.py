@@ -1,11 +1,13 @@
 #!/usr/bin/python3
-"""Taylor anvil test measurements from a udar field file: rod length, footprint diameter
-and maximum (bulge) diameter.
+"""Taylor anvil test measurements from a udar field file: rod length, gap to the wall,
+footprint diameter and maximum (bulge) diameter.
 
-* length = max over nodes of the distance from the wall plane along the rod axis
-  (the rod's side of the wall is the side of the mean nodal coordinate);
+* length = the rod's own extent along the axis (max - min of its nodal coordinates), so a
+  rod that has rebounded off the wall is not reported long;
+* gap = distance from the wall plane to the rod's lowest point, on the rod's side (the side
+  of the mean nodal coordinate); negative = penetration;
 * footprint diameter = 2 * max radial distance from the rod axis among the nodes within
-  ``--band`` metres of the wall plane (nodes that penetrate the wall count as well);
+  ``--band`` metres of the rod's lowest point (its impact face, wherever the rod is);
 * max diameter = 2 * max radial distance from the axis over all nodes.
 
 The radius is measured from the axis line through ``--center``, so full, half and quarter
@@ -22,7 +24,6 @@ Library use: ``measure(coords, axis, wall, center, band)`` -> dict.
 import json
 import math
 import os
-import re
 import sys
 import tempfile
 
@@ -49,9 +50,9 @@ def measure(coords, axis=2, wall=0.0, center=(0.0, 0.0), band=5e-4):
 
     ``center``: the axis line's position in the two transverse coordinates (increasing
     axis order: for axis z it is (x, y), for y it is (x, z), for x it is (y, z)).
-    Returns a dict: length_m, footprint_diameter_m (nan if no node lies within ``band``),
-    max_diameter_m, side (+1 / -1: the rod's side of the wall), gap_m (smallest node distance
-    to the wall; negative = penetration), n_footprint_nodes.
+    Returns a dict: length_m (extent along the axis), gap_m (lowest point's height above the
+    wall; negative = penetration), footprint_diameter_m (nodes within ``band`` of the lowest
+    point), max_diameter_m, side (+1 / -1: the rod's side of the wall), n_footprint_nodes.
     """
     x = np.asarray(coords, dtype=np.float64)
     if x.ndim != 2 or x.shape[1] != 3 or x.shape[0] == 0:
@@ -60,19 +61,19 @@ def measure(coords, axis=2, wall=0.0, center=(0.0, 0.0), band=5e-4):
         raise TaylorError("axis must be 0, 1 or 2")
     if band < 0:
         raise TaylorError("--band must be >= 0")
-    s = x[:, axis] - wall
-    side = 1.0 if np.mean(s) >= 0.0 else -1.0
-    h = side * s                                   # height above the wall, on the rod's side
+    h, side = ur.wall_heights(x, axis, wall)       # height above the wall, on the rod's side
     i, j = transverse_axes(axis)
     r = np.hypot(x[:, i] - center[0], x[:, j] - center[1])
-    near = h <= band
+    lowest = h.min()
+    # the impact face's layer, wherever the rod is: after a rebound no node is at the wall
+    face = h <= lowest + band
     return {
-        "length_m": float(h.max()),
-        "footprint_diameter_m": float(2.0 * r[near].max()) if near.any() else float("nan"),
+        "length_m": float(np.ptp(h)),
+        "footprint_diameter_m": float(2.0 * r[face].max()),
         "max_diameter_m": float(2.0 * r.max()),
         "side": int(side),
-        "gap_m": float(h.min()),
-        "n_footprint_nodes": int(near.sum()),
+        "gap_m": float(lowest),
+        "n_footprint_nodes": int(face.sum()),
     }
 
 
@@ -81,10 +82,11 @@ def _fmt(v):
 
 
 def machine_line(m):
-    """'length_m=... footprint_diameter_m=... max_diameter_m=... time_s=...'"""
-    return "length_m=%s footprint_diameter_m=%s max_diameter_m=%s time_s=%s" % (
+    """'length_m=... footprint_diameter_m=... max_diameter_m=... time_s=... gap_m=...'
+    (gap_m last: readers of the first four keys keep working)"""
+    return "length_m=%s footprint_diameter_m=%s max_diameter_m=%s time_s=%s gap_m=%s" % (
         _fmt(m["length_m"]), _fmt(m["footprint_diameter_m"]), _fmt(m["max_diameter_m"]),
-        _fmt(m["time_s"]))
+        _fmt(m["time_s"]), _fmt(m["gap_m"]))
 
 
 def human_line(m):
@@ -97,14 +99,14 @@ def human_line(m):
     if m.get("initial_diameter_m") and not math.isnan(m["footprint_diameter_m"]):
         dratio = " (D/D0 = %.4f)" % (m["footprint_diameter_m"] / m["initial_diameter_m"])
     return ("t = %.4f us (step %d, cycle %d): length %s%s, footprint diameter %s%s, "
-            "max diameter %s; initial length %s, initial diameter %s" % (
+            "max diameter %s, gap to the wall %s; initial length %s, initial diameter %s" % (
                 m["time_s"] * 1e6, m["step"], m["cycle"], mm(m["length_m"]), ratio,
-                mm(m["footprint_diameter_m"]), dratio, mm(m["max_diameter_m"]),
+                mm(m["footprint_diameter_m"]), dratio, mm(m["max_diameter_m"]), mm(m["gap_m"]),
                 mm(m.get("initial_length_m", float("nan"))),
                 mm(m.get("initial_diameter_m", float("nan")))))
 
 
-def measure_file(path, steps=(-1,), axis=2, wall=0.0, center=(0.0, 0.0), band=5e-4, warn=True):
+def measure_file(path, steps=(-1,), axis=2, wall=0.0, center=(0.0, 0.0), band=5e-4):
     """Measure the given step indices of a field file -> list of dicts (SI units), each with
     the ``measure`` keys plus step, cycle, time_s, initial_length_m, initial_diameter_m."""
     results = []
@@ -121,14 +123,17 @@ def measure_file(path, steps=(-1,), axis=2, wall=0.0, center=(0.0, 0.0), band=5e
         for k in idxs:
             st = f.step(k)
             m = measure(st.coordinates, axis, wall, center, band)
-            if warn and m["n_footprint_nodes"] == 0:
-                print("taylor.py: warning: %s step %d: no node within %g m of the wall %s = %g m "
-                      "(closest node %.6g mm away); footprint diameter is nan"
-                      % (path, k, band, AXES[axis], wall, m["gap_m"] * 1e3), file=sys.stderr)
             m.update({"step": st.index, "cycle": st.cycle, "time_s": st.time})
             m.update(init)
             results.append(m)
     return results
+
+
+def parse_machine_line(text):
+    """The first 'length_m=...' line of ``text`` as {key: float} (None if there is none)."""
+    line = next((ln for ln in text.splitlines() if ln.startswith("length_m=")), None)
+    return None if line is None else {k: float(v) for k, v in
+                                      (kv.split("=", 1) for kv in line.split())}
 
 
 # --------------------------------------------------------------------------------------
@@ -187,24 +192,47 @@ def _self_test(verbose=True):
             argv = [h5, "--axis", AXES[axis], "--wall", repr(wall), "--center",
                     repr(center[0]), repr(center[1]), "--band", "0.0005"]
             rc, out, _ = test.run_main(main, argv)
-            mm = re.search(r"^length_m=(\S+) footprint_diameter_m=(\S+) max_diameter_m=(\S+) "
-                           r"time_s=(\S+)$", out, re.M)
-            ok = rc == 0 and mm is not None
-            if ok:
-                vals = [float(v) for v in mm.groups()]
-                ok = (close(vals[0], exp_len, 1e-8) and close(vals[1], exp_foot, 1e-8)
-                      and close(vals[2], exp_max, 1e-8) and vals[3] == 6e-5)
+            vals = parse_machine_line(out)
+            ok = (rc == 0 and vals is not None and close(vals["length_m"], exp_len, 1e-8)
+                  and close(vals["footprint_diameter_m"], exp_foot, 1e-8)
+                  and close(vals["max_diameter_m"], exp_max, 1e-8) and vals["time_s"] == 6e-5
+                  and abs(vals["gap_m"]) < 1e-12)
             check(ok, "%s: CLI machine-readable line" % what)
             if axis == 2 and sector == "full":
                 rc, out, err = test.run_main(main, argv + ["--json", "--all"])
                 try:
                     js = json.loads(out)
-                    ok = (rc == 0 and len(js) == 2 and js[0]["footprint_diameter_m"] is None
-                          and "no node within" in err
-                          and close(js[1]["length_m"], exp_len) and close(js[0]["initial_length_m"], L))
+                    # step 0: the undeformed rod 1 mm before the wall
+                    ok = (rc == 0 and len(js) == 2 and close(js[0]["gap_m"], 1e-3)
+                          and close(js[0]["footprint_diameter_m"], 2.0 * R)
+                          and close(js[0]["length_m"], L) and close(js[1]["length_m"], exp_len)
+                          and close(js[0]["initial_length_m"], L) and err == "")
                 except ValueError:
                     ok = False
-                check(ok, "--json --all (step 0 has no footprint -> null)")
+                check(ok, "--json --all (step 0: rod 1 mm off the wall, its own length and diameter)")
+        # A rebounded bar: its lowest point is 0.9 mm off the wall (more than --band), as
+        # steel and aluminium bars are at 80 us. Length is its own extent, not the top's height.
+        nodes, conn = ur.cylinder_tets(R, L, 4, n_len, "quarter", axis=2)
+        t = nodes[:, 2] / L
+        g = 1.0 + 0.3 * np.exp(-t / 0.05)             # mushroom, widest at the impact face
+        gap = 0.9e-3
+        x = np.column_stack([nodes[:, 0] * g, nodes[:, 1] * g, gap + 0.8 * nodes[:, 2]])
+        exp = {"length_m": 0.8 * L, "gap_m": gap, "footprint_diameter_m": 2.6 * R,
+               "max_diameter_m": 2.6 * R}
+        m = measure(x, 2, 0.0, (0.0, 0.0), band=5e-4)
+        check(all(close(m[k], v) for k, v in exp.items()) and m["n_footprint_nodes"] > 0,
+              "rebounded bar (gap 0.9 mm): L %.6f mm (expected %.6f), gap %.6f mm, foot %.6f mm "
+              "(expected %.6f)" % (m["length_m"] * 1e3, exp["length_m"] * 1e3, m["gap_m"] * 1e3,
+                                   m["footprint_diameter_m"] * 1e3, exp["footprint_diameter_m"] * 1e3))
+        h5 = os.path.join(tmp, "rebounded.h5")
+        ur.write_fields(h5, nodes, conn, [{"time": 8e-5, "cycle": 9, "coordinates": x}])
+        rc, out, err = test.run_main(main, [h5, "--axis", "z", "--wall", "0",
+                                            "--reference-length", repr(0.8 * L)])
+        vals = parse_machine_line(out)
+        check(rc == 0 and err == "" and vals is not None
+              and all(close(vals[k], v, 1e-8) for k, v in exp.items())
+              and "gap to the wall 0.9000 mm" in out and "difference +0.000 mm" in out,
+              "rebounded bar through the CLI: length, gap and footprint on the machine line")
         rc, _, err = test.run_main(main, [os.path.join(tmp, "missing.h5")])
         check(rc == 1 and "missing.h5: no such file" in err,
               "missing file: exit code 1 and a message naming the file")
@@ -218,10 +246,11 @@ def _self_test(verbose=True):
 def build_parser():
     p = ur.cli_parser(
         "taylor.py",
-        "Measure a Taylor anvil rod in a udar field file (<case>.h5): final length "
-        "from the wall, footprint diameter at the wall and maximum diameter. Prints "
-        "a machine-readable line 'length_m=... footprint_diameter_m=... "
-        "max_diameter_m=... time_s=...' and a human-readable line in mm.",
+        "Measure a Taylor anvil rod in a udar field file (<case>.h5): its length "
+        "(its own extent along the axis), footprint diameter (of its lowest layer), "
+        "maximum diameter and gap to the wall. Prints a machine-readable line "
+        "'length_m=... footprint_diameter_m=... max_diameter_m=... time_s=... gap_m=...' "
+        "and a human-readable line in mm.",
         """examples:
   /usr/bin/python3 postproc/taylor.py out/taylor.h5
   /usr/bin/python3 postproc/taylor.py out/taylor.h5 --step -1 --axis z --wall 0.0 --center 0 0 --band 0.0005
@@ -241,7 +270,8 @@ models give the same result when the axis lies in the symmetry planes.""")
     p.add_argument("--center", type=float, nargs=2, default=(0.0, 0.0), metavar=("C1", "C2"),
                    help="rod axis position in the two transverse coordinates, m (default 0 0)")
     p.add_argument("--band", type=float, default=5e-4, metavar="DIST",
-                   help="nodes within DIST m of the wall form the footprint (default 0.0005)")
+                   help="nodes within DIST m of the rod's lowest point form the footprint "
+                        "(default 0.0005)")
     p.add_argument("--json", action="store_true",
                    help="print JSON instead (an object; a list with --all); nan -> null")
     p.add_argument("--reference-length", type=float, metavar="L", default=None,

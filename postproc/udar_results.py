@@ -73,7 +73,7 @@ except ImportError:  # pragma: no cover - depends on the interpreter
 __all__ = [
     "UdarFileError", "open_fields", "FieldFile", "Step", "StepInfo", "read_history",
     "history_parts", "write_fields", "box_tets", "cylinder_tets", "FIELD_UNITS",
-    "field_unit", "cli_warnings", "deck_part_names", "write_history", "si_scale", "agg_pyplot",
+    "field_unit", "cli_warnings", "deck_groups", "deck_values", "deck_part_names", "wall_heights", "write_history", "si_scale", "agg_pyplot",
     "save_figure", "cli_parser", "add_fields_argument", "add_self_test", "FIELDS_REQUIRED", "cli_main", "SelfTest",
 ]
 
@@ -197,22 +197,55 @@ def deck_groups(text):
     return groups
 
 
-_GROUP_VALUE = re.compile(r"(?:^|[\s,])group\s*=\s*(?:'((?:[^']|'')*)'|\"((?:[^\"]|\"\")*)\")",
-                          re.IGNORECASE)
+_DECK_TOKEN = re.compile(r"'(?:[^']|'')*'|\"(?:[^\"]|\"\")*\"|![^\n]*|=|[^\s,=!]+")
+
+
+def _deck_scalar(tok):
+    if tok[0] in "'\"":
+        return tok[1:-1].replace(tok[0] * 2, tok[0])
+    low = tok.lower()
+    if low in (".true.", "t", ".t."):
+        return True
+    if low in (".false.", "f", ".f."):
+        return False
+    try:
+        return float(low.replace("d", "e"))      # Fortran 1.0d3
+    except ValueError:
+        return tok
+
+
+def deck_values(body):
+    """{variable (lower case): value} of one group body from ``deck_groups``: quoted strings
+    as str, numbers as float, logicals as bool, a list for several comma-separated values."""
+    toks = [t for t in _DECK_TOKEN.findall(body) if t[0] != "!"]     # comments dropped
+    values, name, vals = {}, None, []
+    for k, tok in enumerate(toks):
+        if tok == "=":
+            continue
+        if k + 1 < len(toks) and toks[k + 1] == "=":   # a name starts the next assignment
+            if name is not None:
+                values[name] = vals[0] if len(vals) == 1 else vals
+            name, vals = tok.lower(), []
+        elif name is not None:
+            vals.append(_deck_scalar(tok))
+    if name is not None:
+        values[name] = vals[0] if len(vals) == 1 else vals
+    return values
 
 
 def deck_part_names(text):
     """Part names (the ``group`` of each &part, in deck order) from a deck text; the solver's
     part_id k (1-based) is the k-th &part. Returns [] if there are none."""
-    names = []
-    for g, body in deck_groups(text or ""):
-        if g == "part":
-            m = _GROUP_VALUE.search(body)
-            if not m:
-                return []
-            names.append(m.group(1).replace("''", "'") if m.group(1) is not None
-                         else m.group(2).replace('""', '"'))
-    return names
+    names = [deck_values(body).get("group") for g, body in deck_groups(text or "") if g == "part"]
+    return names if all(isinstance(n, str) for n in names) else []
+
+
+def wall_heights(x, axis, wall):
+    """Heights of the points ``x`` (n, 3) above the plane ``x[:, axis] = wall`` on the side
+    where their mean lies -> (heights, side +1/-1): bodies on either side measure alike."""
+    s = np.asarray(x, dtype=np.float64)[:, axis] - wall
+    side = 1.0 if np.mean(s) >= 0.0 else -1.0
+    return side * s, side
 
 
 # --------------------------------------------------------------------------------------
@@ -1018,6 +1051,13 @@ def _self_test(verbose=True):
                 "&part\n  group = 'rod'   ! (default)\n  material = 'cu'\n/\n"
                 "&part group = \"it's plate\", velocity = 0, 0, -1 /\n")
         check(deck_part_names(deck) == ["rod", "it's plate"], "part names from the deck text")
+        vals = deck_values("\n  name = 'a = b, c'  ! (default)\n  rho0 = 8.93d3, c0 = 3940.0\n"
+                           "  velocity = 0.0, 0.0, -500.0  ! m/s\n  anti_locking = .false.\n")
+        check(vals == {"name": "a = b, c", "rho0": 8930.0, "c0": 3940.0,
+                       "velocity": [0.0, 0.0, -500.0], "anti_locking": False},
+              "deck_values: strings with '=' and ',', Fortran exponents, lists, logicals")
+        h, side = wall_heights([[0, 0, -1.0], [0, 0, -3.0]], 2, -0.5)
+        check(side == -1.0 and h.tolist() == [0.5, 2.5], "wall_heights: body below the wall")
         write_fields(h5path, nodes, conn, steps, part_id=pid, deck=deck)
         with open_fields(h5path) as f:
             check(f.part_names == {1: "rod", 2: "it's plate"}, "FieldFile.part_names")

@@ -39,7 +39,7 @@ for t in build/debug/tests/test_*; do
   run_test "unit/$name" "$t" "$ROOT/tests/unit" "$WORK/$name"
 done
 # ---- post-processing scripts on synthetic files with known answers
-for s in udar_results plot_history section taylor plot_contact_history penetration; do
+for s in udar_results plot_history section taylor plot_contact_history penetration shock; do
   run_test "postproc/$s" $PYTHON postproc/$s.py --self-test
 done
 # ---- deck errors through the real program

@@ -2,7 +2,7 @@
 # make validate: the longer validation runs behind doc/validation.md.
 # Taylor bars (Wilkins-Guinan; OFHC copper, Johnson and Cook 1983) at several
 # mesh sizes, anti-locking on and off, run two at a time; the measured final
-# length and footprint go to doc/validation/taylor.csv and the pictures to
+# length, footprint and gap to the wall (postproc/taylor.py) go to doc/validation/taylor.csv and the pictures to
 # doc/validation/. About 40 minutes on 2 cores. Then the long-rod penetration
 # runs (tests/validate_long_rod.sh, about 17 minutes) and the seed paper's
 # decks (tests/validate_paper.sh). Every mesh is first compared with
@@ -31,17 +31,18 @@ while read -r name geo deck sizes; do
 done <<< "$cases"
 printf '%s\n' "${jobs[@]}" | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"
 csv=doc/validation/taylor.csv
-echo "case,mesh_mm,anti_locking,tets,cycles,wall_s,final_length_mm,footprint_diameter_mm,energy_error" > $csv
+echo "case,mesh_mm,anti_locking,tets,cycles,wall_s,final_length_mm,footprint_diameter_mm,energy_error,gap_mm" > $csv
 for run in "${jobs[@]}"; do
   name=${run%%_h*}; rest=${run#*_h}; h=${rest%%_al*}; al=${run##*_al}
   m=$($PYTHON postproc/taylor.py "$W/$run/$run.h5" --json)
   L=$($PYTHON -c "import json,sys; m=json.loads(sys.argv[1]); print('%.3f' % (1e3*m['length_m']))" "$m")
   D=$($PYTHON -c "import json,sys; m=json.loads(sys.argv[1]); print('%.3f' % (1e3*m['footprint_diameter_m']))" "$m")
+  G=$($PYTHON -c "import json,sys; m=json.loads(sys.argv[1]); print('%.3f' % (1e3*m['gap_m']))" "$m")
   tets=$(grep -o '[0-9]* tetrahedra' "$W/$run.log" | cut -d' ' -f1)
   cyc=$(grep -o 'done: [0-9]*' "$W/$run.log" | cut -d' ' -f2)
   wall=$(grep -o '[0-9.]* s wall' "$W/$run.log" | cut -d' ' -f1)
   err=$(grep -o 'energy error [-0-9.E]*,' "$W/$run.log" | tail -1 | cut -d' ' -f3 | tr -d ,)
-  echo "$name,$h,$al,$tets,$cyc,$wall,$L,$D,$err" | tee -a $csv
+  echo "$name,$h,$al,$tets,$cyc,$wall,$L,$D,$err,$G" | tee -a $csv
 done
 # pictures of the finest anti-locking runs
 for name in wg ofhc; do
