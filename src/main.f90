@@ -45,9 +45,9 @@ program udar
   character(len=:), allocatable :: pending, restart_path
   integer(i8) :: model_hash, mesh_hash
 
-  call comms_init()
-  ! from the start: a batch system's signal during set-up is kept, not fatal
+  ! first: a batch system's signal during set-up is kept, not fatal
   call signals_install()
+  call comms_init()
   check_only = .false.
   deck_path = ''
   pending = ''

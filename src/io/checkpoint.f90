@@ -489,7 +489,9 @@ contains
     end if
     call h5dwrite_f(did, h5kind_to_type(rk, H5_REAL_KIND), p, err, mem_space_id=msid, file_space_id=fsid, &
                     xfer_prp=f%dxpl)
-    if (err < 0) call fail(f, 'cannot write dataset '//name)
+    ! a rank whose rows failed (full disk) and one whose did not must leave
+    ! the collective calls that follow together
+    if (comms_max_int(merge(1, 0, err < 0)) /= 0) call fail(f, 'cannot write dataset '//name)
     call h5sclose_f(msid, e2)
     call h5sclose_f(fsid, e2)
     call h5dclose_f(did, e2)

@@ -13,7 +13,8 @@
 !> No MPI is used here: the communicator reaches HDF5 as an integer handle
 !> from udar_comms.
 !>
-!> Errors: failures of collective HDF5 operations (create, open, flush) are
+!> Errors: failures of collective HDF5 operations (create, open, flush) and
+!> of dataset writes (each rank's rows: agreed with a global minimum) are
 !> reported on every rank alike.  A failed argument check is seen only by
 !> the rank whose arguments are wrong, and a failed .xmf write only by rank
 !> 0; the other ranks go on into the next collective call, so treat any
@@ -29,7 +30,7 @@ module udar_field_output
   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_int64_t, c_ptr, c_loc, c_null_char
   use udar_kinds, only: rk, ik, i8, max_name_len
   use udar_strings, only: is_letter, is_digit, dir_name, base_name, itoa
-  use udar_comms, only: comms_world_handle, comms_info_null_handle, comms_is_root
+  use udar_comms, only: comms_world_handle, comms_info_null_handle, comms_is_root, comms_min_int
   use udar_files, only: rename_file, remove_if_present
   use hdf5
   implicit none
@@ -661,7 +662,7 @@ contains
 
     errmsg = ''
     call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, err)
-    ok = err >= 0
+    ok = comms_min_int(err) >= 0
     if (.not. ok) errmsg = op_err(w, 'flush (h5fflush_f)')
   end subroutine flush_file
 
@@ -1218,6 +1219,9 @@ contains
       return
     end if
     call h5dwrite_f(did, mtype, buf, err, mem_space_id=msid, file_space_id=fsid, xfer_prp=w%dxpl)
+    ! each rank writes its own rows: on a full disk some fail and others
+    ! not, and all must take the same way out of the next collective calls
+    err = comms_min_int(err)
     if (err < 0) errmsg = op_err(w, 'write dataset '//name)
     ! after a failed write the first error is kept and the close is best effort
     call h5dclose_f(did, e2)

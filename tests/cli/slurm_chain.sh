@@ -37,4 +37,43 @@ grep -q -- '--ntasks=2 --time=1:00:00' "$W/sbatch.log" && ok "resubmission_keeps
 if cmp -s "$W/straight/${case}_history.csv" "$W/run/out/${case}_history.csv" && \
    h5diff --exclude-path /provenance "$W/straight/$case.h5" "$W/run/out/$case.h5"; then ok "chain_bitwise_equals_straight_run"
 else bad "chain_bitwise_equals_straight_run"; fi
+
+# The signal path for real: the batch system's SIGUSR1 reaches the job
+# script at a random moment (the first job's while it is still starting:
+# before its trap, the script used to die silently), the script passes it
+# to udar through mpirun, udar checkpoints, the job resubmits itself, and
+# the chain ends bitwise equal to the straight run.
+cat > "$W/fake/sbatch" <<'SH'
+#!/bin/bash
+echo "sbatch $*" >> "$FAKE_LOG"
+n=1; args=()
+for a in "$@"; do
+  case $a in --ntasks=*) n=${a#--ntasks=} ;; --*) ;; *) args+=("$a") ;; esac
+done
+SLURM_NTASKS=$n SLURM_JOB_ID=$RANDOM bash "${args[@]}" &
+job=$!
+# the first job at once (its start-up), later ones after 0.3-1.1 s
+delay=0.02; [ "${UDAR_JOB_NUMBER:-1}" -gt 1 ] && delay=$(awk -v r=$RANDOM 'BEGIN { printf "%.2f", 0.3 + 0.8*r/32767 }')
+sleep "$delay"; kill -USR1 $job 2>/dev/null && echo "USR1 after $delay s" >> "$FAKE_LOG.signals"
+wait $job; rc=$?
+while kill -0 $job 2>/dev/null; do wait $job; rc=$?; done
+exit $rc
+SH
+chmod +x "$W/fake/sbatch"
+rm -rf "$W/run/out"; : > "$W/sbatch.log"
+export MPIRUN=mpirun UDAR_ARGS=   # timeout(1) would take the signal meant for mpirun
+( sleep 300; pkill -9 -f "$EXE run/$case.nml"; pkill -9 -f "$EXE --restart auto" ) > /dev/null 2>&1 &
+watchdog=$!
+(cd "$W" && SLURM_SUBMIT_DIR=$W SLURM_NTASKS=2 SLURM_JOB_ID=1 "$W/fake/sbatch" --ntasks=2 "$ROOT/input/batch/udar.slurm" run/$case.nml > signal_job.log 2>&1)
+rc=$?
+kill $watchdog 2>/dev/null
+jobs=$(grep -c '^udar job [0-9]* of' "$W/signal_job.log")
+asked=$(grep -c 'asking udar to checkpoint' "$W/signal_job.log")
+echo "MEASURED signal chain: $jobs jobs, $asked signals acted on; $(tr '\n' ';' < "$W/sbatch.log.signals")"
+if [ $rc = 0 ] && grep -q 'run complete' "$W/signal_job.log" && [ "$jobs" -ge 2 ] && [ "$asked" -ge 1 ] && \
+   grep -q "udar job 1: exit code 0, status 'checkpointed'" "$W/signal_job.log"; then ok "signal_chain_completes_over_${jobs}_jobs"
+else tail -20 "$W/signal_job.log"; bad "signal_chain (exit $rc, $jobs jobs)"; fi
+if cmp -s "$W/straight/${case}_history.csv" "$W/run/out/${case}_history.csv" && \
+   h5diff --exclude-path /provenance "$W/straight/$case.h5" "$W/run/out/$case.h5"; then ok "signal_chain_bitwise_equals_straight_run"
+else bad "signal_chain_bitwise_equals_straight_run"; fi
 [ $fails -eq 0 ]
