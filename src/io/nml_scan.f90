@@ -15,6 +15,7 @@
 !> an assignment.
 module udar_nml_scan
   use udar_strings, only: nml_lower => to_lower, itoa, replace, shorten, is_letter, is_digit
+  use udar_file_kind, only: not_regular_file
   implicit none
   private
   public :: nml_assign_t, nml_group_t, nml_issue_t, nml_scan_t
@@ -67,9 +68,16 @@ contains
     type(nml_scan_t), intent(out) :: scan
     integer, intent(out) :: ios
     character(len=*), intent(inout) :: iomsg
-    character(len=:), allocatable :: buf
+    character(len=:), allocatable :: buf, what
     integer :: u, sz
 
+    ! a FIFO or a terminal would block the OPEN or the READ forever
+    what = not_regular_file(path)
+    if (len(what) > 0) then
+      ios = 1
+      iomsg = 'it is '//what//', not a regular file'
+      return
+    end if
     ! stream access reads the file byte for byte, whatever its line lengths
     open(newunit=u, file=path, access='stream', form='unformatted', status='old', &
          action='read', iostat=ios, iomsg=iomsg)
@@ -148,9 +156,10 @@ contains
     integer, intent(in) :: j
     integer, intent(inout) :: line
     type(nml_scan_t), intent(inout) :: scan
-    integer :: n, g, start, body_start, vstart, k, m, p, e, last_tok_line, last_unexp_line
+    integer :: n, g, start, body_start, vstart, k, m, p, e, last_tok_line, last_unexp_line, na
     character :: c
-    character(len=:), allocatable :: gname
+    character(len=:), allocatable :: gname, msg
+    logical :: unterminated      ! a string without its closing quote was reported
 
     n = len(cl)
     start = i
@@ -161,6 +170,7 @@ contains
     vstart = 0
     last_tok_line = line
     last_unexp_line = 0
+    unterminated = .false.
     i = j
     do while (i <= n)
       c = cl(i:i)
@@ -184,7 +194,8 @@ contains
         ! a new group begins although this one was never closed
         call close_value(i - 1)
         k = name_end(cl, i + 1)
-        call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '// &
+        ! after an unterminated string the '/' was most likely inside it: no second message
+        if (.not. unterminated) call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '// &
              itoa(scan%groups(g)%start_line)//") has no closing '/' before &"// &
              nml_lower(cl(i+1:k-1))//' at line '//itoa(line))
         call finish_open(i - 1)
@@ -195,10 +206,20 @@ contains
         last_tok_line = line
         if (k == 0) then
           e = eol(cl, i)
-          call add_issue(scan, line, g, 'unterminated string '//shorten(trim(cl(i:e-1)), snippet_len)// &
-               ' (missing closing '//c//')')
+          msg = ': add the closing '//c//' (a string ends on the line where it starts; a '//c// &
+                ' inside it is written twice)'
+          na = scan%groups(g)%n_assign
+          if (na > 0 .and. vstart > 0) then
+            ! name the variable: "&output: directory = 'out / : unterminated ..."
+            msg = '&'//gname//': '//scan%groups(g)%assigns(na)%name//' = '// &
+                  shorten(trim(collapse(cl(vstart:e-1))), snippet_len)//' : unterminated string'//msg
+          else
+            msg = 'unterminated string '//shorten(trim(cl(i:e-1)), snippet_len)//msg
+          end if
+          call add_issue(scan, line, g, msg)
+          unterminated = .true.
           scan%groups(g)%clean = .false.
-          if (scan%groups(g)%n_assign > 0) scan%groups(g)%assigns(scan%groups(g)%n_assign)%ok = .false.
+          if (na > 0) scan%groups(g)%assigns(na)%ok = .false.
           ! drop the rest of the line: it is part of the broken string
           cl(i:e-1) = ' '
           i = e
@@ -246,7 +267,7 @@ contains
     end do
     ! end of text inside the group
     call close_value(n)
-    call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '// &
+    if (.not. unterminated) call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '// &
          itoa(scan%groups(g)%start_line)//") has no closing '/' (the end of the file was reached)")
     call finish_open(n)
 

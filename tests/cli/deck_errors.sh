@@ -22,11 +22,11 @@ sed 's/rho0 = 7850/rho0 = 78x50/' "$W/good.nml" > "$W/bad_value.nml"
 expect bad_value 1 'bad_value.nml.*rho0' bad_value.nml
 if [ "$(cat "$W/out/bad_value.h5")" = precious ]; then ok "nothing_destroyed"; else bad "nothing_destroyed"; fi
 sed 's/group = "bar"/group = "rod"/' "$W/good.nml" > "$W/bad_group.nml"
-expect unknown_part_group 1 "group = 'rod'.*no physical volume group.*'bar'" bad_group.nml
+expect unknown_part_group 1 "bad_group.nml:4: &part #1 'rod': group = 'rod'.*no physical volume group.*'bar'" bad_group.nml
 sed 's/&material name = "steel"/&material name = "steel", yield_stres = 1e8/' "$W/good.nml" > "$W/misspelled.nml"
 expect misspelled_variable 1 'yield_stres.*yield_stress' misspelled.nml
 printf '%s\n&boundary kind = "symmetry", surface = "nowhere" /\n' "$good" > "$W/bad_surface.nml"
-expect unknown_surface 1 "surface = 'nowhere'.*impact_face" bad_surface.nml
+expect unknown_surface 1 "bad_surface.nml:6: &boundary #1 'nowhere': surface = 'nowhere'.*impact_face" bad_surface.nml
 expect missing_deck 1 'missing.nml' missing.nml
 
 (cd "$W" && "$EXE" --check good.nml) > "$W/check.txt" 2>&1; rc=$?
