@@ -224,6 +224,9 @@ contains
           cl(i:e-1) = ' '
           i = e
         else
+          ! the string as written: a TAB in it must reach the checks (as a
+          ! control character in a file name), not become a blank
+          cl(i:k) = text(i:k)
           i = k + 1
         end if
       else if (is_letter(c)) then

@@ -221,6 +221,7 @@ def main():
     deck('case_name_twodots', edit(6, "'out'", "'out', case_name = '..'"), r"case_name = '\.\.' : '\.' and '\.\.' are folders", line=6)
     deck('case_name_empty', edit(6, "'out'", "'out', case_name = ''"), r'case_name.*non-empty', line=6)
     deck('directory_control', edit(6, "'out'", "'o\x1bu'"), r'directory = .* : contains a control character \(code 27\)', line=6)
+    deck('directory_tab', edit(6, "'out'", "'o\tu'"), r'directory = .* : contains a control character \(code 9\)', line=6)
     deck('case_name_control', edit(6, "'out'", "'out', case_name = 'a\x07b'"), r'case_name = .* : contains a control character \(code 7\)', line=6)
     deck('directory_empty', edit(6, "'out'", "''"), r'directory', line=6)
     deck('scale_1e300', edit(2, "'ok22.msh'", "'ok22.msh', scale = 1e300"), r'node [0-9]+ has coordinates out of range.*scale = 1.0+e300')
