@@ -250,7 +250,9 @@ module udar_deck
   type :: ctx_t
     character(len=:), allocatable :: path
     type(diag_t), allocatable :: d(:)
+    integer :: n_dropped = 0                !< messages beyond max_messages
   end type
+  integer, parameter :: max_messages = 100
 
   interface
     !> POSIX realpath(3): absolute, canonical form of an existing path.
@@ -432,8 +434,10 @@ contains
     do k = 1, size(ctx%d)
       call errors%add(ctx%d(k)%text)
     end do
+    if (ctx%n_dropped > 0) call errors%add(ctx%path//': ... and '//itoa(ctx%n_dropped)// &
+         ' more problems, not listed (is this a namelist deck?)')
 
-    if (size(ctx%d) == 0) then
+    if (size(ctx%d) == 0 .and. ctx%n_dropped == 0) then
       call write_resolved(cfg, text, tr)
       call move_alloc(text, cfg%resolved_text)
     end if
@@ -1723,6 +1727,11 @@ contains
     type(ctx_t), intent(inout) :: ctx
     integer, intent(in) :: line
     character(len=*), intent(in) :: text
+    ! a file that is no deck could give thousands: the first ones tell enough
+    if (size(ctx%d) >= max_messages) then
+      ctx%n_dropped = ctx%n_dropped + 1
+      return
+    end if
     if (line > 0) then
       ctx%d = [ctx%d, diag_t(line, ctx%path//':'//itoa(line)//': '//text)]
     else

@@ -23,6 +23,10 @@ module udar_nml_scan
 
   character(len=*), parameter :: lf = achar(10)
   integer, parameter :: snippet_len = 40   !< longest piece of deck text quoted in an issue
+  ! A deck has tens of groups and assignments. Past these counts the file is
+  ! not a deck (a mesh given by mistake, a binary file): the scan stops, so
+  ! that it neither prints thousands of lines nor takes minutes.
+  integer, parameter :: max_issues = 20, max_groups = 200, max_assigns = 2000
 
   !> One "variable = value" inside a group.
   type :: nml_assign_t
@@ -58,6 +62,8 @@ module udar_nml_scan
     type(nml_group_t), allocatable :: groups(:)
     integer :: n_issues = 0
     type(nml_issue_t), allocatable :: issues(:)
+    logical :: stopped = .false.            !< a limit was reached: the rest is not scanned
+    integer :: n_assigns = 0                !< in all groups
   end type
 
 contains
@@ -113,6 +119,7 @@ contains
     line = 1
     last_end_line = 0
     do while (i <= n)
+      if (scan%stopped) exit
       c = cl(i:i)
       if (c == lf) then
         line = line + 1
@@ -123,7 +130,9 @@ contains
         i = eol(cl, i)
       else if (c == '&') then
         j = name_end(cl, i + 1)
-        if (j == i + 1) then
+        if (scan%n_groups >= max_groups) then
+          call stop_scan(scan, line, 0, 'more than '//itoa(max_groups)//' groups')
+        else if (j == i + 1) then
           call add_issue(scan, line, 0, "'&' must be followed by a group name, e.g. &run")
           i = eol(cl, i)
         else
@@ -173,6 +182,11 @@ contains
     unterminated = .false.
     i = j
     do while (i <= n)
+      if (scan%stopped) then
+        call close_value(i - 1)
+        call finish_open(i - 1)
+        return
+      end if
       c = cl(i:i)
       if (c == lf) then
         line = line + 1
@@ -252,6 +266,11 @@ contains
         if (m <= n) then
           if (cl(m:m) == '=') then
             call close_value(i - 1)
+            if (scan%n_assigns >= max_assigns) then
+              call stop_scan(scan, line, g, 'more than '//itoa(max_assigns)//' assignments')
+              cycle
+            end if
+            scan%n_assigns = scan%n_assigns + 1
             call add_assign(scan%groups(g), nml_lower(no_blanks(cl(i:m-1))), &
                             nml_lower(cl(i:e-1)), line)
             line = line + count_lf(cl(i:m))
@@ -484,8 +503,25 @@ contains
     type(nml_scan_t), intent(inout) :: scan
     integer, intent(in) :: line, group
     character(len=*), intent(in) :: text
+    if (scan%stopped) return
+    if (scan%n_issues >= max_issues) then
+      call stop_scan(scan, line, group, 'more than '//itoa(max_issues)//' problems')
+      return
+    end if
     scan%issues = [scan%issues, nml_issue_t(line=line, group=group, text=text)]
     scan%n_issues = scan%n_issues + 1
   end subroutine add_issue
+
+  !> Give up on a file that cannot be a deck: one last issue, no further scan.
+  subroutine stop_scan(scan, line, group, why)
+    type(nml_scan_t), intent(inout) :: scan
+    integer, intent(in) :: line, group
+    character(len=*), intent(in) :: why
+    if (scan%stopped) return
+    scan%issues = [scan%issues, nml_issue_t(line=line, group=group, text=why// &
+                   ': the rest of the file is not read (is it a namelist deck?)')]
+    scan%n_issues = scan%n_issues + 1
+    scan%stopped = .true.
+  end subroutine stop_scan
 
 end module udar_nml_scan

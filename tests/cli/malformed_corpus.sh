@@ -3,7 +3,8 @@
 # every case must end with exit 1 (input) or 3 (I/O) and a message that names
 # the file and, for a deck mistake, the deck line; no crash (exit >= 128,
 # a backtrace), no hang (each case under `timeout 20`), nothing written
-# anywhere (the scratch tree is compared before and after each case).
+# anywhere (the scratch tree is compared before and after each case), none
+# slow (over 5 s; the 1 MB string over 2 s).
 # Usage: malformed_corpus.sh <udar binary>
 source "$(dirname "$0")/common.sh" "$1"
 R=$W/a/run                     # cases run here; '../../x' from its out/ lands in $W/a
@@ -33,6 +34,7 @@ while IFS=$'\t' read -r kind arg pat; do
   elif ! grep -qE -- "$pat" "$W/err.txt"; then why="no message matching: $pat"
   elif [ "$before" != "$after" ]; then why="wrote files: $(diff <(echo "$before") <(echo "$after") | grep '^>' | head -3 | tr '\n' ' ')"
   elif [ "$name" = d_long_string.nml ] && [ $ms -gt 2000 ]; then why="1 MB string took $ms ms"
+  elif [ $ms -gt 5000 ]; then why="took $ms ms (a clear error comes at once)"
   fi
   if [ "$kind" = deck ]; then n_deck=$((n_deck+1)); else n_mesh=$((n_mesh+1)); fi
   if [ -z "$why" ]; then ok "$kind $name (exit $rc, $ms ms)"

@@ -208,6 +208,9 @@ def main():
     deck('bom', '\ufeff' + DECK, r'text outside any group', line=1)
     deck('long_string', edit(1, 't_end = 1e-7', "t_end = 1e-7, title = '" + 'x' * 1000000 + "'"),
          r'title = .*too long \(1000000 characters', line=1)
+    # not decks at all: the scan stops after a few problems, quickly
+    deck('mesh_as_deck', msh22(NODES * 5000), r'more than 20 problems: the rest of the file is not read')
+    deck('many_assignments', '&run ' + 'x = 1 ' * 100000 + '/\n', r'more problems, not listed')
     deck('long_line', edit(1, 't_end = 1e-7', 't_end = ' + ' ' * 300000 + '1e-7 x'), r't_end = 1e-7 x : not a valid real number', line=1)
     deck('unterminated_quote', edit(3, "'steel',", "'steel,"), r"&material: name = 'steel, .*unterminated string: add the closing '", line=3)
     deck('unterminated_last', edit(6, "'out' /", "'out /"), r"&output: directory = 'out /.*unterminated", line=6)
