@@ -838,7 +838,7 @@ contains
             ! far from rho0*c0**2 is likely a mistake in one of them: say so
             if (en_ok .and. abs(k_en - k_mg) > 0.01_rk * k_mg) call log_warn(ctx%path//':'// &
                  itoa(inst%line)//': '//prefix(inst)//'youngs_modulus and poisson_ratio imply a bulk '// &
-                 'modulus E/(3(1-2nu)) = '//r2s(k_en)//' Pa, '//pct(k_en / k_mg - 1)// &
+                 'modulus E/(3(1-2nu)) = '//sig4(k_en)//' Pa, '//pct(k_en / k_mg - 1)// &
                  " from the rho0*c0**2 = "//r2s(k_mg)//" Pa that eos = 'mie_gruneisen' uses; "// &
                  'they set only the shear modulus')
           end if
@@ -1459,7 +1459,7 @@ contains
           ! E and nu then set only the shear modulus: show the K they imply
           if (m%youngs_modulus > 0 .and. m%poisson_ratio > -1 .and. m%poisson_ratio < 0.5_rk) &
                k_from = k_from//'; youngs_modulus, poisson_ratio (used for the shear modulus only) imply '// &
-               'E/(3(1-2nu)) = '//r2s(m%youngs_modulus / (3 * (1 - 2 * m%poisson_ratio)))
+               'E/(3(1-2nu)) = '//sig4(m%youngs_modulus / (3 * (1 - 2 * m%poisson_ratio)))
         end if
         vals = [val_t(c=m%name), val(m%rho0), choice_val(m%eos, eos_words, eos_codes), &
                 val(m%bulk_modulus, k_from), val(m%c0), val(m%s), val(m%gamma0), &
@@ -2063,6 +2063,20 @@ contains
       s = qs(quoted_text(v, whole=.true.))
     end if
   end function as_single_quoted
+
+  !> Four significant digits, for a value quoted beside another: '1.667e11'.
+  function sig4(x) result(s)
+    real(rk), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    integer :: k, e
+    write(buf, '(es12.3e3)') x
+    s = trim(adjustl(buf))
+    k = index(s, 'E')
+    if (k == 0) return
+    read(s(k+1:), *) e
+    s = s(1:k-1)//'e'//itoa(e)
+  end function sig4
 
   !> A relative difference in per cent, one decimal, with its sign: '-49.2 %'.
   function pct(x) result(s)

@@ -965,6 +965,8 @@ contains
       what = 'a tetrahedron in a block of surface or line elements'
     case default
       what = 'a volume element'
+      ! MSH 4.1: a lower-dimensional type in a block of dimension 3
+      if (tdim < 3) what = 'a '//itoa(tdim)//'D element in a block of volume elements'
     end select
     msg = 'element '//itoa(etag)//' is '//what//' (gmsh type '//itoa(etype)//'): udar takes only '// &
           '4-node tetrahedra (type 4) as volume elements; '

@@ -151,6 +151,8 @@ def main():
             mesh('type11_one_22', w(elements([(45, 11, 3, 0, tuple(range(9, 19)))])), r'element 45 is a 10-node')
         else:
             mesh('type999_41', w(elements([(44, 999, 3, 1, (1, 2, 3))])), r'element 44 has element type 999')
+            mesh('triangle_in_volume_block_41', w(elements([(47, 2, 3, 1, (1, 2, 3))])),
+                 r'element 47 is a 2D element in a block of volume elements')
             mesh('tet_in_surface_block_41', w(elements([(46, 4, 2, 2, (1, 2, 3, 5))])), r'element 46 is a tetrahedron')
         good = writer(NODES, elements())
         k = good.index('$Elements')
