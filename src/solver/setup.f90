@@ -50,6 +50,10 @@ contains
         call errs%add(where//" is already used by &part #"//itoa(group_part(ig)))
       else
         group_part(ig) = ip
+        ! a part without elements is a wrong group name or a mesh saved without it
+        if (.not. any(mesh%tet_group == ig)) call errs%add(deck_where(cfg, 'part', ip, 'group')// &
+          ': the physical volume group has no 4-node tetrahedra in '//trim(cfg%mesh%file)// &
+          ' (volume groups: '//group_list(mesh, 3)//')')
       end if
     end do
     do ig = 1, mesh%n_groups

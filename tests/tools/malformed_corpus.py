@@ -182,6 +182,11 @@ def main():
             mesh('binary_garbage_41', good.replace('4.1 0 8', '4.1 1 8').split('$Nodes')[0] +
                  '$Nodes\n' + '\x07\xff\x00' * 40, r'byte order')
     mesh('empty', '', r'empty')
+    # a volume group with a name but no elements, used by a part
+    put('m_empty_group.msh', msh22().replace('$PhysicalNames\n2\n', '$PhysicalNames\n3\n3 3 "hollow"\n'))
+    put('m_empty_group.nml', edit(2, 'ok22.msh', 'm_empty_group.msh') + "&part group = 'hollow', material = 'steel' /\n")
+    cases.append(('mesh', 'm_empty_group.nml', r"m_empty_group\.nml:7: &part #2 'hollow': group = 'hollow': the physical "
+                  r"volume group has no 4-node tetrahedra in .*m_empty_group\.msh"))
     mesh('not_a_mesh', 'hello world\n', r'MeshFormat')
     mesh('only_format', '$MeshFormat\n2.2 0 8\n$EndMeshFormat\n', r'no \$Nodes section')
 
