@@ -4,7 +4,8 @@
 !>
 !> statx(2) (Linux >= 4.11, glibc >= 2.28) is used rather than stat(2)
 !> because its buffer layout is the same on every architecture; only the
-!> file type bits of stx_mode are read.
+!> file type bits of stx_mode are read. Where the call is refused, a file of
+!> size 0 is refused instead (what a FIFO or a device reports).
 module udar_file_kind
   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_int16_t, c_int64_t, c_null_char
   implicit none
@@ -38,10 +39,18 @@ contains
     integer(c_int64_t) :: buf(32)
     integer(c_int16_t) :: half(128)
     integer :: mode
+    integer(c_int64_t) :: sz
+    logical :: exists
 
     what = ''
     buf = 0
-    if (c_statx(at_fdcwd, trim(path)//c_null_char, 0_c_int, statx_type, buf) /= 0) return
+    if (c_statx(at_fdcwd, trim(path)//c_null_char, 0_c_int, statx_type, buf) /= 0) then
+      ! no such file (the caller says so), or statx refused (a container's
+      ! seccomp filter, a kernel before 4.11): a FIFO or a device has size 0
+      inquire(file=trim(path), exist=exists, size=sz)
+      if (exists .and. sz == 0) what = 'empty, or not a regular file (a FIFO or a device?)'
+      return
+    end if
     half = transfer(buf, half)
     mode = iand(int(half(15)), int(z'FFFF'))      ! stx_mode: bytes 28-29
     select case (iand(mode, s_ifmt))
