@@ -7,10 +7,11 @@
 # slow (over 5 s; the 1 MB string over 2 s).
 # Usage: malformed_corpus.sh <udar binary>
 source "$(dirname "$0")/common.sh" "$1"
-R=$W/a/run                     # cases run here; '../../x' from its out/ lands in $W/a
+R=$W/a/run                     # cases run here; '../../x' from its out/ lands in $W/a; all of $W is watched
 mkdir -p "$R"
 "$PYTHON" "$ROOT/tests/tools/malformed_corpus.py" "$R" || { echo "FAIL generator"; exit 1; }
-snapshot() { (cd "$W/a" && find . -printf '%p %y %s %T@\n' | sort); }
+mkdir -p "$W/log"               # the test's own files: not in the snapshot
+snapshot() { (cd "$W" && find . -path ./log -prune -o -printf '%p %y %s %T@\n' | sort); }
 
 # the base deck and meshes are valid: the corpus tests what it means to
 (cd "$R" && "$EXE" --check ok.nml > /dev/null 2>&1) && ok "base deck valid" || bad "base deck is not valid"
@@ -23,15 +24,15 @@ while IFS=$'\t' read -r kind arg pat; do
   name=${arg##*/}
   before=$(snapshot)
   t0=$(date +%s%N)
-  (cd "$R" && timeout 20 "$EXE" "$arg") > "$W/out.txt" 2> "$W/err.txt"; rc=$?
+  (cd "$R" && timeout 20 "$EXE" "$arg") > "$W/log/out.txt" 2> "$W/log/err.txt"; rc=$?
   ms=$(( ($(date +%s%N) - t0) / 1000000 ))
   after=$(snapshot)
   why=''
   if [ $rc -eq 124 ]; then why="hangs (killed after 20 s)"
   elif [ $rc -ge 128 ]; then why="crashes (exit $rc)"
   elif [ $rc -ne 1 ] && [ $rc -ne 3 ]; then why="exit $rc, not 1 or 3"
-  elif grep -qE 'Backtrace|Segmentation|Error termination|At line [0-9]+ of file' "$W/err.txt"; then why="crash text in the output"
-  elif ! grep -qE -- "$pat" "$W/err.txt"; then why="no message matching: $pat"
+  elif grep -qE 'Backtrace|Segmentation|Error termination|At line [0-9]+ of file' "$W/log/err.txt"; then why="crash text in the output"
+  elif ! grep -qE -- "$pat" "$W/log/err.txt"; then why="no message matching: $pat"
   elif [ "$before" != "$after" ]; then why="wrote files: $(diff <(echo "$before") <(echo "$after") | grep '^>' | head -3 | tr '\n' ' ')"
   elif [ "$name" = d_long_string.nml ] && [ $ms -gt 2000 ]; then why="1 MB string took $ms ms"
   elif [ $ms -gt 5000 ]; then why="took $ms ms (a clear error comes at once)"
@@ -40,7 +41,7 @@ while IFS=$'\t' read -r kind arg pat; do
   if [ -z "$why" ]; then ok "$kind $name (exit $rc, $ms ms)"
   else
     bad "$kind $name: $why"; n_bad=$((n_bad+1))
-    cut -c1-300 "$W/err.txt" | head -5 | sed 's/^/      /'
+    cut -c1-300 "$W/log/err.txt" | head -5 | sed 's/^/      /'
   fi
 done < "$R/cases.tsv"
 if [ $n_bad -eq 0 ]; then

@@ -226,7 +226,10 @@ def main():
     deck('bad_logical_contact', add("&contact master = 'body', slave = 'body', symmetric = 2 /\n"), r'symmetric = 2 : not a valid logical', line=7)
     deck('case_name_slash', edit(6, "'out'", "'out', case_name = 'a/b'"), r"case_name = 'a/b' : a case name is a file name", line=6)
     deck('case_name_dotdot', edit(6, "'out'", "'out', case_name = '../../escaped'"), r"case_name = '\.\./\.\./escaped' : a case name", line=6)
-    deck('case_name_absolute', edit(6, "'out'", "'out', case_name = '/tmp/udar_abs'"), r"case_name = '/tmp/udar_abs' : a case name", line=6)
+    # an absolute name outside the run folder, inside the scratch tree the test watches
+    absolute = os.path.abspath(os.path.join(out, '..', '..', 'abs_case'))
+    deck('case_name_absolute', edit(6, "'out'", "'out', case_name = '%s'" % absolute),
+         r"case_name = '%s' : a case name" % re.escape(absolute), line=6)
     deck('case_name_dot', edit(6, "'out'", "'out', case_name = '.'"), r"case_name = '\.' : '\.' and '\.\.' are folders", line=6)
     deck('case_name_twodots', edit(6, "'out'", "'out', case_name = '..'"), r"case_name = '\.\.' : '\.' and '\.\.' are folders", line=6)
     deck('case_name_empty', edit(6, "'out'", "'out', case_name = ''"), r'case_name.*non-empty', line=6)
