@@ -940,8 +940,8 @@ contains
     character(len=:), allocatable :: msg
     character(len=:), allocatable :: what
     if (tdim < 0) then
-      msg = 'element '//itoa(etag)//' has element type '//itoa(etype)//', which gmsh does not '// &
-            'define (file damaged, or not written by gmsh?)'
+      msg = 'element '//itoa(etag)//' has element type '//itoa(etype)//', which udar does not '// &
+            'know: not a gmsh type (file damaged?) or a high-order one (mesh with gmsh -3 -order 1)'
       return
     end if
     select case (etype)
