@@ -31,6 +31,8 @@ module udar_deck
        jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
        overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook
   use udar_input_errors, only: input_errors_t
+  use udar_file_kind, only: not_regular_file
+  use udar_log, only: log_warn
   use udar_nml_scan, only: nml_scan_t, nml_group_t, nml_scan_file
   use udar_strings, only: itoa, r2s, to_lower, replace, shorten, dir_name, base_name
   implicit none
@@ -184,7 +186,7 @@ module udar_deck
     logical :: l = .false.                   !< typ l
     character(len=:), allocatable :: c       !< typ c; for a coded choice its word
     character(len=80) :: choices = ''        !< coded choice: 'a | b', the resolved deck's unit
-    character(len=32) :: from = ''           !< what a derived value is computed from
+    character(len=160) :: from = ''           !< what a derived value is computed from
   end type
 
   interface val
@@ -250,7 +252,9 @@ module udar_deck
   type :: ctx_t
     character(len=:), allocatable :: path
     type(diag_t), allocatable :: d(:)
+    integer :: n_dropped = 0                !< messages beyond max_messages
   end type
+  integer, parameter :: max_messages = 100
 
   interface
     !> POSIX realpath(3): absolute, canonical form of an existing path.
@@ -432,8 +436,10 @@ contains
     do k = 1, size(ctx%d)
       call errors%add(ctx%d(k)%text)
     end do
+    if (ctx%n_dropped > 0) call errors%add(ctx%path//': ... and '//itoa(ctx%n_dropped)// &
+         ' more problems, not listed (is this a namelist deck?)')
 
-    if (size(ctx%d) == 0) then
+    if (size(ctx%d) == 0 .and. ctx%n_dropped == 0) then
       call write_resolved(cfg, text, tr)
       call move_alloc(text, cfg%resolved_text)
     end if
@@ -503,6 +509,12 @@ contains
             inst%a(slot(k))%bad = .true.
             diagnose = .true.
           end if
+        else if (vars(iv)%typ == 'l' .and. .not. logical_text(a%value)) then
+          ! gfortran reads "1" as a repeat count and fails with a message about that
+          call report(ctx, a%line, prefix(inst)//a%name//' = '//shorten(a%value)// &
+               ' : not a valid logical: use .true. or .false.')
+          inst%a(slot(k))%bad = .true.
+          diagnose = .true.
         end if
       end associate
     end do
@@ -734,6 +746,10 @@ contains
            "'; a relative name is taken from the deck's folder)")
       return
     end if
+    if (len(not_regular_file(f)) > 0) then
+      call complain(ctx, inst, 'file', "'"//f//"' is "//not_regular_file(f)//', not a regular file')
+      return
+    end if
     m%file = absolute_path(f)
   end subroutine check_mesh
 
@@ -821,6 +837,13 @@ contains
             else
               m%bulk_modulus = k_mg
             end if
+            ! E and nu set only the shear modulus here; a bulk modulus they imply
+            ! far from rho0*c0**2 is likely a mistake in one of them: say so
+            if (en_ok .and. abs(k_en - k_mg) > 0.01_rk * k_mg) call log_warn(ctx%path//':'// &
+                 itoa(inst%line)//': '//prefix(inst)//'youngs_modulus and poisson_ratio imply a bulk '// &
+                 'modulus E/(3(1-2nu)) = '//sig4(k_en)//' Pa, '//pct(k_en / k_mg - 1)// &
+                 " from the rho0*c0**2 = "//r2s(k_mg)//" Pa that eos = 'mie_gruneisen' uses; "// &
+                 'they set only the shear modulus')
           end if
         end select
         if (m%eos /= eos_mie_gruneisen) call not_used('c0 s gamma0', "eos = 'mie_gruneisen'")
@@ -886,6 +909,9 @@ contains
       if (m%specific_heat /= mat_dflt%specific_heat) call ranges('specific_heat')
       if (m%t_melt /= mat_dflt%t_melt) call ranges('t_melt')
       call ranges('t_room taylor_quinney initial_temperature')
+      ! the body starts at room temperature unless the deck says otherwise
+      if (.not. is_set(inst, 'initial_temperature') .and. positive(m%t_room)) &
+           m%initial_temperature = m%t_room
 
       ! fracture and erosion (the criteria themselves act in the element driver)
       if (frac_ok) then
@@ -1095,8 +1121,37 @@ contains
         o%case_name = stem_of(deck_path)
       else if (len_trim(o%case_name) == 0) then
         call need(ctx, inst, 'case_name', .false., 'a non-empty name for the output files')
+      else if (.not. is_bad(inst, 'case_name')) then
+        ! the outputs are <directory>/<case_name>.h5 etc.: a separator or a dot
+        ! folder would put them somewhere else
+        if (index(o%case_name, '/') > 0) then
+          call complain(ctx, inst, 'case_name', "a case name is a file name, without '/': "// &
+               'give folders in directory')
+        else if (trim(o%case_name) == '.' .or. trim(o%case_name) == '..') then
+          call complain(ctx, inst, 'case_name', "'.' and '..' are folders, not file names")
+        end if
       end if
+      if (.not. is_bad(inst, 'case_name')) call no_control_chars('case_name', o%case_name)
+      if (.not. is_bad(inst, 'directory')) call no_control_chars('directory', o%directory)
     end associate
+
+  contains
+
+    !> A name for the file system may hold anything but control characters
+    !> (a newline or an escape in a file name breaks logs and scripts).
+    subroutine no_control_chars(name, str)
+      character(len=*), intent(in) :: name, str
+      integer :: i, code
+      do i = 1, len_trim(str)
+        code = iachar(str(i:i))
+        if (code < 32 .or. code == 127) then
+          call complain(ctx, inst, name, 'contains a control character (code '//itoa(code)// &
+               ') at position '//itoa(i)//': names may hold any printable character')
+          return
+        end if
+      end do
+    end subroutine no_control_chars
+
   end subroutine check_output
 
   ! ---------------------------------------------------------- check helpers
@@ -1402,7 +1457,13 @@ contains
       associate(m => cfg%materials(k))
         ! where a bulk modulus the deck did not give comes from
         k_from = 'youngs_modulus, poisson_ratio'
-        if (m%eos == eos_mie_gruneisen) k_from = 'rho0*c0**2'
+        if (m%eos == eos_mie_gruneisen) then
+          k_from = 'rho0*c0**2'
+          ! E and nu then set only the shear modulus: show the K they imply
+          if (m%youngs_modulus > 0 .and. m%poisson_ratio > -1 .and. m%poisson_ratio < 0.5_rk) &
+               k_from = k_from//'; youngs_modulus, poisson_ratio (used for the shear modulus only) imply '// &
+               'E/(3(1-2nu)) = '//sig4(m%youngs_modulus / (3 * (1 - 2 * m%poisson_ratio)))
+        end if
         vals = [val_t(c=m%name), val(m%rho0), choice_val(m%eos, eos_words, eos_codes), &
                 val(m%bulk_modulus, k_from), val(m%c0), val(m%s), val(m%gamma0), &
                 choice_val(m%strength, strength_words, strength_codes), &
@@ -1410,7 +1471,7 @@ contains
                 val(m%poisson_ratio), val(m%yield_stress), val(m%hardening_modulus), val(m%jc_a), &
                 val(m%jc_b), val(m%jc_n), val(m%jc_c), val(m%jc_m), val(m%jc_rate0), &
                 choice_val(m%jc_rate_form, rate_words, rate_codes), val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), &
-                val(m%initial_temperature), choice_val(m%fracture, fracture_words, fracture_codes), &
+                val(m%initial_temperature, 't_room'), choice_val(m%fracture, fracture_words, fracture_codes), &
                 val(m%eps_f), val(m%jc_d1), val(m%jc_d2), val(m%jc_d3), val(m%jc_d4), val(m%jc_d5), &
                 val(m%p_spall), val(m%eps_erode)]
       end associate
@@ -1669,6 +1730,11 @@ contains
     type(ctx_t), intent(inout) :: ctx
     integer, intent(in) :: line
     character(len=*), intent(in) :: text
+    ! a file that is no deck could give thousands: the first ones tell enough
+    if (size(ctx%d) >= max_messages) then
+      ctx%n_dropped = ctx%n_dropped + 1
+      return
+    end if
     if (line > 0) then
       ctx%d = [ctx%d, diag_t(line, ctx%path//':'//itoa(line)//': '//text)]
     else
@@ -1959,7 +2025,8 @@ contains
     logical, intent(in) :: whole
     character(len=:), allocatable :: s
     character :: q
-    integer :: i, last
+    character(len=:), allocatable :: buf
+    integer :: i, k, last
     s = ''
     if (len(v) < 2) return
     q = v(1:1)
@@ -1969,16 +2036,22 @@ contains
       if (v(last:last) /= q) return
       last = last - 1
     end if
+    ! built in a buffer: appending one character at a time is quadratic,
+    ! 80 s for a 1 MB string
+    allocate(character(len=last) :: buf)
+    k = 0
     i = 2
     do while (i <= last)
       if (v(i:i) == q .and. .not. whole) then
-        if (i == len(v)) return
-        if (v(i+1:i+1) /= q) return
+        if (i == len(v)) exit
+        if (v(i+1:i+1) /= q) exit
       end if
-      s = s//v(i:i)
+      k = k + 1
+      buf(k:k) = v(i:i)
       if (v(i:i) == q) i = i + 1     ! doubled quote
       i = i + 1
     end do
+    s = buf(1:k)
   end function quoted_text
 
   !> A value that is one string, written with single quotes ("rod" -> 'rod');
@@ -1993,6 +2066,48 @@ contains
       s = qs(quoted_text(v, whole=.true.))
     end if
   end function as_single_quoted
+
+  !> Four significant digits, for a value quoted beside another: '1.667e11'.
+  function sig4(x) result(s)
+    real(rk), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    integer :: k, e
+    write(buf, '(es12.3e3)') x
+    s = trim(adjustl(buf))
+    k = index(s, 'E')
+    if (k == 0) return
+    read(s(k+1:), *) e
+    s = s(1:k-1)//'e'//itoa(e)
+  end function sig4
+
+  !> A relative difference in per cent, one decimal, with its sign: '-49.2 %'.
+  function pct(x) result(s)
+    real(rk), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    write(buf, '(sp,f0.1,a)') 100 * x, ' %'
+    s = trim(buf)
+  end function pct
+
+  !> Whether a value reads as one logical: [r*][.]T or [r*][.]F (any case,
+  !> anything after the letter), as list-directed input accepts it.
+  pure logical function logical_text(v) result(ok)
+    character(len=*), intent(in) :: v
+    integer :: i
+    ok = .false.
+    i = verify(v, '0123456789')           ! a repeat count "3*" is skipped
+    if (i == 0) return
+    if (i > 1 .and. v(i:i) == '*') then
+      i = i + 1
+    else
+      i = 1
+    end if
+    if (i > len(v)) return
+    if (v(i:i) == '.') i = i + 1
+    if (i > len(v)) return
+    ok = index('tTfF', v(i:i)) > 0
+  end function logical_text
 
   !> Characters in a quoted value; 0 if it is not a quoted string.
   pure integer function quoted_length(v)

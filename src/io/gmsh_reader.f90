@@ -9,7 +9,8 @@ module udar_gmsh
   use, intrinsic :: iso_fortran_env, only: int32, int64
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use udar_kinds, only: rk, i8, max_name_len
-  use udar_strings, only: itoa
+  use udar_strings, only: itoa, r2s
+  use udar_file_kind, only: not_regular_file
   implicit none
   private
 
@@ -39,6 +40,7 @@ module udar_gmsh
   ! sizes of binary MSH 4.1 values
   integer(i8), parameter :: int_bytes = 4, size_bytes = 8, real_bytes = 8
   real(rk), parameter :: degenerate_tol = 1.0e-12_rk
+  real(rk), parameter :: max_coord = 1.0e30_rk   ! m: (6 V)**2 ~ L**6 stays finite
 
   ! Exact powers of ten: a decimal with <= 2**53 mantissa and |exponent| <= 22
   ! converts with one correctly rounded operation (Clinger's fast path).
@@ -89,8 +91,6 @@ module udar_gmsh
     integer, allocatable :: ntag(:)
     real(rk), allocatable :: nx(:,:)          ! (3,nn) as in the file
     type(elem_list_t) :: tets = elem_list_t(nv=4), tris = elem_list_t(nv=3)
-    integer(i8) :: n_other3d = 0
-    integer :: other3d_type = 0
     ! MSH 2.2: groups used by elements of other types, so that the group list
     ! does not depend on the format (4.1 gets them from $Entities)
     integer :: n_keys = 0
@@ -151,10 +151,17 @@ contains
     integer(i8) :: fsize
     logical :: exists
     character(len=256) :: iomsg
+    character(len=:), allocatable :: what
 
     inquire(file=path, exist=exists)
     if (.not. exists) then
       call fail(c, 'file not found')
+      return
+    end if
+    ! a FIFO or a terminal would block the OPEN or the READ forever
+    what = not_regular_file(path)
+    if (len(what) > 0) then
+      call fail(c, 'it is '//what//', not a regular file')
       return
     end if
     open(newunit=u, file=path, access='stream', form='unformatted', status='old', &
@@ -503,7 +510,7 @@ contains
     type(cursor_t), intent(inout) :: c
     type(raw_t), intent(inout) :: raw
     integer(i8) :: nblocks, nelem, nb, b, i
-    integer :: edim, etag, etype, nn, tdim
+    integer :: edim, etag, etype, nn, tdim, i1
 
     call rd_counts(c, 'element', nblocks, nelem)
     if (c%bad) return
@@ -518,17 +525,18 @@ contains
         call fail(c, 'invalid element block size '//itoa(nb)//' (file corrupt or truncated)')
         return
       end if
+      call element_info(etype, nn, tdim)
       if (etype == type_tet4 .and. edim == 3) then
         call read_block(raw%tets)
       else if (etype == type_tri3 .and. edim == 2) then
         call read_block(raw%tris)
+      else if (nb > 0 .and. (tdim == 3 .or. tdim < 0 .or. edim == 3)) then
+        ! a volume element that is not a linear tet, or a type gmsh does not
+        ! have: skipping it would lose part of the body without a word
+        call rd_tag(c, i1, 'element tag')
+        if (.not. c%bad) call fail(c, bad_element_text(i1, etype, tdim))
       else
-        ! not needed: remember 3D elements for the diagnostic, then skip
-        if (edim == 3) then
-          raw%n_other3d = raw%n_other3d + nb
-          raw%other3d_type = etype
-        end if
-        call element_info(etype, nn, tdim)
+        ! points, lines and other surface elements: not needed
         if (nn > 0) then
           call skip_values(c, nb * (1 + nn), size_bytes, 'element data')
         else if (.not. c%binary) then
@@ -623,9 +631,11 @@ contains
         call add_element(raw%tris)
       else
         call element_info(etype, nn, tdim)
-        if (tdim == 3) then
-          raw%n_other3d = raw%n_other3d + 1
-          raw%other3d_type = etype
+        if (tdim == 3 .or. tdim < 0) then
+          ! a volume element that is not a linear tet, or a type gmsh does
+          ! not have: skipping it would lose part of the body without a word
+          call fail(c, bad_element_text(etag, etype, tdim))
+          return
         end if
         if (phys /= 0 .and. tdim >= 2) then
           if (.not. allocated(raw%keys)) allocate(raw%keys(16))
@@ -677,6 +687,10 @@ contains
     character(len=:), allocatable :: tags
 
     msg = ''
+    ! an element tag names one element: two different elements under one tag
+    ! would be merged into one below (the later one lost)
+    call duplicate_tags(raw, msg)
+    if (len(msg) > 0) return
     ! a MSH 4.1 file without $Entities simply has no physical groups
     call init_entities(raw%surf)
     call init_entities(raw%vol)
@@ -752,14 +766,8 @@ contains
       end if
     end do
     if (nkeep == 0) then
-      if (raw%n_other3d > 0) then
-        msg = 'only linear tetrahedra (4-node, gmsh type 4) are supported, but the volume '// &
-              'elements are of gmsh type '//itoa(raw%other3d_type)// &
-              ' (e.g. 11 = 10-node tet, 5 = hex); mesh with Mesh.ElementOrder = 1 and tetrahedra only'
-      else
-        msg = 'no 4-node tetrahedra belong to a physical volume group (note: MSH 2.2 '// &
-              'written with Mesh.SaveAll = 1 carries no physical tags)'
-      end if
+      msg = 'no 4-node tetrahedra belong to a physical volume group (note: MSH 2.2 '// &
+            'written with Mesh.SaveAll = 1 carries no physical tags)'
       return
     end if
     ! stable sort by element tag; duplicates (MSH 2.2 lists an element once
@@ -815,13 +823,18 @@ contains
           return
         end if
       end if
-      do j = 1, 3
-        mesh%x(i, j) = raw%nx(j, perm(i)) * scale
-      end do
-      if (.not. all(ieee_is_finite(mesh%x(i, :)))) then
-        msg = 'node '//itoa(mesh%node_tag(i))//' has a non-finite coordinate'
+      ! volumes are cubes of lengths: beyond max_coord they overflow and
+      ! every tetrahedron would look degenerate (tested before the product,
+      ! which could overflow: debug builds trap that)
+      if (.not. all(ieee_is_finite(raw%nx(:, perm(i))) .and. &
+                    abs(raw%nx(:, perm(i))) <= max_coord / max(scale, 1.0e-270_rk))) then
+        msg = 'node '//itoa(mesh%node_tag(i))//' has coordinates out of range: ('// &
+              r2s(raw%nx(1, perm(i)))//', '//r2s(raw%nx(2, perm(i)))//', '//r2s(raw%nx(3, perm(i)))// &
+              ') in the file, times &mesh scale = '//r2s(scale)//', must be finite and at most '// &
+              r2s(max_coord)//' m in magnitude'
         return
       end if
+      mesh%x(i, :) = raw%nx(:, perm(i)) * scale
     end do
     deallocate(key, perm, raw%ntag, raw%nx)
 
@@ -920,6 +933,108 @@ contains
     end subroutine translate
 
   end subroutine build_mesh
+
+  !> The message for a volume element udar cannot use (tdim < 0: unknown type).
+  function bad_element_text(etag, etype, tdim) result(msg)
+    integer, intent(in) :: etag, etype, tdim
+    character(len=:), allocatable :: msg
+    character(len=:), allocatable :: what
+    if (tdim < 0) then
+      msg = 'element '//itoa(etag)//' has element type '//itoa(etype)//', which udar does not '// &
+            'know: not a gmsh type (file damaged?) or a high-order one (mesh with gmsh -3 -order 1)'
+      return
+    end if
+    select case (etype)
+    case (5)
+      what = 'an 8-node hexahedron'
+    case (6)
+      what = 'a 6-node prism'
+    case (7)
+      what = 'a 5-node pyramid'
+    case (11)
+      what = 'a 10-node (second-order) tetrahedron'
+    case (29:31, 71:75)
+      what = 'a higher-order tetrahedron'
+    case (12, 17, 92:98)
+      what = 'a higher-order hexahedron'
+    case (13, 18, 106:110)
+      what = 'a higher-order prism'
+    case (14, 19, 118:124)
+      what = 'a higher-order pyramid'
+    case (type_tet4)
+      what = 'a tetrahedron in a block of surface or line elements'
+    case default
+      what = 'a volume element'
+      ! MSH 4.1: a lower-dimensional type in a block of dimension 3
+      if (tdim < 3) what = 'a '//itoa(tdim)//'D element in a block of volume elements'
+    end select
+    msg = 'element '//itoa(etag)//' is '//what//' (gmsh type '//itoa(etype)//'): udar takes only '// &
+          '4-node tetrahedra (type 4) as volume elements; '
+    select case (etype)
+    case (11, 29:31, 71:75)
+      msg = msg//'mesh with first-order elements: gmsh -3 -order 1 (Mesh.ElementOrder = 1)'
+    case default
+      msg = msg//'mesh the volumes with tetrahedra only (no Recombine, no extrusion Layers, '// &
+            'no Mesh.SubdivisionAlgorithm)'
+    end select
+  end function bad_element_text
+
+  !> First duplicate element tag among the tetrahedra and triangles, as a
+  !> message ('' if none). MSH 2.2 writes an element once per physical
+  !> group: the same tag with the same nodes is that, not a duplicate.
+  subroutine duplicate_tags(raw, msg)
+    type(raw_t), intent(in) :: raw
+    character(len=:), allocatable, intent(inout) :: msg
+    integer(i8), allocatable :: key(:)
+    integer, allocatable :: perm(:)
+    integer :: n4, n3, i, a, b
+    logical :: same
+
+    n4 = raw%tets%n
+    n3 = raw%tris%n
+    if (n4 + n3 < 2) return
+    allocate(key(n4 + n3), perm(n4 + n3))
+    if (n4 > 0) key(1:n4) = raw%tets%tag(1:n4)
+    if (n3 > 0) key(n4+1:) = raw%tris%tag(1:n3)
+    call sort_perm(key, perm)
+    do i = 2, n4 + n3
+      if (key(perm(i)) /= key(perm(i-1))) cycle
+      a = perm(i-1)
+      b = perm(i)
+      if (a <= n4 .neqv. b <= n4) then
+        same = .false.
+      else if (a <= n4) then
+        same = all(raw%tets%node(:, a) == raw%tets%node(:, b))
+      else
+        same = all(raw%tris%node(:, a - n4) == raw%tris%node(:, b - n4))
+      end if
+      if (same .and. raw%version == fmt_v22) cycle
+      msg = 'element tag '//itoa(int(key(a)))//' is used by '//elem_text(a)//' and by '//elem_text(b)// &
+            ': element tags must be unique (file damaged or concatenated?)'
+      return
+    end do
+
+  contains
+
+    function elem_text(j) result(t)
+      integer, intent(in) :: j
+      character(len=:), allocatable :: t
+      integer :: m
+      if (j <= n4) then
+        t = 'a tetrahedron (nodes'
+        do m = 1, 4
+          t = t//' '//itoa(raw%tets%node(m, j))
+        end do
+      else
+        t = 'a triangle (nodes'
+        do m = 1, 3
+          t = t//' '//itoa(raw%tris%node(m, j - n4))
+        end do
+      end if
+      t = t//')'
+    end function elem_text
+
+  end subroutine duplicate_tags
 
   !> Make every tet positively oriented (swap nodes 2 and 3) and collect
   !> degenerate ones: |6V| <= tol * L**3 with L the longest edge, which is

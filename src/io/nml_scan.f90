@@ -15,6 +15,7 @@
 !> an assignment.
 module udar_nml_scan
   use udar_strings, only: nml_lower => to_lower, itoa, replace, shorten, is_letter, is_digit
+  use udar_file_kind, only: not_regular_file
   implicit none
   private
   public :: nml_assign_t, nml_group_t, nml_issue_t, nml_scan_t
@@ -22,6 +23,10 @@ module udar_nml_scan
 
   character(len=*), parameter :: lf = achar(10)
   integer, parameter :: snippet_len = 40   !< longest piece of deck text quoted in an issue
+  ! A deck has tens of groups and assignments. Past these counts the file is
+  ! not a deck (a mesh given by mistake, a binary file): the scan stops, so
+  ! that it neither prints thousands of lines nor takes minutes.
+  integer, parameter :: max_issues = 20, max_groups = 200, max_assigns = 2000
 
   !> One "variable = value" inside a group.
   type :: nml_assign_t
@@ -57,6 +62,8 @@ module udar_nml_scan
     type(nml_group_t), allocatable :: groups(:)
     integer :: n_issues = 0
     type(nml_issue_t), allocatable :: issues(:)
+    logical :: stopped = .false.            !< a limit was reached: the rest is not scanned
+    integer :: n_assigns = 0                !< in all groups
   end type
 
 contains
@@ -67,9 +74,16 @@ contains
     type(nml_scan_t), intent(out) :: scan
     integer, intent(out) :: ios
     character(len=*), intent(inout) :: iomsg
-    character(len=:), allocatable :: buf
+    character(len=:), allocatable :: buf, what
     integer :: u, sz
 
+    ! a FIFO or a terminal would block the OPEN or the READ forever
+    what = not_regular_file(path)
+    if (len(what) > 0) then
+      ios = 1
+      iomsg = 'it is '//what//', not a regular file'
+      return
+    end if
     ! stream access reads the file byte for byte, whatever its line lengths
     open(newunit=u, file=path, access='stream', form='unformatted', status='old', &
          action='read', iostat=ios, iomsg=iomsg)
@@ -105,6 +119,7 @@ contains
     line = 1
     last_end_line = 0
     do while (i <= n)
+      if (scan%stopped) exit
       c = cl(i:i)
       if (c == lf) then
         line = line + 1
@@ -115,7 +130,9 @@ contains
         i = eol(cl, i)
       else if (c == '&') then
         j = name_end(cl, i + 1)
-        if (j == i + 1) then
+        if (scan%n_groups >= max_groups) then
+          call stop_scan(scan, line, 0, 'more than '//itoa(max_groups)//' groups')
+        else if (j == i + 1) then
           call add_issue(scan, line, 0, "'&' must be followed by a group name, e.g. &run")
           i = eol(cl, i)
         else
@@ -148,9 +165,10 @@ contains
     integer, intent(in) :: j
     integer, intent(inout) :: line
     type(nml_scan_t), intent(inout) :: scan
-    integer :: n, g, start, body_start, vstart, k, m, p, e, last_tok_line, last_unexp_line
+    integer :: n, g, start, body_start, vstart, k, m, p, e, last_tok_line, last_unexp_line, na
     character :: c
-    character(len=:), allocatable :: gname
+    character(len=:), allocatable :: gname, msg
+    logical :: unterminated      ! a string without its closing quote was reported
 
     n = len(cl)
     start = i
@@ -161,8 +179,14 @@ contains
     vstart = 0
     last_tok_line = line
     last_unexp_line = 0
+    unterminated = .false.
     i = j
     do while (i <= n)
+      if (scan%stopped) then
+        call close_value(i - 1)
+        call finish_open(i - 1)
+        return
+      end if
       c = cl(i:i)
       if (c == lf) then
         line = line + 1
@@ -184,7 +208,8 @@ contains
         ! a new group begins although this one was never closed
         call close_value(i - 1)
         k = name_end(cl, i + 1)
-        call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '// &
+        ! after an unterminated string the '/' was most likely inside it: no second message
+        if (.not. unterminated) call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '// &
              itoa(scan%groups(g)%start_line)//") has no closing '/' before &"// &
              nml_lower(cl(i+1:k-1))//' at line '//itoa(line))
         call finish_open(i - 1)
@@ -195,14 +220,27 @@ contains
         last_tok_line = line
         if (k == 0) then
           e = eol(cl, i)
-          call add_issue(scan, line, g, 'unterminated string '//shorten(trim(cl(i:e-1)), snippet_len)// &
-               ' (missing closing '//c//')')
+          msg = ': add the closing '//c//' (a string ends on the line where it starts; a '//c// &
+                ' inside it is written twice)'
+          na = scan%groups(g)%n_assign
+          if (na > 0 .and. vstart > 0) then
+            ! name the variable: "&output: directory = 'out / : unterminated ..."
+            msg = '&'//gname//': '//scan%groups(g)%assigns(na)%name//' = '// &
+                  shorten(trim(collapse(cl(vstart:e-1))), snippet_len)//' : unterminated string'//msg
+          else
+            msg = 'unterminated string '//shorten(trim(cl(i:e-1)), snippet_len)//msg
+          end if
+          call add_issue(scan, line, g, msg)
+          unterminated = .true.
           scan%groups(g)%clean = .false.
-          if (scan%groups(g)%n_assign > 0) scan%groups(g)%assigns(scan%groups(g)%n_assign)%ok = .false.
+          if (na > 0) scan%groups(g)%assigns(na)%ok = .false.
           ! drop the rest of the line: it is part of the broken string
           cl(i:e-1) = ' '
           i = e
         else
+          ! the string as written: a TAB in it must reach the checks (as a
+          ! control character in a file name), not become a blank
+          cl(i:k) = text(i:k)
           i = k + 1
         end if
       else if (is_letter(c)) then
@@ -228,6 +266,11 @@ contains
         if (m <= n) then
           if (cl(m:m) == '=') then
             call close_value(i - 1)
+            if (scan%n_assigns >= max_assigns) then
+              call stop_scan(scan, line, g, 'more than '//itoa(max_assigns)//' assignments')
+              cycle
+            end if
+            scan%n_assigns = scan%n_assigns + 1
             call add_assign(scan%groups(g), nml_lower(no_blanks(cl(i:m-1))), &
                             nml_lower(cl(i:e-1)), line)
             line = line + count_lf(cl(i:m))
@@ -246,7 +289,7 @@ contains
     end do
     ! end of text inside the group
     call close_value(n)
-    call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '// &
+    if (.not. unterminated) call add_issue(scan, scan%groups(g)%start_line, g, '&'//gname//' (line '// &
          itoa(scan%groups(g)%start_line)//") has no closing '/' (the end of the file was reached)")
     call finish_open(n)
 
@@ -460,8 +503,25 @@ contains
     type(nml_scan_t), intent(inout) :: scan
     integer, intent(in) :: line, group
     character(len=*), intent(in) :: text
+    if (scan%stopped) return
+    if (scan%n_issues >= max_issues) then
+      call stop_scan(scan, line, group, 'more than '//itoa(max_issues)//' problems')
+      return
+    end if
     scan%issues = [scan%issues, nml_issue_t(line=line, group=group, text=text)]
     scan%n_issues = scan%n_issues + 1
   end subroutine add_issue
+
+  !> Give up on a file that cannot be a deck: one last issue, no further scan.
+  subroutine stop_scan(scan, line, group, why)
+    type(nml_scan_t), intent(inout) :: scan
+    integer, intent(in) :: line, group
+    character(len=*), intent(in) :: why
+    if (scan%stopped) return
+    scan%issues = [scan%issues, nml_issue_t(line=line, group=group, text=why// &
+                   ': the rest of the file is not read (is it a namelist deck?)')]
+    scan%n_issues = scan%n_issues + 1
+    scan%stopped = .true.
+  end subroutine stop_scan
 
 end module udar_nml_scan

@@ -11,6 +11,7 @@ module udar_setup
   use udar_nodal, only: apply_velocity_conditions
   use udar_domain, only: domain_t, block_size
   use udar_input_errors, only: input_errors_t
+  use udar_deck, only: deck_where
   use udar_tet4, only: tet_volume
   use udar_strength, only: initial_hardening, thermal_softening
   implicit none
@@ -35,20 +36,29 @@ contains
     ! parts <- physical volume groups, by name
     allocate(group_part(mesh%n_groups), source=0)
     do ip = 1, size(cfg%parts)
-      where = trim(cfg%deck_file)//': &part #'//itoa(ip)
       ig = find_group(mesh, cfg%parts(ip)%group, 3)
+      where = ''
       if (ig == 0) then
-        call errs%add(where//": group = '"//trim(cfg%parts(ip)%group)//"': no physical volume group of that name in " &
+        where = deck_where(cfg, 'part', ip, 'group')      ! file:line: &part #k: group = '...'
+      else if (group_part(ig) /= 0) then
+        where = deck_where(cfg, 'part', ip, 'group')
+      end if
+      if (ig == 0) then
+        call errs%add(where//": no physical volume group of that name in " &
           //trim(cfg%mesh%file)//' (volume groups: '//group_list(mesh, 3)//')')
       else if (group_part(ig) /= 0) then
-        call errs%add(where//": group = '"//trim(cfg%parts(ip)%group)//"' is already used by &part #"//itoa(group_part(ig)))
+        call errs%add(where//" is already used by &part #"//itoa(group_part(ig)))
       else
         group_part(ig) = ip
+        ! a part without elements is a wrong group name or a mesh saved without it
+        if (.not. any(mesh%tet_group == ig)) call errs%add(deck_where(cfg, 'part', ip, 'group')// &
+          ': the physical volume group has no 4-node tetrahedra in '//trim(cfg%mesh%file)// &
+          ' (volume groups: '//group_list(mesh, 3)//')')
       end if
     end do
     do ig = 1, mesh%n_groups
       if (mesh%groups(ig)%dim == 3 .and. group_part(ig) == 0 .and. find_group(mesh, mesh%groups(ig)%name, 3) == ig) then
-        if (any(mesh%tet_group == ig)) call errs%add(trim(cfg%deck_file)//": physical volume group '" &
+        if (any(mesh%tet_group == ig)) call errs%add(deck_where(cfg, 'mesh', 1, 'file')//": physical volume group '" &
           //trim(mesh%groups(ig)%name)//"' of "//trim(cfg%mesh%file)//' has elements but no &part gives it a material')
       end if
     end do
@@ -222,20 +232,19 @@ contains
     type(input_errors_t), intent(inout) :: errs
     integer :: ib, ig
     real(rk) :: normal(3), dev
-    character(len=:), allocatable :: where
     if (.not. allocated(cfg%boundaries)) return
     do ib = 1, size(cfg%boundaries)
-      where = trim(cfg%deck_file)//': &boundary #'//itoa(ib)
       if (cfg%boundaries(ib)%kind == bc_rigid_wall) cycle
       ig = find_group(mesh, cfg%boundaries(ib)%surface, 2)
       if (ig == 0) then
-        call errs%add(where//": surface = '"//trim(cfg%boundaries(ib)%surface)// &
-          "': no physical surface group of that name in "//trim(cfg%mesh%file)// &
+        ! file:line: &boundary #k: surface = '...'
+        call errs%add(deck_where(cfg, 'boundary', ib, 'surface')// &
+          ": no physical surface group of that name in "//trim(cfg%mesh%file)// &
           ' (surface groups: '//group_list(mesh, 2)//')')
       else if (cfg%boundaries(ib)%kind == bc_symmetry) then
         call plane_of_group(mesh, ig, normal, dev)
-        if (dev > 1.0e-6_rk) call errs%add(where//": surface = '"//trim(cfg%boundaries(ib)%surface)// &
-          "' is not planar (relative deviation "//r2s(dev)//'): a symmetry surface must be a plane')
+        if (dev > 1.0e-6_rk) call errs%add(deck_where(cfg, 'boundary', ib, 'surface')// &
+          " is not planar (relative deviation "//r2s(dev)//'): a symmetry surface must be a plane')
       end if
     end do
   end subroutine

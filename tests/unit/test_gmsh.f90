@@ -37,6 +37,9 @@ program test_gmsh
   call test_unknown_node()
   call test_quadratic_only()
   call test_no_physical_volume()
+  call test_lost_elements()
+  call test_not_a_file()
+  call test_coordinates_range()
   call test_cube()
 
   write(*, '(a,i0,a,i0,a)') 'test_gmsh: ', n_pass, ' passed, ', n_fail, ' failed'
@@ -305,8 +308,89 @@ contains
   subroutine test_quadratic_only()
     call expect_rejected('quadratic_tets_rejected', 'tet10.msh', msh22([character(len=12) :: &
          corner_nodes, '5 0.5 0 0', '6 0.5 0.5 0', '7 0 0.5 0', '8 0 0 0.5', '9 0 0.5 0.5', &
-         '10 0.5 0 0.5'], ['1 11 2 1 1 1 2 3 4 5 6 7 8 9 10']), 'only linear tetrahedra', .false.)
+         '10 0.5 0 0.5'], ['1 11 2 1 1 1 2 3 4 5 6 7 8 9 10']), 'element 1 is a 10-node (second-order) tetrahedron (gmsh type 11)', .false.)
   end subroutine test_quadratic_only
+
+  !> Elements that used to be dropped without a word: a prism, a hexahedron
+  !> and a pyramid next to a tet, an element type gmsh does not have, two
+  !> different tets under one tag (MSH 2.2 and 4.1); the same tet listed once
+  !> per physical group (MSH 2.2) is still read.
+  subroutine test_lost_elements()
+    character(len=12), parameter :: nodes(9) = [character(len=12) :: corner_nodes, &
+         '5 1 1 0', '6 1 0 1', '7 0 1 1', '8 1 1 1', '9 0.5 0.5 2']
+    character(len=*), parameter :: tet = '1 4 2 1 1 1 2 3 4'
+    character(len=*), parameter :: lf = achar(10)
+    type(gmsh_mesh_t) :: m
+    logical :: ok
+    character(len=:), allocatable :: err, path
+    call expect_rejected('prism_rejected', 'prism.msh', msh22(nodes, &
+         [character(len=40) :: tet, '2 6 2 1 1 2 3 5 6 7 8']), 'element 2 is a 6-node prism (gmsh type 6)', .true.)
+    call expect_rejected('hexahedron_rejected', 'hex.msh', msh22(nodes, &
+         [character(len=40) :: tet, '7 5 2 1 1 1 2 5 3 4 6 8 7']), 'element 7 is an 8-node hexahedron', .true.)
+    call expect_rejected('pyramid_rejected', 'pyramid.msh', msh22(nodes, &
+         [character(len=40) :: tet, '3 7 2 1 1 4 6 8 7 9']), 'element 3 is a 5-node pyramid', .true.)
+    call expect_rejected('prism_outside_groups_rejected', 'prism0.msh', msh22(nodes, &
+         [character(len=40) :: tet, '2 6 2 0 1 2 3 5 6 7 8']), 'element 2 is a 6-node prism', .true.)
+    call expect_rejected('unknown_type_999', 'type999.msh', msh22(nodes, &
+         [character(len=40) :: tet, '2 999 2 1 1 2 3 5']), 'element 2 has element type 999', .true.)
+    call expect_rejected('duplicate_tag_v22', 'dup22.msh', msh22(nodes, &
+         [character(len=40) :: tet, '1 4 2 1 1 2 3 4 8']), 'element tag 1 is used by a tetrahedron', .true.)
+    call expect_rejected('duplicate_tag_tet_triangle', 'dup_tri.msh', msh22(nodes, &
+         [character(len=40) :: tet, '1 2 2 2 1 1 2 3']), 'and by a triangle', .true.)
+    call expect_rejected('prism_v41', 'prism41.msh', '$MeshFormat'//lf//'4.1 0 8'//lf//'$EndMeshFormat'//lf// &
+         '$Entities'//lf//'0 0 0 1'//lf//'1 0 0 0 1 1 1 1 1 0'//lf//'$EndEntities'//lf// &
+         '$Nodes'//lf//'1 6 1 6'//lf//'3 1 0 6'//lf//'1'//lf//'2'//lf//'3'//lf//'4'//lf//'5'//lf//'6'//lf// &
+         '0 0 0'//lf//'1 0 0'//lf//'0 1 0'//lf//'0 0 1'//lf//'1 0 1'//lf//'0 1 1'//lf//'$EndNodes'//lf// &
+         '$Elements'//lf//'2 2 1 5'//lf//'3 1 4 1'//lf//'1 1 2 3 4'//lf//'3 1 6 1'//lf//'5 1 2 3 4 5 6'//lf// &
+         '$EndElements'//lf, 'element 5 is a 6-node prism', .true.)
+    call expect_rejected('duplicate_tag_v41', 'dup41.msh', '$MeshFormat'//lf//'4.1 0 8'//lf//'$EndMeshFormat'//lf// &
+         '$Entities'//lf//'0 0 0 1'//lf//'1 0 0 0 1 1 1 1 1 0'//lf//'$EndEntities'//lf// &
+         '$Nodes'//lf//'1 5 1 5'//lf//'3 1 0 5'//lf//'1'//lf//'2'//lf//'3'//lf//'4'//lf//'5'//lf// &
+         '0 0 0'//lf//'1 0 0'//lf//'0 1 0'//lf//'0 0 1'//lf//'1 1 1'//lf//'$EndNodes'//lf// &
+         '$Elements'//lf//'1 2 1 2'//lf//'3 1 4 2'//lf//'1 1 2 3 4'//lf//'1 2 3 4 5'//lf// &
+         '$EndElements'//lf, 'element tag 1 is used by', .true.)
+    ! the same element in two physical volumes (MSH 2.2 repeats the line)
+    path = trim(tmp_dir)//'/two_groups.msh'
+    call write_text(path, msh22(nodes, [character(len=40) :: tet, '1 4 2 2 1 1 2 3 4', '2 4 2 2 1 2 3 4 8']))
+    call gmsh_read(path, 1.0_rk, m, ok, err)
+    call check('same_tet_in_two_groups_read', ok .and. m%n_tets == 2, 'message: '//err)
+  end subroutine test_lost_elements
+
+  !> A directory or a FIFO is refused before it is opened (a FIFO would
+  !> block the open forever).
+  subroutine test_not_a_file()
+    type(gmsh_mesh_t) :: m
+    logical :: ok
+    character(len=:), allocatable :: err
+    integer :: st
+    call gmsh_read(trim(tmp_dir), 1.0_rk, m, ok, err)
+    call check('directory_refused', .not. ok .and. contains_text(err, 'is a directory') .and. &
+               contains_text(err, trim(tmp_dir)), 'message: '//err)
+    call execute_command_line('rm -f '//trim(tmp_dir)//'/fifo.msh; mkfifo '//trim(tmp_dir)//'/fifo.msh', &
+                              exitstat=st)
+    if (st /= 0) return
+    call gmsh_read(trim(tmp_dir)//'/fifo.msh', 1.0_rk, m, ok, err)
+    call check('fifo_refused', .not. ok .and. contains_text(err, 'FIFO') .and. &
+               contains_text(err, 'fifo.msh'), 'message: '//err)
+  end subroutine test_not_a_file
+
+  !> Coordinates that are not finite, or too large once scaled, are named as
+  !> such (they used to be reported as degenerate tetrahedra).
+  subroutine test_coordinates_range()
+    type(gmsh_mesh_t) :: m
+    logical :: ok
+    character(len=:), allocatable :: err, path
+    path = trim(tmp_dir)//'/big.msh'
+    call write_text(path, msh22([character(len=12) :: '1 0 0 0', '2 1e308 0 0', '3 0 1 0', '4 0 0 1'], &
+                    ['1 4 2 1 1 1 2 3 4']))
+    call gmsh_read(path, 1.0_rk, m, ok, err)
+    call check('coordinate_1e308', .not. ok .and. contains_text(err, 'node 2 has coordinates out of range'), &
+               'message: '//err)
+    call write_text(path, msh22(corner_nodes, ['1 4 2 1 1 1 2 3 4']))
+    call gmsh_read(path, 1.0e300_rk, m, ok, err)
+    call check('scale_1e300', .not. ok .and. contains_text(err, 'out of range') .and. &
+               contains_text(err, 'scale'), 'message: '//err)
+  end subroutine test_coordinates_range
 
   !> A linear tet in no physical group (its physical tag is 0).
   subroutine test_no_physical_volume()
