@@ -12,7 +12,7 @@ program udar
   use udar_version, only: program_version
   use udar_config, only: config_t
   use udar_input_errors, only: input_errors_t, input_errors_report
-  use udar_deck, only: deck_read
+  use udar_deck, only: deck_read, deck_where
   use udar_gmsh, only: gmsh_mesh_t, gmsh_read
   use udar_domain, only: domain_t
   use udar_setup, only: build_domain, count_bodies
@@ -102,7 +102,7 @@ program udar
   if (errs%count() == 0) then
     call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg)
     if (.not. ok) then
-      call errs%add(trim(deck_path)//': &mesh file: '//msg)
+      call errs%add(deck_where(cfg, 'mesh', 1, 'file')//': '//msg)
     else
       call build_domain(cfg, mesh, dom, errs)
       if (errs%count() == 0) call build_contact(cfg, mesh, dom, contacts, errs)

@@ -72,6 +72,7 @@ run_test "cli/damaged_checkpoint" tests/cli/damaged_checkpoint.sh bin/udar
 run_test "cli/run_control" tests/cli/run_control.sh bin/udar
 run_test "cli/full_disk" tests/cli/full_disk.sh bin/udar
 run_test "cli/signals_mpirun" tests/cli/signals_mpirun.sh bin/udar
+run_test "cli/output_names" tests/cli/output_names.sh bin/udar
 run_test "cli/slurm_chain" tests/cli/slurm_chain.sh bin/udar
 # ---- regressions against analytic and experimental references
 run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug

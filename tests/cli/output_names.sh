@@ -30,11 +30,21 @@ expect_files() {   # test name, directory as the deck gives it, as the file syst
 }
 expect_files command_substitution 'out$(touch pwned_1)' 'out$(touch pwned_1)' 'case$(touch pwned_2)' 'case$(touch pwned_2)'
 expect_files backticks 'out`touch pwned_3`' 'out`touch pwned_3`' 'c`touch pwned_4`' 'c`touch pwned_4`'
-expect_files quotes 'it''s "quoted"' "it's \"quoted\"" 'a "b" ''c''' "a \"b\" 'c'"
+expect_files quotes "it''s \"quoted\"" "it's \"quoted\"" "a \"b\" ''c''" "a \"b\" 'c'"
 expect_files spaces_and_dollar 'my out/$HOME x' 'my out/$HOME x' 'run $1 ;ls' 'run $1 ;ls'
 expect_files non_ascii 'résultats/удар' 'résultats/удар' 'taylor_δ' 'taylor_δ'
 expect_files parent_folder '../up/one' '../up/one' 'case' 'case'
 expect_files semicolon_and_pipe 'x; touch pwned_5 | cat' 'x; touch pwned_5 | cat' 'k&&touch pwned_6' 'k&&touch pwned_6'
+# a case name is a file name: no folder in it, no escape from the output folder
+for c in '../../escaped' 'sub/case' '/tmp/abs' '..'; do
+  names=$((names + 1))
+  base=$W/case_$names
+  mkdir -p "$base/deck"; cp "$W/bar.msh" "$base/"
+  deck "$base" "out" "$c"
+  (cd "$base/deck" && "$EXE" case.nml > "$W/log.txt" 2>&1); rc=$?
+  if [ $rc = 1 ] && [ "$(files "$base" | wc -l)" = 2 ] && grep -q 'case.nml:5: &output: case_name' "$W/log.txt"; then ok "case_name_${c//\//_}_refused"
+  else bad "case_name '$c' (exit $rc)"; cat "$W/log.txt"; files "$base"; fi
+done
 if find "$W" / -maxdepth 1 -name 'pwned*' 2>/dev/null | grep -q . || find "$W" -name 'pwned*' | grep -q .; then
   bad "a command ran: $(find "$W" -name 'pwned*')"; else ok "no_command_ran"; fi
 # control characters: refused before anything is written
