@@ -233,20 +233,21 @@ contains
   !> (its nearest existing parent a writable directory): found now, before
   !> anything runs, and by --check too.
   subroutine check_output_directory()
-    character(len=:), allocatable :: dir, parent
+    character(len=:), allocatable :: dir, parent, where
     dir = trim(cfg%output%directory)
     if (is_directory(dir)) then
-      if (.not. can_write_into(dir)) call errs%add(trim(deck_path)//': &output: directory = '''//dir// &
-        ''': the folder exists but this user cannot write into it')
+      if (can_write_into(dir)) return
+      where = deck_where(cfg, 'output', 1, 'directory')
+      call errs%add(where//': the folder exists but this user cannot write into it')
       return
     end if
     parent = nearest_existing_parent(dir)
     if (.not. is_directory(parent)) then
-      call errs%add(trim(deck_path)//': &output: directory = '''//dir//''': cannot be created, '''//parent// &
-        ''' is a file, not a folder')
+      where = deck_where(cfg, 'output', 1, 'directory')
+      call errs%add(where//': cannot be created: '''//parent//''' is a file, not a folder')
     else if (.not. can_write_into(parent)) then
-      call errs%add(trim(deck_path)//': &output: directory = '''//dir//''': cannot be created, this user '// &
-        'cannot write into '''//parent//'''')
+      where = deck_where(cfg, 'output', 1, 'directory')
+      call errs%add(where//': cannot be created: this user cannot write into '''//parent//'''')
     end if
   end subroutine
 

@@ -65,4 +65,16 @@ if grep -qE "^  initial_temperature = 300.0 +! K \(derived: t_room\)" "$W/mg.txt
 else bad "initial_temperature_is_t_room"; grep -E "t_room|initial_temperature" "$W/mg.txt"; fi
 "$EXE" --help > "$W/help.txt" 2>&1 && grep -q usage "$W/help.txt" && ok help || bad help
 "$EXE" --version 2>&1 | grep -qE '^udar [0-9]' && ok version || bad version
+# udar --check deck > resolved.nml gives a valid deck (log lines go to stderr),
+# and checking that one prints the same deck again (but for its file name)
+(cd "$W" && "$EXE" --check good.nml > resolved.nml 2> check_err.txt && "$EXE" --check resolved.nml > resolved2.nml 2>> check_err.txt); rc=$?
+if [ $rc = 0 ] && [ "$(head -c1 "$W/resolved.nml")" = '!' ] && grep -q '^&run' "$W/resolved.nml" && \
+   diff <(grep -v '^! from:' "$W/resolved.nml" | sed 's/ *!.*//') <(grep -v '^! from:' "$W/resolved2.nml" | sed 's/ *!.*//') > /dev/null && \
+   grep -q 'is valid' "$W/check_err.txt" && ! grep -q 'is valid\|^mesh ' "$W/resolved.nml"; then
+  ok "check_output_is_a_valid_deck"
+else bad "check_output_is_a_valid_deck (exit $rc)"; head -3 "$W/resolved.nml"; cat "$W/check_err.txt"; fi
+# the output folder is checked by --check too, at its deck line
+sed 's#directory = "out"#directory = "good.nml/out"#' "$W/good.nml" > "$W/bad_dir.nml"
+grep -q 'good.nml/out' "$W/bad_dir.nml" || bad "deck edit"
+expect output_folder_under_a_file 1 "bad_dir.nml:5: &output: directory = 'good.nml/out': cannot be created: 'good.nml' is a file" "--check bad_dir.nml"
 [ $fails -eq 0 ]

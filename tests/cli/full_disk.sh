@@ -33,4 +33,13 @@ for ranks in 1 2; do
     fi
   done
 done
+# a read-only file system: found by --check, at the deck line, before anything runs
+rm -rf "${fs:?}"/*; mkdir -p "$fs/ro"
+if mount -o remount,ro "$fs" 2>/dev/null; then
+  (cd "$W" && "$EXE" --check full.nml > check.log 2>&1); rc=$?
+  if [ $rc = 1 ] && grep -q "full.nml:[0-9]*: &output: directory = '$fs/out': cannot be created: this user cannot write into '$fs'" "$W/check.log"; then
+    ok "read_only_file_system_found_by_check"
+  else bad "read-only file system: --check exit $rc"; cat "$W/check.log"; fi
+  mount -o remount,rw "$fs"
+else echo "SKIP read-only remount"; fi
 [ $fails -eq 0 ]
