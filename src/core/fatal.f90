@@ -19,16 +19,13 @@ contains
   subroutine fatal(code, msg)
     integer, intent(in) :: code
     character(len=*), intent(in) :: msg
-    character(len=16) :: who
-    who = ''
-    if (comms_size() > 1) write(who, '(a,i0,a)') 'rank ', comms_rank(), ':'
-    write(error_unit, '(a)') 'udar: error: '//trim(who)//repeat(' ', min(len_trim(who), 1))//trim(msg)
-    flush(error_unit)
+    call log_error_here(msg)
     call comms_abort(code)
   end subroutine
 
-  !> This rank's own part of a failure that all ranks then share
-  !> (fatal_all follows): printed by whichever rank saw it, named.
+  !> A problem this rank saw, printed by it (named when there are several
+  !> ranks): fatal's message, or this rank's part of a failure all ranks
+  !> then share (fatal_all follows).
   subroutine log_error_here(msg)
     character(len=*), intent(in) :: msg
     character(len=16) :: who

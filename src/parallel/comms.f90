@@ -64,16 +64,21 @@ contains
       if (code == 0) call MPI_Finalize(ierr)
     end if
     initialised = .false.
-    if (code /= 0) call quick_exit_process(code)
-    call exit_process(code)
+    call exit_process(code, quick=code /= 0)
   end subroutine
 
-  !> Exit without the library clean-ups (atexit, MPI_Finalize): after an I/O
-  !> failure HDF5 would try again to flush a file on a full disk and crash.
-  !> Fortran units are flushed first; the ranks have met at a barrier.
-  subroutine quick_exit_process(code)
+  !> Exit with code, Fortran units flushed. quick: without the library
+  !> clean-ups (atexit handlers): after an I/O failure HDF5 would try again
+  !> to flush a file on a full disk and crash (the ranks have met at a
+  !> barrier and MPI is not finalized either, for the same reason).
+  subroutine exit_process(code, quick)
     integer, intent(in) :: code
+    logical, intent(in), optional :: quick
     interface
+      subroutine c_exit(status) bind(c, name='exit')
+        import :: c_int
+        integer(c_int), value :: status
+      end subroutine
       subroutine c_exit_now(status) bind(c, name='_exit')
         import :: c_int
         integer(c_int), value :: status
@@ -81,20 +86,9 @@ contains
     end interface
     flush(output_unit)
     flush(error_unit)
-    call c_exit_now(int(code, c_int))
-  end subroutine
-
-  !> The C library's exit: the status without ERROR STOP's banner and backtrace.
-  subroutine exit_process(code)
-    integer, intent(in) :: code
-    interface
-      subroutine c_exit(status) bind(c, name='exit')
-        import :: c_int
-        integer(c_int), value :: status
-      end subroutine
-    end interface
-    flush(output_unit)
-    flush(error_unit)
+    if (present(quick)) then
+      if (quick) call c_exit_now(int(code, c_int))
+    end if
     call c_exit(int(code, c_int))
   end subroutine
 
