@@ -42,7 +42,7 @@ endif
 export OMPI_MCA_rmaps_base_oversubscribe=1
 
 DEB_PKGS := gfortran make pkg-config openmpi-bin libopenmpi-dev libhdf5-openmpi-dev hdf5-tools \
-            libmetis-dev gmsh python3-numpy python3-h5py python3-matplotlib
+            libmetis-dev gmsh python3-numpy python3-h5py python3-matplotlib slurm-wlm munge
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
 .PHONY: all deps run check check-unit check-regression bench validate clean help meshes debug
@@ -71,7 +71,7 @@ deps:
 	fi
 
 deps-quiet:
-	@command -v $(FC) >/dev/null && command -v gmsh >/dev/null && [ -x $(PYTHON) ] \
+	@command -v $(FC) >/dev/null && command -v gmsh >/dev/null && [ -x $(PYTHON) ] && command -v slurmctld >/dev/null \
 	  && [ -f /usr/include/metis.h ] && [ -d /usr/include/hdf5/openmpi ] || $(MAKE) --no-print-directory deps
 
 # ---- build

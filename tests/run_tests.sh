@@ -74,6 +74,7 @@ run_test "cli/full_disk" tests/cli/full_disk.sh bin/udar
 run_test "cli/signals_mpirun" tests/cli/signals_mpirun.sh bin/udar
 run_test "cli/output_names" tests/cli/output_names.sh bin/udar
 run_test "cli/slurm_chain" tests/cli/slurm_chain.sh bin/udar
+run_test "cli/slurm_real" tests/cli/slurm_real.sh bin/udar
 # ---- regressions against analytic and experimental references
 run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
 run_test "regression/plate_impact" regression plate_impact bin/udar-debug
