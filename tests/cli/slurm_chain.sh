@@ -7,7 +7,10 @@
 source "$(dirname "$0")/common.sh" "$1"
 case=taylor_ofhc_baseline
 mkdir -p "$W/fake" "$W/run"
-# sbatch runs the job at once (nested); it records its options
+# sbatch runs the job at once (nested); it records its options. With
+# FAKE_SIGNALS=1 it also plays the batch system's SIGUSR1: to the first job
+# at once (its start-up), to the next two after 0.3-1.1 s; the fourth runs
+# to the end.
 cat > "$W/fake/sbatch" <<'SH'
 #!/bin/bash
 echo "sbatch $*" >> "$FAKE_LOG"
@@ -15,7 +18,16 @@ n=1; args=()
 for a in "$@"; do
   case $a in --ntasks=*) n=${a#--ntasks=} ;; --*) ;; *) args+=("$a") ;; esac
 done
-SLURM_NTASKS=$n SLURM_JOB_ID=$RANDOM bash "${args[@]}"
+SLURM_NTASKS=$n SLURM_JOB_ID=$RANDOM bash "${args[@]}" &
+job=$!
+n_job=${UDAR_JOB_NUMBER:-1}
+if [ "${FAKE_SIGNALS:-0}" = 1 ] && [ "$n_job" -le 3 ]; then
+  delay=0.02; [ "$n_job" -gt 1 ] && delay=$(awk -v r=$RANDOM 'BEGIN { printf "%.2f", 0.3 + 0.8*r/32767 }')
+  sleep "$delay"; kill -USR1 $job 2>/dev/null && echo "USR1 after $delay s" >> "$FAKE_LOG.signals"
+fi
+wait $job; rc=$?
+while kill -0 $job 2>/dev/null; do wait $job; rc=$?; done
+exit $rc
 SH
 printf '#!/bin/bash\necho "   Command=%s/input/batch/udar.slurm"\n' "$ROOT" > "$W/fake/scontrol"
 printf '#!/bin/bash\necho 1:00:00\n' > "$W/fake/squeue"
@@ -43,29 +55,8 @@ else bad "chain_bitwise_equals_straight_run"; fi
 # before its trap, the script used to die silently), the script passes it
 # to udar through mpirun, udar checkpoints, the job resubmits itself, and
 # the chain ends bitwise equal to the straight run.
-cat > "$W/fake/sbatch" <<'SH'
-#!/bin/bash
-echo "sbatch $*" >> "$FAKE_LOG"
-n=1; args=()
-for a in "$@"; do
-  case $a in --ntasks=*) n=${a#--ntasks=} ;; --*) ;; *) args+=("$a") ;; esac
-done
-SLURM_NTASKS=$n SLURM_JOB_ID=$RANDOM bash "${args[@]}" &
-job=$!
-# the first job at once (its start-up), the next two after 0.3-1.1 s; the
-# fourth runs to the end
-n_job=${UDAR_JOB_NUMBER:-1}
-delay=0.02; [ "$n_job" -gt 1 ] && delay=$(awk -v r=$RANDOM 'BEGIN { printf "%.2f", 0.3 + 0.8*r/32767 }')
-if [ "$n_job" -le 3 ]; then
-  sleep "$delay"; kill -USR1 $job 2>/dev/null && echo "USR1 after $delay s" >> "$FAKE_LOG.signals"
-fi
-wait $job; rc=$?
-while kill -0 $job 2>/dev/null; do wait $job; rc=$?; done
-exit $rc
-SH
-chmod +x "$W/fake/sbatch"
 rm -rf "$W/run/out"; : > "$W/sbatch.log"
-export MPIRUN=mpirun UDAR_ARGS=   # timeout(1) would take the signal meant for mpirun
+export MPIRUN=mpirun UDAR_ARGS= FAKE_SIGNALS=1   # timeout(1) would take the signal meant for mpirun
 ( sleep 300; pkill -9 -f "$EXE run/$case.nml"; pkill -9 -f "$EXE --restart auto" ) > /dev/null 2>&1 &
 watchdog=$!
 (cd "$W" && SLURM_SUBMIT_DIR=$W SLURM_NTASKS=2 SLURM_JOB_ID=1 "$W/fake/sbatch" --ntasks=2 "$ROOT/input/batch/udar.slurm" run/$case.nml > signal_job.log 2>&1)
