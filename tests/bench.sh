@@ -67,7 +67,7 @@ scaling=doc/scaling.md
   echo "# Projected scaling (written by \`make bench\`)"
   echo
   echo "From the partition alone, without running: the OFHC Taylor bar meshed with"
-  echo "$(bin/udar --check "$W/bar_1m.nml" | grep -o '[0-9]* tetrahedra') (gmsh h = 0.108 mm), split by METIS as a run on N ranks"
+  echo "$(bin/udar --check "$W/bar_1m.nml" 2>&1 | grep -o '[0-9]* tetrahedra') (gmsh h = 0.108 mm), split by METIS as a run on N ranks"
   echo "would split it. Ghost work: elements each rank computes redundantly, over"
   echo "the mesh's elements (all ranks) and over the rank's own (worst rank). Halo:"
   echo "ghost nodes whose values a rank receives each exchange; per cycle a rank"
