@@ -11,7 +11,8 @@ module udar_element_driver
   use udar_strength, only: strength_block, thermal_softening_update, von_mises
   use udar_fracture, only: el_fractured, el_eroded, el_intact, erode_strain, erode_time_step, erode_inverted, &
       fracture_update, fracture_enabled, erosion_enabled, deviatoric_rate
-  use udar_hydro, only: volumetric_update, dilatational_speed2
+  use udar_hydro, only: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_pressures
+  use udar_config, only: tet_stabilised
   implicit none
   private
   public :: element_volumes, nodal_volumes, element_update, nodal_pressures, &
@@ -106,8 +107,12 @@ contains
     integer :: n
     do n = 1, dom%n_owned_nodes
       dom%nd_p(n) = 0.0_rk
-      if (dom%nd_vol0(n) > 0.0_rk) &
+      if (dom%nd_vol0(n) <= 0.0_rk) cycle
+      if (dom%stab_beta > 0.0_rk) then
+        dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_pavg, w=dom%el_vol0)/dom%nd_vol0(n)
+      else
         dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_p, w=dom%el_vol0)/dom%nd_vol0(n)
+      end if
     end do
   end subroutine
 
@@ -133,8 +138,8 @@ contains
     real(rk) :: ve(ld,4,3), grad(ld,4,3), fe(ld,4,3)
     real(rk) :: vol(ld), h(ld), d(ld,6), w(ld,3), s(ld,6), p_app(ld), trd(ld), j_new(ld), &
                 w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld), dt_el(ld)
-    logical :: gone(ld), no_shear(ld), erodible, fracturing, fractured
-    real(rk) :: t_old, d_eps
+    logical :: gone(ld), no_shear(ld), erodible, fracturing, fractured, stab, geo
+    real(rk) :: t_old, d_eps, jbar(ld), je(ld)
     integer :: b, i, e, nb, first, last, k
     dt_stable = huge(1.0_rk)
     dt_elem = 0
@@ -142,6 +147,8 @@ contains
     bad_j = 0
     n_eroded = 0
     eroded_any = .false.
+    stab = dom%stab_beta > 0.0_rk
+    geo = dom%tet_formulation == tet_stabilised
     do b = 1, dom%n_blocks
       call block_geometry(dom, b, first, last, nb, vol, grad, h)
       call gather_block(dom, dom%nd_v, first, nb, ve)
@@ -184,6 +191,12 @@ contains
         ! keep the arithmetic finite until the run stops
         if (vol(i) <= 0.0_rk .or. gone(i)) vol(i) = dom%el_vol0(e)
         if (j_new(i) <= 0.0_rk) j_new(i) = dom%el_j(e)
+        if (stab) then
+          ! stabilised: the EOS sees the nodal average blended with the element's own ratio
+          jbar(i) = j_new(i)
+          je(i) = vol(i)/dom%el_vol0(e)
+          if (.not. gone(i)) j_new(i) = blended_volume_ratio(geo, dom%stab_beta, jbar(i), je(i))
+        end if
         no_shear(i) = gone(i) .or. dom%el_state(e) == el_fractured
         ! accumulated total strain: only eroding materials use it
         if (erodible .and. .not. gone(i)) dom%el_eps_tot(e) = dom%el_eps_tot(e) + dt*deviatoric_rate(d(i,:))
@@ -271,6 +284,8 @@ contains
       dom%el_e(first:last) = e_int(1:nb)
       dom%el_p(first:last) = p(1:nb)
       dom%el_q(first:last) = q(1:nb)
+      if (stab) dom%el_pavg(first:last) = blended_pressures(geo, .false., dom%stab_beta, p(1:nb), j_new(1:nb), &
+                                                            jbar(1:nb), je(1:nb))
       dom%el_j(first:last) = j_new(1:nb)
       dom%el_vol(first:last) = vol(1:nb)
       dom%el_h(first:last) = merge(huge(1.0_rk), h(1:nb), gone(1:nb))
@@ -319,12 +334,18 @@ contains
     integer, parameter :: ld = block_size
     real(rk) :: p_app(ld), fe(ld,4,3), vol(ld), grad(ld,4,3), h(ld), sb(ld,6)
     integer :: b, i, e, nb, first, last, k
+    logical :: stab, geo
+    stab = dom%stab_beta > 0.0_rk
+    geo = dom%tet_formulation == tet_stabilised
     do b = 1, dom%n_blocks
       call block_geometry(dom, b, first, last, nb, vol, grad, h)
       do i = 1, nb
         e = first + i - 1
         p_app(i) = 0.25_rk*(dom%nd_p(dom%el_conn(e,1)) + dom%nd_p(dom%el_conn(e,2)) &
                  + dom%nd_p(dom%el_conn(e,3)) + dom%nd_p(dom%el_conn(e,4)))
+        ! stabilised: plus the element's own share, conjugate to its own volume ratio
+        if (stab) p_app(i) = p_app(i) + blended_pressures(geo, .true., dom%stab_beta, dom%el_p(e), dom%el_j(e), &
+                                                          1.0_rk, vol(i)/dom%el_vol0(e))
         ! fractured: no tension from the averaged pressure either
         if (dom%el_state(e) == el_fractured) p_app(i) = max(p_app(i), 0.0_rk)
         p_app(i) = p_app(i) + dom%el_q(e)

@@ -7,7 +7,7 @@ module udar_hydro
   use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
   implicit none
   private
-  public :: volumetric_update, dilatational_speed2
+  public :: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_pressures
 
 contains
 
@@ -63,6 +63,37 @@ contains
       dt_el(i) = h(i)/(eq + sqrt(eq*eq + c2(i)))
     end do
   end subroutine
+
+  !> Stabilised nodal-averaged tetrahedron (doc/theory.md section 8): the
+  !> volume ratio the EOS sees blends the nodal average jbar with the
+  !> element's own je, geometric  J = jbar^(1-beta) je^beta  or linear
+  !> J = (1-beta) jbar + beta je.
+  elemental real(rk) function blended_volume_ratio(geometric, beta, jbar, je) result(j)
+    logical, intent(in) :: geometric
+    real(rk), intent(in) :: beta, jbar, je
+    if (geometric) then
+      j = jbar*(je/jbar)**beta
+    else
+      j = (1.0_rk - beta)*jbar + beta*je
+    end if
+  end function
+
+  !> The work-conjugate split of the EOS pressure p at the blended J: the
+  !> pressure the element puts into the nodal average (conjugate to jbar)
+  !> and the one it applies itself (conjugate to its own je):
+  !>   geometric  p_avg = (1-beta) p J/jbar,  p_own = beta p J/je
+  !>   linear     p_avg = (1-beta) p,         p_own = beta p.
+  elemental real(rk) function blended_pressures(geometric, own, beta, p, j, jbar, je) result(pp)
+    logical, intent(in) :: geometric, own
+    real(rk), intent(in) :: beta, p, j, jbar, je
+    if (own) then
+      pp = beta*p
+      if (geometric) pp = pp*j/je
+    else
+      pp = (1.0_rk - beta)*p
+      if (geometric) pp = pp*j/jbar
+    end if
+  end function
 
   !> Square of the dilatational wave speed: bulk sound speed at (J, p) plus
   !> 4G/(3 rho) for materials with strength.

@@ -24,7 +24,7 @@ module udar_deck
   use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_associated
   use udar_kinds, only: rk, max_name_len, max_path_len
   use udar_config, only: config_t, run_cfg_t, mesh_cfg_t, material_cfg_t, part_cfg_t, &
-       boundary_cfg_t, contact_cfg_t, numerics_cfg_t, output_cfg_t, eos_linear, eos_mie_gruneisen, &
+       boundary_cfg_t, contact_cfg_t, numerics_cfg_t, output_cfg_t, eos_linear, eos_mie_gruneisen, tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
        strength_none, strength_elastic, strength_perfectly_plastic, strength_linear_hardening, &
        strength_johnson_cook, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
        wall_coulomb, &
@@ -79,6 +79,9 @@ module udar_deck
   integer, parameter :: wall_codes(3) = [wall_frictionless, wall_sticking, wall_coulomb]
   character(len=20), parameter :: weights_words(2) = [character(len=20) :: 'distance', 'area']
   integer, parameter :: weights_codes(2) = [contact_weights_distance, contact_weights_area]
+  character(len=20), parameter :: tet_words(4) = [character(len=20) :: 'plain', 'nodal', 'stabilised', &
+       'stabilised_linear']
+  integer, parameter :: tet_codes(4) = [tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear]
   character(len=20), parameter :: overlap_words(2) = [character(len=20) :: 'report', 'move']
   integer, parameter :: overlap_codes(2) = [overlap_report, overlap_move]
   character(len=20), parameter :: fracture_words(3) = [character(len=20) :: 'none', 'plastic_strain', &
@@ -166,6 +169,8 @@ module udar_deck
        var_t('contact', 'weights', 'c', 1, code_len, '', ''), &
        var_t('contact', 'initial_overlap', 'c', 1, code_len, '', ''), &
        var_t('numerics', 'anti_locking', 'l', 1, 0, '', ''), &
+       var_t('numerics', 'tet_formulation', 'c', 1, code_len, '', ''), &
+       var_t('numerics', 'stabilisation', 'r', 1, 0, '-', 'in [0, 1)'), &
        var_t('numerics', 'q_linear', 'r', 1, 0, '-', '>= 0'), &
        var_t('numerics', 'q_quadratic', 'r', 1, 0, '-', '>= 0'), &
        var_t('numerics', 'erode_dt_ratio', 'r', 1, 0, '-', 'in [0, 1)'), &
@@ -213,6 +218,7 @@ module udar_deck
     character(len=code_len) :: weights = 'distance'
     character(len=code_len) :: initial_overlap = 'report'
     character(len=code_len) :: fracture = 'none'
+    character(len=code_len) :: tet_formulation = 'nodal'
   end type
 
   !> One assignment as the deck wrote it.
@@ -302,10 +308,12 @@ contains
     character(len=:), allocatable :: text
     character(len=code_len), allocatable :: eos_txt(:), str_txt(:), kind_txt(:), wall_txt(:), rate_txt(:), &
                                             weights_txt(:), overlap_txt(:), frac_txt(:)
+    character(len=code_len) :: tet_txt
     integer :: ios, k, j, ig, gk, first(n_group_kinds), cnt(n_group_kinds), nread(n_group_kinds)
     logical :: misspelled(n_group_kinds)
 
     cfg%deck_file = path
+    tet_txt = 'nodal'
     ctx%path = trim(path)
     allocate(ctx%d(0))
 
@@ -403,6 +411,7 @@ contains
         overlap_txt(k) = v%initial_overlap
       case (g_numerics)
         cfg%numerics = v%num
+        tet_txt = v%tet_formulation
       case (g_output)
         cfg%output = v%out
       end select
@@ -428,7 +437,7 @@ contains
         call check_contact(ctx, cons(k), cfg, k, weights_txt(k), overlap_txt(k))
       end do
     end associate
-    call check_numerics(ctx, tr%g(g_numerics)%i(1), cfg)
+    call check_numerics(ctx, tr%g(g_numerics)%i(1), cfg, tet_txt)
     call check_output(ctx, tr%g(g_output)%i(1), cfg, trim(path))
 
     ! hand the messages out in line order
@@ -617,7 +626,8 @@ contains
                          c%tracking, v%weights, v%initial_overlap)
       end associate
     case ('numerics')
-      call numerics_nml(v%num%anti_locking, v%num%q_linear, v%num%q_quadratic, v%num%erode_dt_ratio)
+      call numerics_nml(v%num%anti_locking, v%tet_formulation, v%num%stabilisation, v%num%q_linear, &
+                        v%num%q_quadratic, v%num%erode_dt_ratio)
     case ('output')
       call output_nml(v%out%directory, v%out%case_name, v%out%dt_field, v%out%dt_history, v%out%dt_checkpoint, &
                       v%out%checkpoint_keep)
@@ -690,10 +700,11 @@ contains
       read(text, nml=contact, iostat=ios, iomsg=msg)
     end subroutine contact_nml
 
-    subroutine numerics_nml(anti_locking, q_linear, q_quadratic, erode_dt_ratio)
+    subroutine numerics_nml(anti_locking, tet_formulation, stabilisation, q_linear, q_quadratic, erode_dt_ratio)
       logical, intent(inout) :: anti_locking
-      real(rk), intent(inout) :: q_linear, q_quadratic, erode_dt_ratio
-      namelist /numerics/ anti_locking, q_linear, q_quadratic, erode_dt_ratio
+      character(len=*), intent(inout) :: tet_formulation
+      real(rk), intent(inout) :: stabilisation, q_linear, q_quadratic, erode_dt_ratio
+      namelist /numerics/ anti_locking, tet_formulation, stabilisation, q_linear, q_quadratic, erode_dt_ratio
       read(text, nml=numerics, iostat=ios, iomsg=msg)
     end subroutine numerics_nml
 
@@ -1101,10 +1112,13 @@ contains
     end associate
   end subroutine check_contact
 
-  subroutine check_numerics(ctx, inst, cfg)
+  subroutine check_numerics(ctx, inst, cfg, tet_txt)
     type(ctx_t), intent(inout) :: ctx
     type(inst_t), intent(in) :: inst
-    type(config_t), intent(in) :: cfg
+    type(config_t), intent(inout) :: cfg
+    character(len=*), intent(in) :: tet_txt
+    logical :: ok
+    ok = choice(ctx, inst, 'tet_formulation', tet_txt, tet_words, tet_codes, cfg%numerics%tet_formulation)
     call check_ranges(ctx, inst, cfg_vals(cfg, g_numerics, 1))
   end subroutine check_numerics
 
@@ -1492,7 +1506,9 @@ contains
                 choice_val(c%initial_overlap, overlap_words, overlap_codes)]
       end associate
     case (g_numerics)
-      vals = [val_t(l=cfg%numerics%anti_locking), val(cfg%numerics%q_linear), &
+      vals = [val_t(l=cfg%numerics%anti_locking), &
+              choice_val(cfg%numerics%tet_formulation, tet_words, tet_codes), val(cfg%numerics%stabilisation), &
+              val(cfg%numerics%q_linear), &
               val(cfg%numerics%q_quadratic), val(cfg%numerics%erode_dt_ratio)]
     case default
       associate(o => cfg%output)

@@ -10,6 +10,7 @@ module udar_config
   public :: eos_linear, eos_mie_gruneisen, strength_none, strength_elastic, &
             strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
             bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, wall_coulomb, &
+            tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
             jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
             overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook
 
@@ -19,6 +20,8 @@ module udar_config
                         strength_linear_hardening = 3, strength_johnson_cook = 4
   integer, parameter :: bc_fixed = 1, bc_symmetry = 2, bc_rigid_wall = 3
   integer, parameter :: wall_frictionless = 1, wall_sticking = 2, wall_coulomb = 3
+  !> tetrahedron formulations (&numerics tet_formulation; doc/theory.md section 8)
+  integer, parameter :: tet_plain = 1, tet_nodal = 2, tet_stabilised = 3, tet_stabilised_linear = 4
   integer, parameter :: jc_rate_total = 1, jc_rate_plastic = 2
   integer, parameter :: contact_weights_distance = 1, contact_weights_area = 2
   integer, parameter :: overlap_report = 1, overlap_move = 2
@@ -88,7 +91,9 @@ module udar_config
   end type
 
   type :: numerics_cfg_t
-    logical  :: anti_locking = .true.   !< nodal-averaged volumetric strain (Bonet-Burton)
+    logical  :: anti_locking = .true.   !< nodal-averaged volumetric strain (Bonet-Burton); .false. = plain tet
+    integer  :: tet_formulation = tet_nodal  !< with anti_locking: nodal, stabilised or stabilised_linear
+    real(rk) :: stabilisation = 0.1_rk  !< -, beta: weight of the element's own volume ratio (stabilised)
     real(rk) :: q_linear = 0.06_rk      !< -, linear artificial viscosity coefficient
     real(rk) :: q_quadratic = 1.5_rk    !< -, quadratic artificial viscosity coefficient
     real(rk) :: erode_dt_ratio = 0.1_rk !< -, an element of a material with eps_erode > 0 is eroded when its stable

@@ -49,6 +49,8 @@ module udar_domain
     real(rk), allocatable :: el_e(:)            !< J/kg, specific internal energy
     real(rk), allocatable :: el_wp(:)           !< J/kg, specific plastic work
     real(rk), allocatable :: el_p(:), el_q(:)   !< Pa, EOS pressure and artificial viscosity
+    real(rk), allocatable :: el_pavg(:)  !< Pa, stabilised: the pressure the element puts into the nodal average
+                                         !< (recomputed every cycle before use: no restart state)
     real(rk), allocatable :: el_s(:,:)          !< (n,6) Pa, deviatoric stress xx,yy,zz,xy,yz,zx
     real(rk), allocatable :: el_eps_p(:), el_temp(:)  !< -, K
     real(rk), allocatable :: el_hard(:), el_soft(:)   !< Pa, -: strain-hardening part and thermal factor of the flow stress
@@ -69,7 +71,9 @@ module udar_domain
     integer, allocatable :: sym_nodes(:)        !< one entry per (node, plane)
     real(rk), allocatable :: sym_normal(:,:)    !< (n_sym,3)
     type(wall_t), allocatable :: walls(:)
-    logical :: anti_locking = .true.
+    logical :: anti_locking = .true.             !< any nodal-averaged formulation (not the plain tet)
+    integer :: tet_formulation = 2               !< udar_config tet_*: plain, nodal, stabilised, stabilised_linear
+    real(rk) :: stab_beta = 0.0_rk               !< -, weight of the element's own volume ratio (stabilised only)
     real(rk) :: q_linear = 0.06_rk, q_quadratic = 1.5_rk
     real(rk) :: erode_dt_limit = 0.0_rk          !< s, an eroding material's element with a smaller stable step is eroded
   end type

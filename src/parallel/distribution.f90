@@ -122,6 +122,7 @@ contains
       loc%el_wp = glob%el_wp(ge)
       loc%el_p = glob%el_p(ge)
       loc%el_q = glob%el_q(ge)
+      loc%el_pavg = glob%el_pavg(ge)
       loc%el_s = glob%el_s(ge,:)
       loc%el_eps_p = glob%el_eps_p(ge)
       loc%el_temp = glob%el_temp(ge)
@@ -147,6 +148,8 @@ contains
     end do
     loc%walls = glob%walls
     loc%anti_locking = glob%anti_locking
+    loc%tet_formulation = glob%tet_formulation
+    loc%stab_beta = glob%stab_beta
     loc%q_linear = glob%q_linear
     loc%q_quadratic = glob%q_quadratic
 

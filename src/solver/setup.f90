@@ -6,7 +6,8 @@ module udar_setup
   use udar_kinds, only: rk, i8, max_name_len
   use udar_ordering, only: morton_keys, stable_sort_permutation
   use udar_strings, only: itoa, r2s
-  use udar_config, only: config_t, bc_fixed, bc_symmetry, bc_rigid_wall
+  use udar_config, only: config_t, bc_fixed, bc_symmetry, bc_rigid_wall, tet_plain, tet_stabilised, &
+      tet_stabilised_linear
   use udar_gmsh, only: gmsh_mesh_t
   use udar_nodal, only: apply_velocity_conditions
   use udar_domain, only: domain_t, block_size
@@ -146,7 +147,12 @@ contains
     ! initial velocities obey the velocity conditions (a fixed node starts at
     ! rest), so the initial energy holds no kinetic energy the first step removes
     call apply_velocity_conditions(dom)
-    dom%anti_locking = cfg%numerics%anti_locking
+    dom%tet_formulation = cfg%numerics%tet_formulation
+    if (.not. cfg%numerics%anti_locking) dom%tet_formulation = tet_plain
+    dom%anti_locking = dom%tet_formulation /= tet_plain
+    dom%stab_beta = 0.0_rk
+    if (dom%tet_formulation == tet_stabilised .or. dom%tet_formulation == tet_stabilised_linear) &
+      dom%stab_beta = cfg%numerics%stabilisation
     dom%q_linear = cfg%numerics%q_linear
     dom%q_quadratic = cfg%numerics%q_quadratic
     ! the whole mesh as one rank's domain: udar_distribution cuts it up
@@ -167,10 +173,10 @@ contains
              dom%nd_f(3,nn), dom%nd_mass(nn), dom%nd_vol0(nn), dom%nd_vref(nn), dom%nd_j(nn), dom%nd_p(nn))
     allocate(dom%el_id(ne), dom%el_part(ne), dom%el_mat(ne), dom%el_conn(ne,4), dom%el_vol0(ne), &
              dom%el_vol(ne), dom%el_h(ne), dom%el_mass(ne), dom%el_j(ne), dom%el_e(ne), dom%el_wp(ne), dom%el_p(ne), &
-             dom%el_q(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_hard(ne), dom%el_soft(ne), &
+             dom%el_q(ne), dom%el_pavg(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_hard(ne), dom%el_soft(ne), &
              dom%el_f(12,ne))
     dom%nd_f = 0.0_rk; dom%nd_p = 0.0_rk
-    dom%el_e = 0.0_rk; dom%el_wp = 0.0_rk; dom%el_p = 0.0_rk; dom%el_q = 0.0_rk; dom%el_s = 0.0_rk
+    dom%el_e = 0.0_rk; dom%el_wp = 0.0_rk; dom%el_p = 0.0_rk; dom%el_q = 0.0_rk; dom%el_pavg = 0.0_rk; dom%el_s = 0.0_rk
     dom%el_eps_p = 0.0_rk; dom%el_f = 0.0_rk
     allocate(dom%el_state(ne), source=0)
     allocate(dom%el_damage(ne), dom%el_eps_tot(ne), source=0.0_rk)

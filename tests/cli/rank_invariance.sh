@@ -2,16 +2,24 @@
 # Rank-count independence: a regression deck run on 1, 2, 3 and 4 MPI ranks
 # gives bitwise identical history files (cmp) and field files (h5diff,
 # /provenance excluded, which holds the rank count).
-#   rank_invariance.sh EXE CASE [T_END]
-# CASE is a folder of tests/regression; T_END, if given, shortens the run.
+#   rank_invariance.sh EXE CASE [T_END] [TET_FORMULATION]
+# CASE is a folder of tests/regression; T_END, if given (or '-'), shortens the
+# run; TET_FORMULATION, if given, replaces the deck's &numerics with
+# tet_formulation = TET_FORMULATION.
 source "$(dirname "$0")/common.sh" "$1"
 case=$2
 t_end=${3:-}
+[ "$t_end" = - ] && t_end=
+tet=${4:-}
 # the same deck in the same folder (the resolved deck, stored in the field
 # file, names the mesh by its absolute path); each run's output moved aside
 mkdir -p "$W/run"
 cp "$ROOT/tests/regression/$case/$case.msh" "$ROOT/tests/regression/$case/$case.nml" "$W/run/"
 [ -n "$t_end" ] && sed -i "s/^\( *\)t_end = .*/\1t_end = $t_end/" "$W/run/$case.nml"
+if [ -n "$tet" ]; then
+  sed -i '/^&numerics/d' "$W/run/$case.nml"
+  echo "&numerics tet_formulation = '$tet' /" >> "$W/run/$case.nml"
+fi
 for n in 1 2 3 4; do
   if ! (cd "$W/run" && timeout 900 mpirun -np $n "$EXE" $case.nml > run.log 2>&1); then
     cat "$W/run/run.log"; bad "run on $n ranks"; exit 1

@@ -2,9 +2,11 @@
 # Restart with fracture, erosion and eroding contact: the penetration deck
 # run to 2.5 us with a checkpoint at 1.5 us, then restarted from it on 2
 # ranks, gives bitwise the history and fields of the straight run.
-#   restart_erosion.sh EXE [anti_locking]
+#   restart_erosion.sh EXE [anti_locking | stabilised]
 # With anti_locking the deck runs with the nodal-averaged pressure, whose
-# reference volumes are rebased at erosion and carried by the checkpoint.
+# reference volumes are rebased at erosion and carried by the checkpoint;
+# stabilised: the stabilised nodal element (theory.md 8.1), whose element
+# share of the nodal pressure is recomputed every cycle, not checkpointed.
 source "$(dirname "$0")/common.sh" "$1"
 case=penetration
 cp "$ROOT/tests/regression/$case/$case.msh" "$ROOT/tests/regression/$case/$case.nml" "$W/"
@@ -14,6 +16,9 @@ grep -q 'dt_checkpoint = 1.5e-6' "$W/$case.nml" || { bad "deck_has_checkpoints";
 if [ "${2:-}" = anti_locking ]; then
   sed -i 's/anti_locking = .false./anti_locking = .true./' "$W/$case.nml"
   grep -q 'anti_locking = .true.' "$W/$case.nml" || { bad "deck_has_anti_locking"; exit 1; }
+elif [ "${2:-}" = stabilised ]; then
+  sed -i "s/anti_locking = .false./tet_formulation = 'stabilised', stabilisation = 0.1/" "$W/$case.nml"
+  grep -q "tet_formulation = 'stabilised'" "$W/$case.nml" || { bad "deck_has_stabilised"; exit 1; }
 fi
 (cd "$W" && timeout 600 "$EXE" $case.nml > straight.log 2>&1) || { cat "$W/straight.log"; bad "straight run"; exit 1; }
 mkdir -p "$W/straight" && cp "$W/out/${case}_history.csv" "$W/out/$case.h5" "$W/straight/"

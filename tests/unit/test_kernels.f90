@@ -8,7 +8,7 @@ program test_kernels
   use udar_tet4, only: tet_volume, tet_gradients, tet_velocity_gradient
   use udar_strength, only: strength_block, von_mises, yield_stress, thermal_softening, power_ratio
   use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
-  use udar_hydro, only: volumetric_update
+  use udar_hydro, only: volumetric_update, blended_volume_ratio, blended_pressures
   use udar_fracture, only: fracture_update, jc_fracture_strain
   use udar_config, only: fracture_plastic_strain, fracture_johnson_cook
   use unit_checks, only: check, check_summary
@@ -20,6 +20,7 @@ program test_kernels
   call test_radial_return()
   call test_eos()
   call test_fracture()
+  call test_blend()
   call check_summary()
 
 contains
@@ -165,6 +166,34 @@ contains
     dd = d; dd(1:3) = dd(1:3) - sum(d(1:3))/3
     rate_of = sqrt(2.0_rk/3*(dd(1)**2 + dd(2)**2 + dd(3)**2 + 2*(dd(4)**2 + dd(5)**2 + dd(6)**2)))
   end function
+
+  !> Stabilised tetrahedron (theory.md 8.1): the blend's limits, and the two
+  !> pressure shares are p times the partial derivatives of J* (central
+  !> differences), which is what makes the forces work-conjugate.
+  subroutine test_blend()
+    real(rk), parameter :: jb = 0.97_rk, je = 0.6_rk, p = 2.0e9_rk, dj = 1.0e-6_rk
+    real(rk) :: js, dbar, down, err
+    logical :: geo
+    integer :: k
+    call check('blend_limits', abs(blended_volume_ratio(.true., 0.0_rk, jb, je) - jb) < 1e-15_rk .and. &
+               abs(blended_volume_ratio(.true., 1.0_rk, jb, je) - je) < 1e-15_rk .and. &
+               abs(blended_volume_ratio(.false., 0.0_rk, jb, je) - jb) < 1e-15_rk .and. &
+               abs(blended_volume_ratio(.false., 1.0_rk, jb, je) - je) < 1e-15_rk, 'beta = 0: Jbar, beta = 1: Je')
+    err = 0.0_rk
+    do k = 1, 2
+      geo = k == 1
+      js = blended_volume_ratio(geo, 0.1_rk, jb, je)
+      dbar = (blended_volume_ratio(geo, 0.1_rk, jb + dj, je) - blended_volume_ratio(geo, 0.1_rk, jb - dj, je))/(2*dj)
+      down = (blended_volume_ratio(geo, 0.1_rk, jb, je + dj) - blended_volume_ratio(geo, 0.1_rk, jb, je - dj))/(2*dj)
+      err = max(err, abs(blended_pressures(geo, .false., 0.1_rk, p, js, jb, je)/(p*dbar) - 1), &
+                     abs(blended_pressures(geo, .true., 0.1_rk, p, js, jb, je)/(p*down) - 1))
+    end do
+    call check('blend_conjugate_pressures', err < 1e-8_rk, 'max relative error '//r2s(err)// &
+               ' of p dJ*/dJbar and p dJ*/dJe (geometric and linear)')
+    call check('blend_geometric_barrier', blended_volume_ratio(.true., 0.1_rk, 1.0_rk, 1.0e-6_rk) < 0.26_rk .and. &
+               blended_volume_ratio(.false., 0.1_rk, 1.0_rk, 1.0e-6_rk) > 0.89_rk, &
+               'Je -> 0: geometric J* -> 0 (0.25 at 1e-6), linear stays near 0.9')
+  end subroutine
 
   subroutine test_eos()
     real(rk) :: a, b, p, j, us, up
