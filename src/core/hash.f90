@@ -25,11 +25,7 @@ contains
   pure integer(i8) function hash_ints(h, a) result(r)
     integer(i8), intent(in) :: h
     integer, intent(in) :: a(:)
-    integer :: i
-    r = h
-    do i = 1, size(a)
-      r = mix_word(r, int(a(i), i8))
-    end do
+    r = hash_i8s(h, int(a, i8))
   end function
 
   pure integer(i8) function hash_i8s(h, a) result(r)

@@ -147,8 +147,12 @@ contains
         return
       end if
       ! a run that ended by the kinetic-energy criterion checkpointed at its end
-      call compute_balance(dom, walls, ct, bal)
-      if (mod(st%cycle, balance_interval) == 0 .and. bal%kinetic < cfg%run%end_kinetic_fraction*st%ke_peak) then
+      ended = .false.
+      if (cfg%run%end_kinetic_fraction > 0.0_rk .and. mod(st%cycle, balance_interval) == 0) then
+        call compute_balance(dom, walls, ct, bal)
+        ended = bal%kinetic < cfg%run%end_kinetic_fraction*st%ke_peak
+      end if
+      if (ended) then
         call log_info('checkpoint '//trim(restart_path)//' is at the end of the event (kinetic energy below '// &
                       'end_kinetic_fraction of its peak): nothing to do')
         call write_status(base, 'complete', '')
@@ -206,8 +210,6 @@ contains
     ! the stable step is watched from here on: the first warning below
     ! dt_warn_ratio of the starting step, then one per further factor of 10
     dt_warn_level = 0
-    call write_status(base, 'running', 'since cycle '//itoa(st%cycle)//'; a run killed hard (out of memory, '// &
-      'node failure, kill -9) leaves this: continue with --restart auto')
 
     done = .false.
     stopping = .false.
@@ -362,8 +364,7 @@ contains
       ! and a field step after the checkpoint (a restart drops them and goes on
       ! as if never stopped)
       if (stopping) then
-        call compute_balance(dom, walls, ct, bal)
-        bal%error = (bal%total - bal%wall_work - bal%contact_work - st%e0)/max(st%e_ref, bal%kinetic)
+        ! (stops are decided on balance cycles: bal is this cycle's)
         if (.not. history_due) call history_row(dt)
         if (.not. fields_due) call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
       end if
@@ -580,8 +581,7 @@ contains
       errmsg = ''
       if (comms_is_root()) call make_directories(trim(cfg%output%directory), ok, errmsg)
       call fatal_unless_all_ok(exit_io, ok, '&output directory: '//errmsg)
-      ! first, while there is room: a full disk can then still say 'failed' in it
-      call write_status(base, 'running', 'since cycle 0')
+      call status_running()
       ! the field file gets each rank's owned nodes (1..n_owned_nodes) and elements
       work_node = transpose(dom%nd_x0(:,1:dom%n_owned_nodes))
       allocate(conn_global(no,4))
@@ -598,10 +598,19 @@ contains
       if (comms_max_int(merge(0, 1, ok)) /= 0) call output_failed(errmsg, ok)
     end subroutine
 
+    !> Status 'running' before any output is opened, while there is room: a
+    !> full disk can then still say 'failed' in it, and a run killed hard
+    !> leaves it.
+    subroutine status_running()
+      call write_status(base, 'running', 'since cycle '//itoa(st%cycle)//'; a run killed hard (out of memory, '// &
+        'node failure, kill -9) leaves this: continue with --restart auto')
+    end subroutine
+
     !> Continue the field file and the history of the run the checkpoint
     !> came from, dropping what was written after it.
     subroutine reopen_outputs()
       integer :: bad_out
+      call status_running()
       bad_out = 0
       errmsg = ''
       if (comms_is_root()) then

@@ -83,44 +83,38 @@ contains
   subroutine stiffness_times(bulk, shear, u, ku)
     real(rk), intent(in) :: bulk, shear, u(:,:)
     real(rk), intent(out) :: ku(:,:)
-    real(rk) :: ue(1,4,3), g(1,4,3), d(1,6), w(1,3), s(1,6), p(1), f(1,4,3), tr
-    real(rk), allocatable :: tr_el(:), j_node(:), p_el(:), p_node(:)
+    real(rk) :: ue(1,4,3), g(1,4,3), d(1,6), w(1,3), s(1,6), p(1), f(1,4,3)
+    real(rk) :: strain(ne,6), tr(ne), j_node(n), p_node(n)
     integer :: a
-    if (nodal) then
-      ! delta V_a = 1/4 sum_e V_e tr(eps_e); J-bar_e = mean of dV_a/V_a; p_e = -K J-bar_e;
-      ! P_a = volume-weighted mean of p_e; the element applies the mean of its P_a
-      allocate(tr_el(ne), j_node(n), p_el(ne), p_node(n))
-      do e = 1, ne
-        do a = 1, 4
-          ue(1,a,:) = u(:,mesh%tet(e,a))
-        end do
-        g(1,:,:) = grad(e,:,:)
-        call tet_velocity_gradient(1, 1, ue, g, d, w)
-        tr_el(e) = d(1,1) + d(1,2) + d(1,3)
-      end do
-      j_node = 0
-      do e = 1, ne
-        j_node(mesh%tet(e,:)) = j_node(mesh%tet(e,:)) + 0.25_rk*vol(e)*tr_el(e)
-      end do
-      j_node = j_node/vol_node
-      p_node = 0
-      do e = 1, ne
-        p_el(e) = -bulk*0.25_rk*sum(j_node(mesh%tet(e,:)))
-        p_node(mesh%tet(e,:)) = p_node(mesh%tet(e,:)) + 0.25_rk*vol(e)*p_el(e)
-      end do
-      p_node = p_node/vol_node
-    end if
-    ku = 0
     do e = 1, ne
       do a = 1, 4
         ue(1,a,:) = u(:,mesh%tet(e,a))
       end do
       g(1,:,:) = grad(e,:,:)
       call tet_velocity_gradient(1, 1, ue, g, d, w)
-      tr = d(1,1) + d(1,2) + d(1,3)
-      s(1,1:3) = 2.0_rk*shear*(d(1,1:3) - tr/3.0_rk)
-      s(1,4:6) = 2.0_rk*shear*d(1,4:6)
-      p(1) = -bulk*tr
+      strain(e,:) = d(1,:)
+      tr(e) = d(1,1) + d(1,2) + d(1,3)
+    end do
+    if (nodal) then
+      ! delta V_a = 1/4 sum_e V_e tr(eps_e); J-bar_e = mean of dV_a/V_a; p_e = -K J-bar_e;
+      ! P_a = volume-weighted mean of p_e; the element applies the mean of its P_a
+      j_node = 0
+      do e = 1, ne
+        j_node(mesh%tet(e,:)) = j_node(mesh%tet(e,:)) + 0.25_rk*vol(e)*tr(e)
+      end do
+      j_node = j_node/vol_node
+      p_node = 0
+      do e = 1, ne
+        p_node(mesh%tet(e,:)) = p_node(mesh%tet(e,:)) - 0.25_rk*vol(e)*bulk*0.25_rk*sum(j_node(mesh%tet(e,:)))
+      end do
+      p_node = p_node/vol_node
+    end if
+    ku = 0
+    do e = 1, ne
+      g(1,:,:) = grad(e,:,:)
+      s(1,1:3) = 2.0_rk*shear*(strain(e,1:3) - tr(e)/3.0_rk)
+      s(1,4:6) = 2.0_rk*shear*strain(e,4:6)
+      p(1) = -bulk*tr(e)
       if (nodal) p(1) = 0.25_rk*sum(p_node(mesh%tet(e,:)))
       call tet_internal_forces(1, 1, vol(e:e), g, s, p, f)
       do a = 1, 4
