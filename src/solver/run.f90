@@ -514,7 +514,15 @@ contains
       ok = .true.
       errmsg = ''
       if (comms_is_root()) call write_history_row(hist, st%t, st%cycle, dt, bal, row, ok, errmsg)
-      if (comms_max_int(merge(0, 1, ok)) /= 0) call output_failed(errmsg, ok)
+      call output_check(ok, errmsg)
+    end subroutine
+
+    !> After a write every rank may or may not have managed: if any failed,
+    !> the way out of output_failed (collective).
+    subroutine output_check(ok, msg)
+      logical, intent(in) :: ok
+      character(len=*), intent(in) :: msg
+      if (comms_max_int(merge(0, 1, ok)) /= 0) call output_failed(msg, ok)
     end subroutine
 
     !> An output file cannot be written (full disk, quota, lost mount): each
@@ -566,7 +574,7 @@ contains
       ok = .true.
       errmsg = ''
       if (comms_is_root()) call history_sync(hist, ok, errmsg)
-      if (comms_max_int(merge(0, 1, ok)) /= 0) call output_failed(errmsg, ok)
+      call output_check(ok, errmsg)
       call checkpoint_write(checkpoint_path(st%checkpoints_written), dom, st, ok, errmsg)
       if (.not. ok) call output_failed(errmsg, .not. comms_is_root())   ! the same verdict everywhere: root says it
       ckpt_seconds = comms_wtime() - w0
@@ -593,9 +601,9 @@ contains
                    dom%nd_id(1:dom%n_owned_nodes), dom%el_id(dom%el_owned_list), conn_global, &
                    dom%el_part(dom%el_owned_list), work_node, &
                    cfg%resolved_text, program_version, trim(cfg%run%title), comms_size(), ok, errmsg)
-      if (comms_max_int(merge(0, 1, ok)) /= 0) call output_failed(errmsg, ok)
+      call output_check(ok, errmsg)
       if (comms_is_root()) call history_open(hist, base//'_history.csv', history_columns(dom, ct), ok, errmsg)
-      if (comms_max_int(merge(0, 1, ok)) /= 0) call output_failed(errmsg, ok)
+      call output_check(ok, errmsg)
     end subroutine
 
     !> Status 'running' before any output is opened, while there is room: a
@@ -673,7 +681,7 @@ contains
         call fw_node_scalar(fw, 'contact_pressure', work_node(:,1), ok, msg)
       end if
       if (ok) call fw_end_step(fw, ok, msg)
-      if (comms_max_int(merge(0, 1, ok)) /= 0) call output_failed(msg, ok)
+      call output_check(ok, msg)
     end subroutine
   end subroutine
 
