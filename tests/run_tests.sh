@@ -31,6 +31,14 @@ regression() {   # case, binary [deck name, when the case has several]
   ( cd "$dir" && "$ROOT/$exe" $deck.nml ) && $PYTHON tests/regression/$case/check.py "$dir" $deck
 }
 
+# two decks of one case in one folder (the second usually the reference run)
+regression_pair() {   # case, binary, deck, deck
+  local case=$1 exe=$2 dir=$WORK/$1
+  mkdir -p "$dir"
+  cp tests/regression/$case/*.nml tests/regression/$case/*.msh "$dir"/
+  ( cd "$dir" && "$ROOT/$exe" $3.nml && "$ROOT/$exe" $4.nml ) && $PYTHON tests/regression/$case/check.py "$dir"
+}
+
 # ---- unit tests (debug build: bounds checks and floating-point traps on)
 for t in build/debug/tests/test_*; do
   [ -x "$t" ] || continue
@@ -91,6 +99,7 @@ run_test "regression/self_contact" regression self_contact bin/udar-debug
 run_test "cli/self_contact_off" tests/cli/self_contact_off.sh bin/udar
 run_test "regression/taylor_wg" regression taylor_wg bin/udar
 run_test "regression/taylor_ofhc_baseline" regression taylor_ofhc_baseline bin/udar
+run_test "regression/taylor_half_length" regression_pair taylor_half_length bin/udar taylor_half_length taylor_half_length_plain
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -11,12 +11,13 @@ module udar_element_driver
   use udar_strength, only: strength_block, thermal_softening_update, von_mises
   use udar_fracture, only: el_fractured, el_eroded, el_intact, erode_strain, erode_time_step, erode_inverted, &
       fracture_update, fracture_enabled, erosion_enabled, deviatoric_rate
-  use udar_hydro, only: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_pressures
+  use udar_hydro, only: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_pressures, &
+      stable_length_factor
   use udar_config, only: tet_stabilised
   implicit none
   private
   public :: element_volumes, nodal_volumes, element_update, nodal_pressures, &
-            element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes, &
+            element_forces_averaged, assemble_forces, element_stable_dt, element_time_steps, nodal_reference_volumes, &
             element_altitudes
 
 contains
@@ -223,7 +224,8 @@ contains
             hard(i) = dom%el_hard(e)
           end do
         end if
-        call volumetric_update(mat, dom%q_linear, dom%q_quadratic, ld, nb, dt, vol, h, trd, &
+        call volumetric_update(mat, dom%q_linear, dom%q_quadratic, stable_length_factor(dom%anti_locking), &
+                               ld, nb, dt, vol, h, trd, &
                                dom%el_mass(first:last), dom%el_j(first:last), j_new, w_dev, no_shear(1:nb), &
                                e_int, p, q, dt_el)
         ! plastic work heats the material (Taylor-Quinney share), which softens it
@@ -313,16 +315,28 @@ contains
   subroutine element_stable_dt(dom, dt_stable)
     type(domain_t), intent(in) :: dom
     real(rk), intent(out) :: dt_stable
-    integer, parameter :: ld = block_size
-    real(rk) :: grad(ld,4,3), vol(ld), h(ld), c2(ld)
-    integer :: b, nb, first, last
+    real(rk), allocatable :: dt_el(:)
+    allocate(dt_el(dom%n_elems))
+    call element_time_steps(dom, dt_el)
     dt_stable = huge(1.0_rk)
+    if (dom%n_elems > 0) dt_stable = minval(dt_el)
+  end subroutine
+
+  !> Every element's stable step at the current state, f h / c (the
+  !> viscosity's share left out; huge for eroded elements): the step
+  !> estimate of volumetric_update at rest, for start-up and output.
+  subroutine element_time_steps(dom, dt_el)
+    type(domain_t), intent(in) :: dom
+    real(rk), intent(out) :: dt_el(:)
+    integer, parameter :: ld = block_size
+    real(rk) :: grad(ld,4,3), vol(ld), h(ld), c2(ld), f
+    integer :: b, nb, first, last
+    f = stable_length_factor(dom%anti_locking)
     do b = 1, dom%n_blocks
       call block_geometry(dom, b, first, last, nb, vol, grad, h)
-      h(1:nb) = 1.0_rk/sqrt(h(1:nb))
       call dilatational_speed2(dom%mat(dom%el_mat(first)), nb, dom%el_j(first:last), dom%el_p(first:last), &
                                dom%el_mass(first:last), vol, c2)
-      dt_stable = min(dt_stable, minval(h(1:nb)/sqrt(c2(1:nb)), mask=dom%el_state(first:last) /= el_eroded))
+      dt_el(first:last) = merge(huge(1.0_rk), f/sqrt(h(1:nb)*c2(1:nb)), dom%el_state(first:last) == el_eroded)
     end do
   end subroutine
 

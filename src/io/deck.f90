@@ -218,7 +218,7 @@ module udar_deck
     character(len=code_len) :: weights = 'distance'
     character(len=code_len) :: initial_overlap = 'report'
     character(len=code_len) :: fracture = 'none'
-    character(len=code_len) :: tet_formulation = 'nodal'
+    character(len=code_len) :: tet_formulation = 'stabilised'
   end type
 
   !> One assignment as the deck wrote it.
@@ -313,7 +313,7 @@ contains
     logical :: misspelled(n_group_kinds)
 
     cfg%deck_file = path
-    tet_txt = 'nodal'
+    tet_txt = v%tet_formulation     ! the default, when the deck has no &numerics
     ctx%path = trim(path)
     allocate(ctx%d(0))
 

@@ -30,7 +30,7 @@ module udar_config
   type :: run_cfg_t
     character(len=256) :: title = 'udar run'
     real(rk) :: t_end = -1.0_rk            !< s, required
-    real(rk) :: dt_safety = 0.7_rk         !< -, fraction of the stable step
+    real(rk) :: dt_safety = 0.9_rk         !< -, fraction of the stable step estimate (theory.md section 9)
     real(rk) :: dt_initial = 0.0_rk        !< s, 0 = stable step
     real(rk) :: dt_max = huge(1.0_rk)      !< s
     integer  :: max_cycles = huge(1)       !< -
@@ -92,7 +92,7 @@ module udar_config
 
   type :: numerics_cfg_t
     logical  :: anti_locking = .true.   !< nodal-averaged volumetric strain (Bonet-Burton); .false. = plain tet
-    integer  :: tet_formulation = tet_nodal  !< with anti_locking: nodal, stabilised or stabilised_linear
+    integer  :: tet_formulation = tet_stabilised  !< with anti_locking: nodal, stabilised or stabilised_linear
     real(rk) :: stabilisation = 0.1_rk  !< -, beta: weight of the element's own volume ratio (stabilised)
     real(rk) :: q_linear = 0.06_rk      !< -, linear artificial viscosity coefficient
     real(rk) :: q_quadratic = 1.5_rk    !< -, quadratic artificial viscosity coefficient

@@ -17,7 +17,7 @@ module udar_run
   use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_value
   use udar_fatal, only: fatal, fatal_all, fatal_unless_all_ok, exit_physics, exit_io, log_error_here
   use udar_log, only: log_info, log_warn
-  use udar_element_driver, only: element_volumes, nodal_volumes, element_update, nodal_pressures, &
+  use udar_element_driver, only: element_volumes, nodal_volumes, element_update, nodal_pressures, element_time_steps, &
       element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes, &
       element_altitudes
   use udar_fracture, only: fracture_enabled, el_intact, el_eroded
@@ -92,7 +92,7 @@ contains
     type(balance_t) :: bal
     type(wall_sums_t) :: walls
     type(run_state_t) :: st
-    real(rk), allocatable :: work_svm(:), work_rho(:), row(:), work_node(:,:), work_elem(:)
+    real(rk), allocatable :: work_svm(:), work_rho(:), row(:), work_node(:,:), work_elem(:), work_step(:)
     real(rk), allocatable :: x_constrained(:,:)   !< positions of the constrained nodes before the contact pass
     real(rk) :: dt, dt_v, wall0, elapsed, loop0, last_print_wall, left, ckpt_seconds, cycle_seconds, &
                 contact_seconds, dt_local
@@ -110,7 +110,7 @@ contains
     wall0 = comms_wtime()
     fracture_on = any_fracture(dom)
     no = size(dom%el_owned_list)
-    allocate(work_svm(no), work_rho(no), work_elem(no))
+    allocate(work_svm(no), work_rho(no), work_elem(no), work_step(dom%n_elems))
     base = trim(cfg%output%directory)//'/'//trim(cfg%output%case_name)
     res%field_file = base//'.h5'
     res%history_file = base//'_history.csv'
@@ -651,7 +651,8 @@ contains
         e = dom%el_owned_list(i)
         s6 = dom%el_s(e,:)
         svm(i) = von_mises(s6)
-        rho(i) = dom%el_mass(e)/dom%el_vol(e)
+        ! the density the EOS saw (rho0 / J*), consistent with the pressure
+        rho(i) = dom%mat(dom%el_mat(e))%rho0/dom%el_j(e)
       end do
       ! the field file holds (n,3) tables of the owned rows
       work_node = transpose(dom%nd_x(:,1:dom%n_owned_nodes))
@@ -666,6 +667,9 @@ contains
       work_elem = dom%el_temp(dom%el_owned_list)
       if (ok) call fw_elem_scalar(fw, 'temperature', work_elem, ok, msg)
       if (ok) call fw_elem_scalar(fw, 'density', rho, ok, msg)
+      call element_time_steps(dom, work_step)
+      work_elem = work_step(dom%el_owned_list)
+      if (ok) call fw_elem_scalar(fw, 'time_step', work_elem, ok, msg)
       if (ok .and. fracture_on) then
         work_elem = dom%el_damage(dom%el_owned_list)
         call fw_elem_scalar(fw, 'damage', work_elem, ok, msg)
