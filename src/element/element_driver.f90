@@ -7,18 +7,18 @@
 module udar_element_driver
   use udar_kinds, only: rk
   use udar_domain, only: domain_t, block_size
-  use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_volume
+  use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_volume, tet_stiffness_bound
   use udar_strength, only: strength_block, thermal_softening_update, von_mises
   use udar_fracture, only: el_fractured, el_eroded, el_intact, erode_strain, erode_time_step, erode_inverted, &
       fracture_update, fracture_enabled, erosion_enabled, deviatoric_rate
   use udar_hydro, only: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_pressures, &
-      stable_length_factor
+      step_shear_modulus, step_volumetric_share
   use udar_config, only: tet_stabilised
   implicit none
   private
   public :: element_volumes, nodal_volumes, element_update, nodal_pressures, &
-            element_forces_averaged, assemble_forces, element_stable_dt, element_time_steps, nodal_reference_volumes, &
-            element_altitudes
+            element_forces_averaged, assemble_forces, element_stiffness_bounds, nodal_stable_dt, element_time_steps, &
+            nodal_reference_volumes, element_altitudes
 
 contains
 
@@ -122,28 +122,26 @@ contains
   !> pressures first. Fracture and erosion: a fractured element keeps no
   !> deviator and no tension; an eroded one passes through the kernels as an
   !> element at rest (no strain, no force, its state frozen) and is left out
-  !> of the time step. Returns the smallest stable time step, the first
+  !> of the time step. Keeps each element's stiffness bound for the nodal
+  !> time step (el_k, 0 when eroded). Returns the first
   !> element (lowest id) with a non-positive volume and the first whose
   !> nodal-averaged volume ratio is non-positive (a neighbour inverted), or
   !> 0 (elements of eroding materials are eroded instead), the owned
   !> elements eroded this cycle by reason (udar_fracture erode_*), and
   !> whether any local element was eroded.
-  subroutine element_update(dom, dt, dt_stable, dt_elem, bad_elem, bad_j, n_eroded, eroded_any)
+  subroutine element_update(dom, dt, bad_elem, bad_j, n_eroded, eroded_any)
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
-    real(rk), intent(out) :: dt_stable
-    integer, intent(out) :: dt_elem          !< the (first) element setting dt_stable, 0 if none
     integer, intent(out) :: bad_elem, bad_j, n_eroded(3)
     logical, intent(out) :: eroded_any
     integer, parameter :: ld = block_size
     real(rk) :: ve(ld,4,3), grad(ld,4,3), fe(ld,4,3)
     real(rk) :: vol(ld), h(ld), d(ld,6), w(ld,3), s(ld,6), p_app(ld), trd(ld), j_new(ld), &
-                w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld), dt_el(ld)
+                w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld), dt_el(ld), &
+                bulk(ld), visc(ld), lam(ld)
     logical :: gone(ld), no_shear(ld), erodible, fracturing, fractured, stab, geo
     real(rk) :: t_old, d_eps, jbar(ld), je(ld)
     integer :: b, i, e, nb, first, last, k
-    dt_stable = huge(1.0_rk)
-    dt_elem = 0
     bad_elem = 0
     bad_j = 0
     n_eroded = 0
@@ -224,10 +222,16 @@ contains
             hard(i) = dom%el_hard(e)
           end do
         end if
-        call volumetric_update(mat, dom%q_linear, dom%q_quadratic, stable_length_factor(dom%anti_locking), &
-                               ld, nb, dt, vol, h, trd, &
+        call volumetric_update(mat, dom%q_linear, dom%q_quadratic, ld, nb, dt, vol, h, trd, &
                                dom%el_mass(first:last), dom%el_j(first:last), j_new, w_dev, no_shear(1:nb), &
-                               e_int, p, q, dt_el)
+                               e_int, p, q, bulk, visc)
+        ! the element's stiffness bound (stiffened by its viscosity) and its own step
+        call tet_stiffness_bound(ld, nb, vol, grad, bulk, step_shear_modulus(mat), &
+                                 step_volumetric_share(dom%anti_locking, dom%stab_beta), lam)
+        do i = 1, nb
+          lam(i) = lam(i)*visc(i)
+          dt_el(i) = own_step(dom%el_mass(first + i - 1), lam(i))
+        end do
         ! plastic work heats the material (Taylor-Quinney share), which softens it
         do i = 1, nb
           if (w_pl(i) <= 0.0_rk) cycle
@@ -272,11 +276,7 @@ contains
           end do
         end if
       end associate
-      do i = 1, nb
-        if (gone(i) .or. dt_el(i) >= dt_stable) cycle
-        dt_stable = dt_el(i)
-        dt_elem = first + i - 1
-      end do
+      dom%el_k(first:last) = merge(0.0_rk, lam(1:nb), gone(1:nb))
       do k = 1, 6
         dom%el_s(first:last,k) = s(1:nb,k)
       end do
@@ -311,33 +311,67 @@ contains
     end subroutine
   end subroutine
 
-  !> Stable step of the current state without advancing it (start-up).
-  subroutine element_stable_dt(dom, dt_stable)
-    type(domain_t), intent(in) :: dom
-    real(rk), intent(out) :: dt_stable
-    real(rk), allocatable :: dt_el(:)
-    allocate(dt_el(dom%n_elems))
-    call element_time_steps(dom, dt_el)
-    dt_stable = huge(1.0_rk)
-    if (dom%n_elems > 0) dt_stable = minval(dt_el)
+  !> The stiffness bounds el_k of the current state without advancing it
+  !> (start-up and restart: no viscosity).
+  subroutine element_stiffness_bounds(dom)
+    type(domain_t), intent(inout) :: dom
+    integer, parameter :: ld = block_size
+    real(rk) :: grad(ld,4,3), vol(ld), h(ld), c2(ld), bulk(ld), lam(ld), g
+    integer :: b, nb, first, last
+    do b = 1, dom%n_blocks
+      call block_geometry(dom, b, first, last, nb, vol, grad, h)
+      associate (mat => dom%mat(dom%el_mat(first)))
+        g = step_shear_modulus(mat)
+        call dilatational_speed2(mat, nb, dom%el_j(first:last), dom%el_p(first:last), dom%el_mass(first:last), vol, c2)
+        bulk(1:nb) = c2(1:nb)*dom%el_mass(first:last)/vol(1:nb) - 4.0_rk/3.0_rk*g
+        call tet_stiffness_bound(ld, nb, vol, grad, bulk, g, step_volumetric_share(dom%anti_locking, dom%stab_beta), &
+                                 lam)
+      end associate
+      dom%el_k(first:last) = merge(0.0_rk, lam(1:nb), dom%el_state(first:last) == el_eroded)
+    end do
   end subroutine
 
-  !> Every element's stable step at the current state, f h / c (the
-  !> viscosity's share left out; huge for eroded elements): the step
-  !> estimate of volumetric_update at rest, for start-up and output.
+  !> The nodal time step (theory.md section 9): K <= diag(sum of the
+  !> incident elements' stiffness bounds), so the highest frequency of the
+  !> lumped-mass mesh is at most max_n sqrt(k_n/m_n) and
+  !>   dt = min_n 2 sqrt(m_n/k_n),  k_n = sum_(e at n) el_k(e)
+  !> is stable. Over the owned nodes; node = the one setting it (0: none).
+  subroutine nodal_stable_dt(dom, dt_stable, node)
+    type(domain_t), intent(in) :: dom
+    real(rk), intent(out) :: dt_stable
+    integer, intent(out) :: node
+    real(rk) :: k_n, r
+    integer :: n, k
+    dt_stable = huge(1.0_rk)
+    node = 0
+    do n = 1, dom%n_owned_nodes
+      k_n = 0.0_rk
+      do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
+        k_n = k_n + dom%el_k(dom%nd_el(k))
+      end do
+      if (k_n <= 0.0_rk) cycle
+      r = dom%nd_mass(n)/k_n
+      if (4.0_rk*r < dt_stable**2) then
+        dt_stable = 2.0_rk*sqrt(r)
+        node = n
+      end if
+    end do
+  end subroutine
+
+  !> An element's own stable step from its stiffness bound and its lumped
+  !> mass (a quarter at each node): the nodal step of the element alone.
+  elemental real(rk) function own_step(mass, k) result(dt)
+    real(rk), intent(in) :: mass, k
+    dt = huge(1.0_rk)
+    if (k > 0.0_rk) dt = 2.0_rk*sqrt(0.25_rk*mass/k)
+  end function
+
+  !> Every element's own stable step (own_step of its last stiffness
+  !> bound; huge for eroded elements), for output.
   subroutine element_time_steps(dom, dt_el)
     type(domain_t), intent(in) :: dom
     real(rk), intent(out) :: dt_el(:)
-    integer, parameter :: ld = block_size
-    real(rk) :: grad(ld,4,3), vol(ld), h(ld), c2(ld), f
-    integer :: b, nb, first, last
-    f = stable_length_factor(dom%anti_locking)
-    do b = 1, dom%n_blocks
-      call block_geometry(dom, b, first, last, nb, vol, grad, h)
-      call dilatational_speed2(dom%mat(dom%el_mat(first)), nb, dom%el_j(first:last), dom%el_p(first:last), &
-                               dom%el_mass(first:last), vol, c2)
-      dt_el(first:last) = merge(huge(1.0_rk), f/sqrt(h(1:nb)*c2(1:nb)), dom%el_state(first:last) == el_eroded)
-    end do
+    dt_el = own_step(dom%el_mass, dom%el_k)
   end subroutine
 
   !> Forces with the element pressure replaced by the mean of its nodes'

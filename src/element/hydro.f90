@@ -7,13 +7,15 @@ module udar_hydro
   use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
   implicit none
   private
-  public :: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_pressures, stable_length_factor
+  public :: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_pressures, step_shear_modulus, &
+            step_volumetric_share
 
-  !> The nodal-averaged elements' stable length over the smallest altitude:
-  !> their volumetric stiffness acts on the nodal patch, and the assembled
-  !> highest frequency measured on deformed meshes (theory.md section 9)
-  !> allows at least 1.68 h/c against 1.31 h/c for the plain element.
-  real(rk), parameter :: averaged_length_factor = 1.25_rk
+  !> The share of an element's volumetric stiffness that the nodal time step
+  !> of the nodal-averaged elements counts beyond their own beta: their
+  !> averaged part acts over the nodal patch. Measured (theory.md section 9):
+  !> with it the assembled limit is still at least 1.41 times the nodal step
+  !> on every mesh tried, the plain element's exact bound at least 1.22.
+  real(rk), parameter :: patch_share = 1.0_rk/6.0_rk
 
 contains
 
@@ -21,25 +23,28 @@ contains
   !> volume change trd = tr D (compression only), then
   !>   e(n+1) = e(n) + (w_dev - q trd dt) V/m - (p(n) + p(n+1)) dv / 2,
   !>   dv = (J(n+1) - J(n)) / rho0,  p(n+1) = A(J(n+1)) + B e(n+1),
-  !> solved for e(n+1) in closed form; and the smallest
-  !>   dt = h / (Q + sqrt(Q^2 + c^2)),  Q = q_lin c + q_quad h |trd|
-  !> (Hallquist, LS-DYNA theory manual, section 18), h times h_factor
-  !> (stable_length_factor) for the nodal-averaged elements.
+  !> solved for e(n+1) in closed form. For the time step (theory.md
+  !> section 9): the tangent bulk modulus rho c_b^2 and the factor by which
+  !> the viscosity shortens the element's step, squared, as a stiffness
+  !> factor: ((Q + sqrt(Q^2 + c^2))/c)^2, Q = q_lin c + q_quad h |trd|
+  !> (the element step h/(Q + sqrt(Q^2 + c^2)) of Hallquist, LS-DYNA theory
+  !> manual, section 18, over h/c).
   !> Fractured elements (no_tension) carry no tension: where the EOS would
   !> give p < 0 the pressure is 0 and the energy equation has no p dv term
-  !> for the new pressure. dt_el: each element's stable step.
-  pure subroutine volumetric_update(mat, q_lin, q_quad, h_factor, ld, nb, dt, vol, h, trd, mass, j_old, j_new, &
-                                    w_dev, no_tension, e, p, q, dt_el)
+  !> for the new pressure.
+  pure subroutine volumetric_update(mat, q_lin, q_quad, ld, nb, dt, vol, h, trd, mass, j_old, j_new, &
+                                    w_dev, no_tension, e, p, q, bulk_tan, visc)
     type(material_cfg_t), intent(in) :: mat
-    real(rk), intent(in) :: q_lin, q_quad, h_factor, dt
+    real(rk), intent(in) :: q_lin, q_quad, dt
     integer, intent(in) :: ld, nb
     real(rk), intent(in) :: vol(nb), h(nb), trd(nb), mass(nb), j_old(nb), j_new(nb), w_dev(nb)
     logical, intent(in) :: no_tension(nb)
     real(rk), intent(inout) :: e(nb), p(nb), q(nb)
-    real(rk), intent(out) :: dt_el(nb)
-    real(rk) :: c2(ld), a(ld), b(ld), rho, c, eq, dv, e_star
+    real(rk), intent(out) :: bulk_tan(nb), visc(nb)
+    real(rk) :: c2(ld), a(ld), b(ld), rho, c, eq, dv, e_star, g43
     integer :: i
     call dilatational_speed2(mat, nb, j_old, p, mass, vol, c2)
+    g43 = 4.0_rk/3.0_rk*step_shear_modulus(mat)
     if (mat%eos == eos_mie_gruneisen) then
       do i = 1, nb
         call eos_mie_gruneisen_ab(mat%rho0, mat%c0, mat%s, mat%gamma0, j_new(i), a(i), b(i))
@@ -67,7 +72,8 @@ contains
         e(i) = e_star
         p(i) = 0.0_rk
       end if
-      dt_el(i) = h_factor*h(i)/(eq + sqrt(eq*eq + c2(i)))
+      bulk_tan(i) = rho*c2(i) - g43
+      visc(i) = ((eq + sqrt(eq*eq + c2(i)))/c)**2
     end do
   end subroutine
 
@@ -102,11 +108,22 @@ contains
     end if
   end function
 
-  !> Stable length over the smallest altitude: 1 for the plain element,
-  !> averaged_length_factor for the nodal-averaged ones.
-  pure real(rk) function stable_length_factor(averaged) result(f)
+  !> The volumetric share phi of the element stiffness bound
+  !> (tet_stiffness_bound): 1 for the plain element; beta + (1 - beta)
+  !> patch_share for the nodal-averaged ones (beta = 0: 'nodal').
+  pure real(rk) function step_volumetric_share(averaged, beta) result(phi)
     logical, intent(in) :: averaged
-    f = merge(averaged_length_factor, 1.0_rk, averaged)
+    real(rk), intent(in) :: beta
+    phi = 1.0_rk
+    if (averaged) phi = beta + (1.0_rk - beta)*patch_share
+  end function
+
+  !> The shear modulus of the wave speed and of the time step: none for
+  !> materials without strength.
+  pure real(rk) function step_shear_modulus(mat) result(g)
+    type(material_cfg_t), intent(in) :: mat
+    g = 0.0_rk
+    if (mat%strength /= strength_none) g = mat%shear_modulus
   end function
 
   !> Square of the dilatational wave speed: bulk sound speed at (J, p) plus
@@ -127,8 +144,7 @@ contains
         c2(i) = eos_linear_c2(mat%bulk_modulus, mat%rho0)
       end do
     end if
-    g43 = 0.0_rk
-    if (mat%strength /= strength_none) g43 = 4.0_rk*mat%shear_modulus/3.0_rk
+    g43 = 4.0_rk/3.0_rk*step_shear_modulus(mat)
     do i = 1, nb
       c2(i) = c2(i) + g43*vol(i)/mass(i)
     end do

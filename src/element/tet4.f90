@@ -8,7 +8,7 @@ module udar_tet4
   use udar_kinds, only: rk
   implicit none
   private
-  public :: tet_volume, tet_gradients, tet_velocity_gradient, tet_internal_forces
+  public :: tet_volume, tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_stiffness_bound
 
 contains
 
@@ -89,6 +89,36 @@ contains
         f(i,a,2) = -vol(i)*(s(i,4)*grad(i,a,1) + syy*grad(i,a,2) + s(i,5)*grad(i,a,3))
         f(i,a,3) = -vol(i)*(s(i,6)*grad(i,a,1) + s(i,5)*grad(i,a,2) + szz*grad(i,a,3))
       end do
+    end do
+  end subroutine
+
+  !> An upper bound of the largest eigenvalue of the element's isotropic
+  !> elastic stiffness (bulk modulus k(i), shear modulus g), for the nodal
+  !> time step (theory.md section 9). With S = sum_a grad N_a grad N_a^T,
+  !> L = sum_a u_a grad N_a^T and D = |u|^2 at the least-norm u for L:
+  !>   u.K u = V (lambda (tr L)^2 + 2 g |sym L|^2),  lambda = k - 2g/3,
+  !>   (tr L)^2 <= tr S D,  |sym L|^2 <= |L|^2 <= s_max D,
+  !> so (lambda >= 0) lambda_max <= V (lambda tr S + 2 g s_max), exact for a
+  !> regular tetrahedron, with s_max <= tr S/3 + sqrt(2/3) |dev S|. The
+  !> volumetric term is scaled by phi: 1 is the plain element's bound, the
+  !> nodal-averaged elements take less (hydro step_volumetric_share).
+  pure subroutine tet_stiffness_bound(ld, nb, vol, grad, k, g, phi, lam)
+    integer, intent(in) :: ld, nb
+    real(rk), intent(in) :: vol(nb), grad(ld,4,3), k(nb), g, phi
+    real(rk), intent(inout) :: lam(nb)
+    real(rk) :: sxx, syy, szz, sxy, syz, szx, tr3, dev2
+    integer :: i
+    do i = 1, nb
+      sxx = grad(i,1,1)**2 + grad(i,2,1)**2 + grad(i,3,1)**2 + grad(i,4,1)**2
+      syy = grad(i,1,2)**2 + grad(i,2,2)**2 + grad(i,3,2)**2 + grad(i,4,2)**2
+      szz = grad(i,1,3)**2 + grad(i,2,3)**2 + grad(i,3,3)**2 + grad(i,4,3)**2
+      sxy = grad(i,1,1)*grad(i,1,2) + grad(i,2,1)*grad(i,2,2) + grad(i,3,1)*grad(i,3,2) + grad(i,4,1)*grad(i,4,2)
+      syz = grad(i,1,2)*grad(i,1,3) + grad(i,2,2)*grad(i,2,3) + grad(i,3,2)*grad(i,3,3) + grad(i,4,2)*grad(i,4,3)
+      szx = grad(i,1,3)*grad(i,1,1) + grad(i,2,3)*grad(i,2,1) + grad(i,3,3)*grad(i,3,1) + grad(i,4,3)*grad(i,4,1)
+      tr3 = (sxx + syy + szz)/3.0_rk
+      dev2 = (sxx - tr3)**2 + (syy - tr3)**2 + (szz - tr3)**2 + 2.0_rk*(sxy**2 + syz**2 + szx**2)
+      lam(i) = abs(vol(i))*(3.0_rk*phi*max(k(i) - 2.0_rk/3.0_rk*g, 0.0_rk)*tr3 &
+                            + 2.0_rk*g*(tr3 + sqrt(2.0_rk/3.0_rk*dev2)))
     end do
   end subroutine
 end module udar_tet4

@@ -45,6 +45,8 @@ module udar_domain
     integer, allocatable :: el_conn(:,:)        !< (n,4) node indices
     real(rk), allocatable :: el_vol0(:), el_vol(:), el_mass(:)   !< m3, m3, kg
     real(rk), allocatable :: el_h(:)   !< m, smallest altitude at the last update (huge when eroded)
+    real(rk), allocatable :: el_k(:)   !< N/m, bound of the element stiffness's largest eigenvalue at the last
+                                       !< update, times its viscosity factor (0 when eroded): the nodal time step
     real(rk), allocatable :: el_j(:)            !< -, volume ratio seen by the EOS (nodal-averaged with anti-locking)
     real(rk), allocatable :: el_e(:)            !< J/kg, specific internal energy
     real(rk), allocatable :: el_wp(:)           !< J/kg, specific plastic work

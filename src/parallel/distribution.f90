@@ -116,6 +116,7 @@ contains
       loc%el_vol0 = glob%el_vol0(ge)
       loc%el_vol = glob%el_vol(ge)
       loc%el_h = glob%el_h(ge)
+      loc%el_k = glob%el_k(ge)
       loc%el_mass = glob%el_mass(ge)
       loc%el_j = glob%el_j(ge)
       loc%el_e = glob%el_e(ge)

@@ -18,7 +18,7 @@ module udar_run
   use udar_fatal, only: fatal, fatal_all, fatal_unless_all_ok, exit_physics, exit_io, log_error_here
   use udar_log, only: log_info, log_warn
   use udar_element_driver, only: element_volumes, nodal_volumes, element_update, nodal_pressures, element_time_steps, &
-      element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes, &
+      element_forces_averaged, assemble_forces, element_stiffness_bounds, nodal_stable_dt, nodal_reference_volumes, &
       element_altitudes
   use udar_fracture, only: fracture_enabled, el_intact, el_eroded
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions, &
@@ -97,7 +97,7 @@ contains
     real(rk) :: dt, dt_v, wall0, elapsed, loop0, last_print_wall, left, ckpt_seconds, cycle_seconds, &
                 contact_seconds, dt_local
     integer :: bad, bad_avg, bad_gidx, bad_tag, bad_part, last_print_cycle, no, k, stop_code, cycles_run, n_slave, &
-               dt_elem, dt_warn_level
+               dt_node, dt_warn_level
     integer :: n_eroded_now(3), n_eroded_by(3)
     logical, allocatable :: owned_gone(:)                  !< owned elements already passed to the contact surfaces
     integer, allocatable :: new_gidx(:), all_gidx(:), erosion_counts(:)
@@ -161,6 +161,8 @@ contains
         return
       end if
       call reopen_outputs()
+      ! the time step comes from the checkpoint; the bounds only for output until the first update
+      call element_stiffness_bounds(dom)
       ! each rank's accumulator adds to the global sum: the saved total goes to one rank
       walls%work = 0
       walls%contact_work = 0
@@ -175,7 +177,8 @@ contains
       do k = 1, size(overlap_lines)
         call log_info(trim(overlap_lines(k)))
       end do
-      call element_stable_dt(dom, st%dt_stable)
+      call element_stiffness_bounds(dom)
+      call nodal_stable_dt(dom, st%dt_stable, dt_node)
       st%dt_stable = comms_min(st%dt_stable)
       st%dt0 = st%dt_stable
       call compute_balance(dom, walls, ct, bal)
@@ -260,7 +263,7 @@ contains
         call nodal_volumes(dom)
         call comms_halo_exchange_scalar(halo, dom%nd_j)
       end if
-      call element_update(dom, dt, st%dt_stable, dt_elem, bad, bad_avg, n_eroded_now, eroded_any)
+      call element_update(dom, dt, bad, bad_avg, n_eroded_now, eroded_any)
       n_eroded_by = n_eroded_by + n_eroded_now
       if (eroded_any) call nodal_reference_volumes(dom, rebase=dom%anti_locking)
       if (ct%n_tets > 0) call share_erosion(sum(n_eroded_now) > 0, .true.)
@@ -282,17 +285,18 @@ contains
         call write_status(base, 'failed', line)
         call fatal_all(exit_physics, line)
       end if
-      dt_local = st%dt_stable
-      st%dt_stable = comms_min(st%dt_stable)
-      if (cfg%run%dt_warn_ratio > 0.0_rk) then
-        if (st%dt_stable < cfg%run%dt_warn_ratio*st%dt0/10.0_rk**dt_warn_level) call warn_small_step()
-      end if
       if (dom%anti_locking) then
         call nodal_pressures(dom)
         call comms_halo_exchange_scalar(halo, dom%nd_p)
         call element_forces_averaged(dom)
       end if
       call assemble_forces(dom)
+      call nodal_stable_dt(dom, st%dt_stable, dt_node)
+      dt_local = st%dt_stable
+      st%dt_stable = comms_min(st%dt_stable)
+      if (cfg%run%dt_warn_ratio > 0.0_rk) then
+        if (st%dt_stable < cfg%run%dt_warn_ratio*st%dt0/10.0_rk**dt_warn_level) call warn_small_step()
+      end if
       if (st%cycle >= cfg%run%max_cycles) done = .true.
 
       ! ---- balance, checks, output
@@ -475,9 +479,14 @@ contains
       integer :: g, i, e, tag, part
       real(rk) :: j_el, j_lo, j_hi
       character(len=600) :: msg
+      ! the stiffest element at the node that sets the step
       g = huge(1)
-      if (dt_elem > 0) then
-        if (dt_local == st%dt_stable) g = dom%el_gidx(dt_elem)
+      if (dt_node > 0 .and. dt_local == st%dt_stable) then
+        e = dom%nd_el(dom%nd_el_ptr(dt_node))
+        do i = dom%nd_el_ptr(dt_node) + 1, dom%nd_el_ptr(dt_node+1) - 1
+          if (dom%el_k(dom%nd_el(i)) > dom%el_k(e)) e = dom%nd_el(i)
+        end do
+        g = dom%el_gidx(e)
       end if
       g = comms_min_int(g)
       e = findloc(dom%el_gidx, g, dim=1)

@@ -223,7 +223,7 @@ contains
   !> Fractured material: no tension, still compression; the criteria.
   subroutine test_fracture()
     type(material_cfg_t) :: mat
-    real(rk) :: vol(2), h(2), trd(2), mass(2), j_old(2), j_new(2), w_dev(2), e(2), p(2), q(2), dt_el(2)
+    real(rk) :: vol(2), h(2), trd(2), mass(2), j_old(2), j_new(2), w_dev(2), e(2), p(2), q(2), dt_el(2), visc(2)
     real(rk) :: e_i(2), p_i(2), q_i(2), damage, ef
     logical :: fractured
     mat%rho0 = 7850; mat%bulk_modulus = 160.0e9_rk; mat%shear_modulus = 80.0e9_rk
@@ -231,10 +231,10 @@ contains
     vol = 1.0e-9_rk; h = 1.0e-3_rk; mass = mat%rho0*vol; j_old = 1; j_new = [1.002_rk, 0.998_rk]
     trd = (j_new - j_old)/1.0e-8_rk; w_dev = 0; e = 0; p = 0; q = 0
     e_i = e; p_i = p; q_i = q
-    call volumetric_update(mat, 0.0_rk, 0.0_rk, 1.0_rk, 2, 2, 1.0e-8_rk, vol, h, trd, mass, j_old, j_new, w_dev, &
-                           [.false., .false.], e_i, p_i, q_i, dt_el)
-    call volumetric_update(mat, 0.0_rk, 0.0_rk, 1.0_rk, 2, 2, 1.0e-8_rk, vol, h, trd, mass, j_old, j_new, w_dev, &
-                           [.true., .true.], e, p, q, dt_el)
+    call volumetric_update(mat, 0.0_rk, 0.0_rk, 2, 2, 1.0e-8_rk, vol, h, trd, mass, j_old, j_new, w_dev, &
+                           [.false., .false.], e_i, p_i, q_i, dt_el, visc)
+    call volumetric_update(mat, 0.0_rk, 0.0_rk, 2, 2, 1.0e-8_rk, vol, h, trd, mass, j_old, j_new, w_dev, &
+                           [.true., .true.], e, p, q, dt_el, visc)
     call check('fractured_no_tension', p_i(1) < 0 .and. p(1) == 0 .and. e(1) == 0, &
                'expanding: intact p = '//r2s(p_i(1))//' Pa, fractured p = '//r2s(p(1))//' Pa')
     call check('fractured_still_compression', p(2) > 0 .and. p(2) == p_i(2) .and. abs(p(2)/(160.0e9_rk*(1/0.998_rk - 1)) - 1) < 1e-12_rk, &
