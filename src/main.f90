@@ -4,7 +4,7 @@ program udar
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use udar_kinds, only: rk, i8, max_path_len
   use udar_comms, only: comms_init, comms_finalize, comms_is_root, comms_size, comms_rank, comms_bcast_int, &
-      halo_t, comms_max_int
+      halo_t, comms_max_int, comms_max_i8, comms_sum_int
   use udar_distribution, only: distribute_domain
   use udar_fatal, only: fatal_all, exit_input
   use udar_log, only: log_info, log_warn, log_to_stderr
@@ -14,7 +14,8 @@ program udar
   use udar_input_errors, only: input_errors_t, input_errors_report
   use udar_deck, only: deck_read, deck_where
   use udar_gmsh, only: gmsh_mesh_t, gmsh_read
-  use udar_domain, only: domain_t
+  use udar_domain, only: domain_t, domain_bytes
+  use udar_memory, only: peak_rss_bytes
   use udar_setup, only: build_domain, count_bodies
   use udar_run, only: run_simulation, run_result_t
   use udar_checkpoint, only: checkpoint_model_hash, checkpoint_mesh_hash, checkpoint_latest
@@ -43,7 +44,7 @@ program udar
   character(len=max_path_len) :: restart_arg = ''   !< --restart CHECKPOINT | auto
   real(rk) :: wall_limit_arg = 0.0_rk               !< --wall-limit S: overrides &run wall_limit
   character(len=:), allocatable :: pending, restart_path
-  integer(i8) :: model_hash, mesh_hash
+  integer(i8) :: model_hash, mesh_hash, glob_bytes
 
   ! first: a batch system's signal during set-up is kept, not fatal
   call signals_install()
@@ -144,9 +145,12 @@ program udar
                                      max(cfg%output%checkpoint_keep, 1))
     if (len(restart_path) == 0) call log_info('--restart auto: no checkpoint of this case yet; starting at t = 0')
   end if
+  glob_bytes = domain_bytes(dom)
   call decompose(dom, local, halo)
   call contact_distribute(contacts, local)
+  call log_memory('start-up', local)
   call run_simulation(cfg, local, halo, contacts, restart_path, model_hash, mesh_hash, res)
+  call log_memory('run', local)
   write(line, '(a,i0,a,es12.5,a,es10.3,a)') 'udar: done: ', res%cycles, ' cycles to t = ', &
     res%time, ' s, energy error ', res%energy_error, ', '//fixed(res%wall_seconds, 2)//' s wall ('// &
     fixed(res%ns_per_element_cycle, 1)//' ns per element-cycle); fields '// &
@@ -180,6 +184,24 @@ contains
     end if
     call distribute_domain(glob, part, comms_rank(), loc, halo)
     glob = domain_t()
+  end subroutine
+
+  !> Peak resident memory so far (largest rank) and what the domains hold:
+  !> the global mesh domain every rank builds at start-up (glob_bytes) and the
+  !> local domains of all ranks (ghosts included), per global element.
+  subroutine log_memory(stage, loc)
+    character(len=*), intent(in) :: stage
+    type(domain_t), intent(in) :: loc
+    integer(i8) :: peak, local_bytes
+    real(rk) :: ne
+    peak = comms_max_i8(peak_rss_bytes())
+    local_bytes = comms_sum_int(domain_bytes(loc))
+    ne = real(max(loc%n_global_elems, 1), rk)
+    write(line, '(a,f0.1,a,i0,a,i0,a,i0,a)') 'memory: '//stage//' peak resident ', real(peak, rk)/1048576.0_rk, &
+      ' MiB (largest rank); domains ', nint(real(local_bytes, rk)/ne), ' bytes per element (all ranks), '// &
+      'start-up global mesh ', nint(real(glob_bytes, rk)/ne), ' bytes per element (each rank, freed); ', &
+      nint(real(peak, rk)/ne), ' peak bytes per element (largest rank)'
+    call log_info(line)
   end subroutine
 
   !> udar --check --ranks N: the partition a run on N ranks would get.
