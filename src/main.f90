@@ -116,6 +116,7 @@ program udar
   write(line, '(a,i0,a,i0,a,i0,a)') 'mesh '//trim(cfg%mesh%file)//': ', mesh%n_nodes, ' nodes, ', mesh%n_tets, &
     ' tetrahedra, ', mesh%n_inverted, ' reoriented at read time'
   call log_info(line)
+  mesh = gmsh_mesh_t()     ! the domain and the contact surfaces hold all that is needed of it
   n_bodies = count_bodies(dom)
   if (n_bodies > 1 .and. contacts%n_interfaces == 0) then
     write(line, '(a,i0,a)') 'the mesh holds ', n_bodies, ' separate bodies and the deck no &contact: '// &
