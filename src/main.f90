@@ -16,7 +16,7 @@ program udar
   use udar_gmsh, only: gmsh_mesh_t, gmsh_read
   use udar_domain, only: domain_t, domain_bytes
   use udar_memory, only: peak_rss_bytes
-  use udar_setup, only: build_domain, count_bodies
+  use udar_setup, only: build_domain, init_state, count_bodies
   use udar_run, only: run_simulation, run_result_t
   use udar_checkpoint, only: checkpoint_model_hash, checkpoint_mesh_hash, checkpoint_latest
   use udar_contact_model, only: contact_t
@@ -162,7 +162,8 @@ program udar
 contains
 
   !> METIS partition on rank 0 (one answer for all), the local domain and
-  !> halo of this rank, and the partition report. The global domain is freed.
+  !> halo of this rank, and the partition report. The global domain is freed
+  !> before the local state is allocated (the start-up peak).
   subroutine decompose(glob, loc, halo)
     type(domain_t), intent(inout) :: glob
     type(domain_t), intent(out) :: loc
@@ -184,7 +185,9 @@ contains
       if (comms_is_root()) call log_partition(glob, part, n, stats)
     end if
     call distribute_domain(glob, part, comms_rank(), loc, halo)
+    deallocate(part)
     glob = domain_t()
+    call init_state(loc)
   end subroutine
 
   !> Peak resident memory so far (largest rank) and what the domains hold:

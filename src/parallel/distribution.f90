@@ -1,6 +1,8 @@
 !> From the global mesh domain (every rank reads the mesh; udar_setup builds
-!> it without state) and the element partition to this rank's local domain,
-!> with its initial state, and its halo.
+!> it without state) and the element partition to this rank's local domain
+!> and its halo. The local domain gets the mesh domain's arrays only; the
+!> caller frees the global one before udar_setup's init_state allocates the
+!> state, so that the two never coexist.
 !>
 !> Rules (the same as udar_decomposition): an element belongs to the rank
 !> METIS gives it; a node to the rank of its lowest-id incident element. A
@@ -13,7 +15,7 @@
 module udar_distribution
   use udar_kinds, only: rk
   use udar_domain, only: domain_t
-  use udar_setup, only: build_incidence, build_blocks, init_state
+  use udar_setup, only: build_incidence, build_blocks
   use udar_comms, only: halo_t, halo_max_components, comms_size, comms_alltoall_counts, comms_alltoallv_int
   implicit none
   private
@@ -114,7 +116,6 @@ contains
       loc%el_vol0 = glob%el_vol0(ge)
     end associate
     loc%mat = glob%mat
-    call init_state(loc)
     call build_incidence(loc)
     call build_blocks(loc)
     ! model and conditions (velocity conditions on every local node: harmless

@@ -12,7 +12,7 @@ program test_distribution_mpi
   use udar_deck, only: deck_read
   use udar_gmsh, only: gmsh_mesh_t, gmsh_read
   use udar_domain, only: domain_t
-  use udar_setup, only: build_domain
+  use udar_setup, only: build_domain, init_state
   use udar_partition, only: partition_elements, partition_stats_t
   use udar_distribution, only: distribute_domain, node_owners
   use udar_strings, only: itoa
@@ -42,6 +42,7 @@ program test_distribution_mpi
   allocate(part(glob%n_elems), source=0)
   if (np > 1) call partition_elements(glob%n_nodes, glob%el_conn, np, part, stats, ok, msg)
   call distribute_domain(glob, part, me, loc, halo)
+  call init_state(loc)
 
   ! every element and node owned exactly once over the ranks
   call agree('elements_owned_once', comms_sum_int(int(count(loc%el_owned), i8)) == glob%n_elems .and. &
