@@ -15,7 +15,7 @@ program udar
   use udar_deck, only: deck_read, deck_where
   use udar_gmsh, only: gmsh_mesh_t, gmsh_read
   use udar_domain, only: domain_t, domain_bytes
-  use udar_memory, only: peak_rss_bytes
+  use udar_memory, only: peak_rss_bytes, rss_bytes
   use udar_setup, only: build_domain, init_state, count_bodies
   use udar_run, only: run_simulation, run_result_t
   use udar_checkpoint, only: checkpoint_model_hash, checkpoint_mesh_hash, checkpoint_latest
@@ -190,21 +190,30 @@ contains
     call init_state(loc)
   end subroutine
 
-  !> Peak resident memory so far (largest rank) and what the domains hold:
-  !> the global mesh domain every rank builds at start-up (glob_bytes) and the
-  !> local domains of all ranks (ghosts included), per global element.
+  !> Memory, largest rank: at start-up, the peak so far and what the domains
+  !> hold (the local domains of all ranks, ghosts included, and the global
+  !> mesh domain every rank builds while splitting it, glob_bytes); after
+  !> the run, the resident memory (the steady footprint) and the process peak.
+  !> Per global element, for `make bench` and doc/performance.md.
   subroutine log_memory(stage, loc)
     character(len=*), intent(in) :: stage
     type(domain_t), intent(in) :: loc
-    integer(i8) :: peak, local_bytes
+    integer(i8) :: peak, resident, local_bytes
     real(rk) :: ne
     peak = comms_max_i8(peak_rss_bytes())
+    resident = comms_max_i8(rss_bytes())
     local_bytes = comms_sum_int(domain_bytes(loc))
     ne = real(max(loc%n_global_elems, 1), rk)
-    write(line, '(a,f0.1,a,i0,a,i0,a,i0,a)') 'memory: '//stage//' peak resident ', real(peak, rk)/1048576.0_rk, &
-      ' MiB (largest rank); domains ', nint(real(local_bytes, rk)/ne), ' bytes per element (all ranks), '// &
-      'start-up global mesh ', nint(real(glob_bytes, rk)/ne), ' bytes per element (each rank, freed); ', &
-      nint(real(peak, rk)/ne), ' peak bytes per element (largest rank)'
+    if (stage == 'start-up') then
+      write(line, '(a,f0.1,a,i0,a,i0,a,i0,a)') 'memory: start-up peak ', peak/1048576.0_rk, ' MiB = ', &
+        nint(peak/ne), ' bytes per element (largest rank); domains ', nint(local_bytes/ne), ' bytes per '// &
+        'element (all ranks), global mesh domain ', nint(glob_bytes/ne), ' bytes per element (each rank, '// &
+        'freed before the run)'
+    else
+      write(line, '(a,f0.1,a,i0,a,f0.1,a,i0,a)') 'memory: resident after the run ', resident/1048576.0_rk, &
+        ' MiB = ', nint(resident/ne), ' bytes per element, process peak ', peak/1048576.0_rk, ' MiB = ', &
+        nint(peak/ne), ' bytes per element (largest rank)'
+    end if
     call log_info(line)
   end subroutine
 
