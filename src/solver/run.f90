@@ -110,7 +110,6 @@ contains
     wall0 = comms_wtime()
     fracture_on = any_fracture(dom)
     no = size(dom%el_owned_list)
-    allocate(work_svm(no), work_rho(no), work_elem(no))
     base = trim(cfg%output%directory)//'/'//trim(cfg%output%case_name)
     res%field_file = base//'.h5'
     res%history_file = base//'_history.csv'
@@ -161,6 +160,7 @@ contains
         return
       end if
       call reopen_outputs()
+      allocate(work_svm(no), work_rho(no), work_elem(no))   ! after the open: see below
       ! each rank's accumulator adds to the global sum: the saved total goes to one rank
       walls%work = 0
       walls%contact_work = 0
@@ -171,6 +171,10 @@ contains
       call log_info(line)
     else
       call open_outputs()
+      ! the field work arrays, allocated once the field file is open, take
+      ! the memory its opening freed (the connectivity copies) instead of
+      ! adding to the process peak
+      allocate(work_svm(no), work_rho(no), work_elem(no))
       call contact_overlaps(ct, dom, overlap_lines)
       do k = 1, size(overlap_lines)
         call log_info(trim(overlap_lines(k)))
