@@ -24,9 +24,11 @@ module udar_setup
 
 contains
 
+  !> Frees the mesh's tetrahedra and coordinates once they are used (the
+  !> start-up peak); its surface triangles and groups stay for the contact set-up.
   subroutine build_domain(cfg, mesh, dom, errs)
     type(config_t), intent(in) :: cfg
-    type(gmsh_mesh_t), intent(in) :: mesh
+    type(gmsh_mesh_t), intent(inout) :: mesh
     type(domain_t), intent(out) :: dom
     type(input_errors_t), intent(inout) :: errs
     integer, allocatable :: group_part(:), node_new(:), used(:), perm(:), elem_order(:)
@@ -98,6 +100,7 @@ contains
                              + mesh%x(mesh%tet(:,3),k) + mesh%x(mesh%tet(:,4),k))
     end do
     call morton_keys(centroid, keys)
+    deallocate(centroid)
     call stable_sort_permutation(keys, perm)
     ! then by material, keeping the curve order inside each material
     do e = 1, dom%n_elems
@@ -105,11 +108,12 @@ contains
     end do
     call stable_sort_permutation(keys, elem_order)
     elem_order = perm(elem_order)
-    deallocate(keys, perm, centroid)
+    deallocate(keys, perm)
     dom%el_id = mesh%tet_tag(elem_order)
     do a = 1, 4
       dom%el_conn(:,a) = node_new(mesh%tet(elem_order,a))
     end do
+    deallocate(mesh%tet, mesh%tet_tag)
 
     ! materials and parts
     dom%mat = cfg%materials
@@ -128,6 +132,7 @@ contains
       dom%el_vol0(e) = tet_volume(xe)
       el_mass(e) = dom%mat(dom%el_mat(e))%rho0*dom%el_vol0(e)   ! as init_state computes it
     end do
+    deallocate(mesh%tet_group, elem_order)
 
     ! (the corners are for the local domains' assembly only)
     call build_incidence(dom, corners=.false.)
@@ -145,6 +150,7 @@ contains
     end do
     deallocate(el_mass)
     call build_conditions(cfg, mesh, node_new, dom)
+    deallocate(mesh%x)
     ! initial velocities obey the velocity conditions (a fixed node starts at
     ! rest), so the initial energy holds no kinetic energy the first step removes
     call apply_velocity_conditions(dom)
