@@ -15,22 +15,29 @@ module udar_element_driver
   use udar_config, only: tet_stabilised
   implicit none
   private
-  public :: element_volumes, nodal_volumes, element_update, nodal_pressures, &
-            element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes, &
+  public :: element_volumes, element_update, nodal_pressures, &
+            element_forces_averaged, element_stable_dt, nodal_reference_volumes, &
             element_altitudes
 
 contains
 
-  !> Current element volumes from the nodal coordinates.
+  !> Current element volumes from the nodal coordinates and, block by block
+  !> as their element lists complete (domain_t blk_nd), the owned nodes'
+  !> volume ratios (node_volume_ratio).
   subroutine element_volumes(dom)
     type(domain_t), intent(inout) :: dom
     real(rk) :: xe(4,3)
-    integer :: e, a
-    do e = 1, dom%n_elems
-      do a = 1, 4
-        xe(a,:) = dom%nd_x(:,dom%el_conn(e,a))
+    integer :: b, e, a, k
+    do b = 1, dom%n_blocks
+      do e = dom%blk_first(b), dom%blk_last(b)
+        do a = 1, 4
+          xe(a,:) = dom%nd_x(:,dom%el_conn(e,a))
+        end do
+        dom%el_vol(e) = tet_volume(xe)
       end do
-      dom%el_vol(e) = tet_volume(xe)
+      do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
+        call node_volume_ratio(dom, dom%blk_nd(k))
+      end do
     end do
   end subroutine
 
@@ -87,38 +94,44 @@ contains
     end do
   end subroutine
 
-  !> Nodal volume ratio J_a = V_a / Vref_a, V_a a quarter of each incident
-  !> element's volume (Bonet and Burton 1998), Vref_a = V0_a until erosion
-  !> rebases it; eroded elements left out, 1 at a node they all left.
-  subroutine nodal_volumes(dom)
+  !> Nodal volume ratio J_a = V_a / Vref_a of owned node n, V_a a quarter of
+  !> each incident element's volume (Bonet and Burton 1998), Vref_a = V0_a
+  !> until erosion rebases it; eroded elements left out, 1 at a node they all left.
+  subroutine node_volume_ratio(dom, n)
     type(domain_t), intent(inout) :: dom
-    integer :: n
-    do n = 1, dom%n_owned_nodes
-      dom%nd_j(n) = 1.0_rk
-      if (dom%nd_vref(n) > 0.0_rk) dom%nd_j(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol)/dom%nd_vref(n)
-    end do
+    integer, intent(in) :: n
+    dom%nd_j(n) = 1.0_rk
+    if (dom%nd_vref(n) > 0.0_rk) dom%nd_j(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol)/dom%nd_vref(n)
   end subroutine
 
   !> Nodal pressure: reference-volume-weighted mean of the incident elements'
   !> EOS pressures; the weights make the averaged forces the exact gradient of
-  !> the averaged-volume energy. Eroded elements left out.
+  !> the averaged-volume energy. Eroded elements left out. element_update
+  !> computes them as it goes; again here after erosion changed nd_vol0.
   subroutine nodal_pressures(dom)
     type(domain_t), intent(inout) :: dom
     integer :: n
     do n = 1, dom%n_owned_nodes
-      dom%nd_p(n) = 0.0_rk
-      if (dom%nd_vol0(n) <= 0.0_rk) cycle
-      if (dom%stab_beta > 0.0_rk) then
-        dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_pavg, w=dom%el_vol0)/dom%nd_vol0(n)
-      else
-        dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_p, w=dom%el_vol0)/dom%nd_vol0(n)
-      end if
+      call node_pressure(dom, n)
     end do
   end subroutine
 
+  subroutine node_pressure(dom, n)
+    type(domain_t), intent(inout) :: dom
+    integer, intent(in) :: n
+    dom%nd_p(n) = 0.0_rk
+    if (dom%nd_vol0(n) <= 0.0_rk) return
+    if (dom%stab_beta > 0.0_rk) then
+      dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_pavg, w=dom%el_vol0)/dom%nd_vol0(n)
+    else
+      dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_p, w=dom%el_vol0)/dom%nd_vol0(n)
+    end if
+  end subroutine
+
   !> Stress update of every element over dt with the velocities v(n+1/2) on
-  !> the geometry x(n+1); forces too unless anti-locking needs the nodal
-  !> pressures first. Fracture and erosion: a fractured element keeps no
+  !> the geometry x(n+1); the nodal forces too unless anti-locking needs the
+  !> nodal pressures first, which are then computed (nodal_pressures) as the
+  !> blocks complete each owned node's element list. Fracture and erosion: a fractured element keeps no
   !> deviator and no tension; an eroded one passes through the kernels as an
   !> element at rest (no strain, no force, its state frozen) and is left out
   !> of the time step. Returns the smallest stable time step, the first
@@ -296,6 +309,13 @@ contains
           if (gone(i)) fe(i,:,:) = 0.0_rk
         end do
         call store_forces(dom, first, nb, fe)
+        do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
+          call node_force(dom, dom%blk_nd(k))
+        end do
+      else
+        do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
+          call node_pressure(dom, dom%blk_nd(k))
+        end do
       end if
     end do
   contains
@@ -327,7 +347,8 @@ contains
   end subroutine
 
   !> Forces with the element pressure replaced by the mean of its nodes'
-  !> averaged pressures (plus its own viscosity). The gradients are
+  !> averaged pressures (plus its own viscosity), and the owned nodes'
+  !> forces as the blocks complete their element lists (node_force). The gradients are
   !> recomputed from x(n+1): cheaper than storing and reloading them.
   subroutine element_forces_averaged(dom)
     type(domain_t), intent(inout) :: dom
@@ -358,6 +379,9 @@ contains
         if (dom%el_state(first + i - 1) == el_eroded) fe(i,:,:) = 0.0_rk
       end do
       call store_forces(dom, first, nb, fe)
+      do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
+        call node_force(dom, dom%blk_nd(k))
+      end do
     end do
   end subroutine
 
@@ -406,21 +430,21 @@ contains
     end do
   end subroutine
 
-  !> Nodal forces: element contributions summed in ascending element id.
-  subroutine assemble_forces(dom)
+  !> Nodal force of owned node n: element contributions summed in ascending
+  !> element id.
+  subroutine node_force(dom, n)
     type(domain_t), intent(inout) :: dom
-    integer :: n, k, c, e
+    integer, intent(in) :: n
+    integer :: k, c, e
     real(rk) :: fx, fy, fz
-    do n = 1, dom%n_owned_nodes
-      fx = 0.0_rk; fy = 0.0_rk; fz = 0.0_rk
-      do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
-        c = 3*dom%nd_el_corner(k)
-        e = dom%nd_el(k)
-        fx = fx + dom%el_f(c-2, e)
-        fy = fy + dom%el_f(c-1, e)
-        fz = fz + dom%el_f(c, e)
-      end do
-      dom%nd_f(1,n) = fx; dom%nd_f(2,n) = fy; dom%nd_f(3,n) = fz
+    fx = 0.0_rk; fy = 0.0_rk; fz = 0.0_rk
+    do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
+      c = 3*dom%nd_el_corner(k)
+      e = dom%nd_el(k)
+      fx = fx + dom%el_f(c-2, e)
+      fy = fy + dom%el_f(c-1, e)
+      fz = fz + dom%el_f(c, e)
     end do
+    dom%nd_f(1,n) = fx; dom%nd_f(2,n) = fy; dom%nd_f(3,n) = fz
   end subroutine
 end module udar_element_driver

@@ -62,6 +62,12 @@ module udar_domain
     ! vectorized blocks: runs of consecutive elements of one material
     integer :: n_blocks = 0
     integer, allocatable :: blk_first(:), blk_last(:)
+    !> owned nodes by the block holding their last (highest-id) incident
+    !> element: blk_nd(blk_nd_ptr(b):blk_nd_ptr(b+1)-1), ascending, are the
+    !> nodes whose element lists are complete once block b is done, so an
+    !> element pass can sum them (in the lists' fixed order) while the
+    !> block's values are still in cache
+    integer, allocatable :: blk_nd_ptr(:), blk_nd(:)
     ! ---- model
     type(material_cfg_t), allocatable :: mat(:)
     integer :: n_parts = 0

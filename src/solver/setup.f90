@@ -17,7 +17,7 @@ module udar_setup
   use udar_strength, only: initial_hardening, thermal_softening
   implicit none
   private
-  public :: build_domain, count_bodies, build_incidence, build_blocks, find_group, group_list
+  public :: build_domain, count_bodies, build_incidence, build_blocks, build_node_schedule, find_group, group_list
 
 contains
 
@@ -163,6 +163,7 @@ contains
     dom%el_gidx = [(e, e = 1, dom%n_elems)]
     allocate(dom%el_owned(dom%n_elems), source=.true.)
     dom%el_owned_list = dom%el_gidx
+    call build_node_schedule(dom)
   end subroutine
 
   subroutine allocate_state(dom)
@@ -230,6 +231,38 @@ contains
     dom%n_blocks = nb
     dom%blk_first = f(1:nb)
     dom%blk_last = l(1:nb)
+  end subroutine
+
+  !> The owned nodes grouped by the block of their last incident element
+  !> (domain_t blk_nd), ascending within a block (counting sort); a node
+  !> without elements goes with block 1. Needs the incidence, the blocks
+  !> and n_owned_nodes.
+  subroutine build_node_schedule(dom)
+    type(domain_t), intent(inout) :: dom
+    integer, allocatable :: blk_of(:), nd_blk(:), fill(:)
+    integer :: b, n, k
+    allocate(blk_of(dom%n_elems), nd_blk(dom%n_owned_nodes))
+    do b = 1, dom%n_blocks
+      blk_of(dom%blk_first(b):dom%blk_last(b)) = b
+    end do
+    if (allocated(dom%blk_nd_ptr)) deallocate(dom%blk_nd_ptr, dom%blk_nd)
+    allocate(dom%blk_nd_ptr(max(dom%n_blocks, 1) + 1), source=0)
+    do n = 1, dom%n_owned_nodes
+      nd_blk(n) = 1
+      if (dom%nd_el_ptr(n+1) > dom%nd_el_ptr(n)) nd_blk(n) = blk_of(dom%nd_el(dom%nd_el_ptr(n+1) - 1))
+      dom%blk_nd_ptr(nd_blk(n)+1) = dom%blk_nd_ptr(nd_blk(n)+1) + 1
+    end do
+    dom%blk_nd_ptr(1) = 1
+    do b = 1, size(dom%blk_nd_ptr) - 1
+      dom%blk_nd_ptr(b+1) = dom%blk_nd_ptr(b+1) + dom%blk_nd_ptr(b)
+    end do
+    allocate(dom%blk_nd(dom%n_owned_nodes))
+    allocate(fill(size(dom%blk_nd_ptr) - 1), source=dom%blk_nd_ptr(1:size(dom%blk_nd_ptr)-1))
+    do n = 1, dom%n_owned_nodes
+      k = fill(nd_blk(n))
+      dom%blk_nd(k) = n
+      fill(nd_blk(n)) = k + 1
+    end do
   end subroutine
 
   subroutine boundaries_check(cfg, mesh, errs)
