@@ -11,7 +11,7 @@ module udar_element_driver
   use udar_strength, only: strength_block, thermal_softening_update, von_mises
   use udar_fracture, only: el_fractured, el_eroded, el_intact, erode_strain, erode_time_step, erode_inverted, &
       fracture_update, fracture_enabled, erosion_enabled, deviatoric_rate
-  use udar_hydro, only: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_pressures
+  use udar_hydro, only: volumetric_update, dilatational_speed2, blended_volume_ratios, blended_pressures
   use udar_config, only: tet_stabilised
   implicit none
   private
@@ -204,16 +204,17 @@ contains
         ! keep the arithmetic finite until the run stops
         if (vol(i) <= 0.0_rk .or. gone(i)) vol(i) = dom%el_vol0(e)
         if (j_new(i) <= 0.0_rk) j_new(i) = dom%el_j(e)
-        if (stab) then
-          ! stabilised: the EOS sees the nodal average blended with the element's own ratio
-          jbar(i) = j_new(i)
-          je(i) = vol(i)/dom%el_vol0(e)
-          if (.not. gone(i)) j_new(i) = blended_volume_ratio(geo, dom%stab_beta, jbar(i), je(i))
-        end if
         no_shear(i) = gone(i) .or. dom%el_state(e) == el_fractured
         ! accumulated total strain: only eroding materials use it
         if (erodible .and. .not. gone(i)) dom%el_eps_tot(e) = dom%el_eps_tot(e) + dt*deviatoric_rate(d(i,:))
       end do
+      if (stab) then
+        ! stabilised: the EOS sees the nodal average blended with the element's own ratio
+        jbar(1:nb) = j_new(1:nb)
+        je(1:nb) = vol(1:nb)/dom%el_vol0(first:last)
+        call blended_volume_ratios(geo, dom%stab_beta, nb, jbar, je, j_new)
+        j_new(1:nb) = merge(jbar(1:nb), j_new(1:nb), gone(1:nb))
+      end if
       do k = 1, 6
         s(1:nb,k) = merge(0.0_rk, dom%el_s(first:last,k), no_shear(1:nb))
       end do
