@@ -7,7 +7,7 @@
 module udar_element_driver
   use udar_kinds, only: rk
   use udar_domain, only: domain_t, block_size
-  use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_volume
+  use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_volumes
   use udar_strength, only: strength_block, thermal_softening_update, von_mises
   use udar_fracture, only: el_fractured, el_eroded, el_intact, erode_strain, erode_time_step, erode_inverted, &
       fracture_update, fracture_enabled, erosion_enabled, deviatoric_rate
@@ -26,15 +26,13 @@ contains
   !> volume ratios (node_volume_ratio).
   subroutine element_volumes(dom)
     type(domain_t), intent(inout) :: dom
-    real(rk) :: xe(4,3)
-    integer :: b, e, a, k
+    real(rk) :: xe(block_size,4,3)
+    integer :: b, k, first, nb
     do b = 1, dom%n_blocks
-      do e = dom%blk_first(b), dom%blk_last(b)
-        do a = 1, 4
-          xe(a,:) = dom%nd_x(:,dom%el_conn(e,a))
-        end do
-        dom%el_vol(e) = tet_volume(xe)
-      end do
+      first = dom%blk_first(b)
+      nb = dom%blk_last(b) - first + 1
+      call gather_block(dom, dom%nd_x, first, nb, xe)
+      call tet_volumes(block_size, nb, xe, dom%el_vol(first:first+nb-1))
       do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
         call node_volume_ratio(dom, dom%blk_nd(k))
       end do
