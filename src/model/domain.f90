@@ -57,8 +57,6 @@ module udar_domain
     integer, allocatable :: el_state(:)         !< intact, fractured or eroded (udar_fracture)
     real(rk), allocatable :: el_damage(:)       !< -, fracture at 1 (eps_p/eps_f or Johnson-Cook damage)
     real(rk), allocatable :: el_eps_tot(:)      !< -, accumulated equivalent deviatoric (total) strain
-    real(rk), allocatable :: el_f(:,:)          !< (12,n) N, element nodal forces (x,y,z of corner 1..4):
-                                                !< element-major so the node-wise assembly reads contiguously
     ! vectorized blocks: runs of consecutive elements of one material
     integer :: n_blocks = 0
     integer, allocatable :: blk_first(:), blk_last(:)

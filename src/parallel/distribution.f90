@@ -131,7 +131,6 @@ contains
       loc%el_state = glob%el_state(ge)
       loc%el_damage = glob%el_damage(ge)
       loc%el_eps_tot = glob%el_eps_tot(ge)
-      loc%el_f = glob%el_f(:,ge)
     end associate
     call build_incidence(loc)
     call build_blocks(loc)

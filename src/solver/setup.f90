@@ -174,11 +174,10 @@ contains
              dom%nd_f(3,nn), dom%nd_mass(nn), dom%nd_vol0(nn), dom%nd_vref(nn), dom%nd_j(nn), dom%nd_p(nn))
     allocate(dom%el_id(ne), dom%el_part(ne), dom%el_mat(ne), dom%el_conn(ne,4), dom%el_vol0(ne), &
              dom%el_vol(ne), dom%el_h(ne), dom%el_mass(ne), dom%el_j(ne), dom%el_e(ne), dom%el_wp(ne), dom%el_p(ne), &
-             dom%el_q(ne), dom%el_pavg(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_hard(ne), dom%el_soft(ne), &
-             dom%el_f(12,ne))
+             dom%el_q(ne), dom%el_pavg(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_hard(ne), dom%el_soft(ne))
     dom%nd_f = 0.0_rk; dom%nd_p = 0.0_rk
     dom%el_e = 0.0_rk; dom%el_wp = 0.0_rk; dom%el_p = 0.0_rk; dom%el_q = 0.0_rk; dom%el_pavg = 0.0_rk; dom%el_s = 0.0_rk
-    dom%el_eps_p = 0.0_rk; dom%el_f = 0.0_rk
+    dom%el_eps_p = 0.0_rk
     allocate(dom%el_state(ne), source=0)
     allocate(dom%el_damage(ne), dom%el_eps_tot(ne), source=0.0_rk)
   end subroutine
