@@ -23,20 +23,37 @@ module udar_element_driver
 
 contains
 
-  !> Current element volumes from the nodal coordinates and, block by block
-  !> as their element lists complete (domain_t blk_nd), the owned nodes'
-  !> volume ratios (node_volume_ratio).
+  !> Current element volumes from the nodal coordinates and the owned nodes'
+  !> volume ratios J_a = V_a / Vref_a, V_a a quarter of each incident
+  !> element's volume (Bonet and Burton 1998), Vref_a = V0_a until erosion
+  !> rebases it; eroded elements left out, 1 at a node they all left. The
+  !> volumes are added to nd_j element by element in ascending id (each
+  !> node's list order), and a node's ratio is formed once the block holding
+  !> its last element is done (domain_t blk_nd).
   subroutine element_volumes(dom)
     type(domain_t), intent(inout) :: dom
     real(rk) :: xe(block_size,4,3)
-    integer :: b, k, first, nb
+    integer :: b, k, n, e, c, first, nb
+    dom%nd_j(1:dom%n_owned_nodes) = 0.0_rk
     do b = 1, dom%n_blocks
       first = dom%blk_first(b)
       nb = dom%blk_last(b) - first + 1
       call gather_block(dom, dom%nd_x, first, nb, xe)
       call tet_volumes(block_size, nb, xe, dom%el_vol(first:first+nb-1))
+      do e = first, first + nb - 1
+        if (dom%el_state(e) == el_eroded) cycle
+        do c = 1, 4
+          n = dom%el_conn(e,c)
+          if (n <= dom%n_owned_nodes) dom%nd_j(n) = dom%nd_j(n) + dom%el_vol(e)
+        end do
+      end do
       do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
-        call node_volume_ratio(dom, dom%blk_nd(k))
+        n = dom%blk_nd(k)
+        if (dom%nd_vref(n) > 0.0_rk) then
+          dom%nd_j(n) = 0.25_rk*dom%nd_j(n)/dom%nd_vref(n)
+        else
+          dom%nd_j(n) = 1.0_rk
+        end if
       end do
     end do
   end subroutine
@@ -94,20 +111,11 @@ contains
     end do
   end subroutine
 
-  !> Nodal volume ratio J_a = V_a / Vref_a of owned node n, V_a a quarter of
-  !> each incident element's volume (Bonet and Burton 1998), Vref_a = V0_a
-  !> until erosion rebases it; eroded elements left out, 1 at a node they all left.
-  subroutine node_volume_ratio(dom, n)
-    type(domain_t), intent(inout) :: dom
-    integer, intent(in) :: n
-    dom%nd_j(n) = 1.0_rk
-    if (dom%nd_vref(n) > 0.0_rk) dom%nd_j(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol)/dom%nd_vref(n)
-  end subroutine
-
   !> Nodal pressure: reference-volume-weighted mean of the incident elements'
   !> EOS pressures; the weights make the averaged forces the exact gradient of
   !> the averaged-volume energy. Eroded elements left out. element_update
-  !> computes them as it goes; again here after erosion changed nd_vol0.
+  !> computes them as it goes (the same sums in the same order); again here
+  !> after erosion changed nd_vol0.
   subroutine nodal_pressures(dom)
     type(domain_t), intent(inout) :: dom
     integer :: n
@@ -153,7 +161,7 @@ contains
                 w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld), dt_el(ld)
     logical :: gone(ld), no_shear(ld), erodible, fracturing, fractured, stab, geo
     real(rk) :: t_old, d_eps, jbar(ld), je(ld)
-    integer :: b, i, e, nb, first, last, k
+    integer :: b, i, e, nb, first, last, k, n
     dt_stable = huge(1.0_rk)
     dt_elem = 0
     bad_elem = 0
@@ -162,7 +170,11 @@ contains
     eroded_any = .false.
     stab = dom%stab_beta > 0.0_rk
     geo = dom%tet_formulation == tet_stabilised
-    if (.not. dom%anti_locking) dom%nd_f(:,1:dom%n_owned_nodes) = 0.0_rk
+    if (dom%anti_locking) then
+      dom%nd_p(1:dom%n_owned_nodes) = 0.0_rk
+    else
+      dom%nd_f(:,1:dom%n_owned_nodes) = 0.0_rk
+    end if
     do b = 1, dom%n_blocks
       call block_geometry(dom, b, first, last, nb, vol, grad, h)
       call gather_block(dom, dom%nd_v, first, nb, ve)
@@ -312,8 +324,28 @@ contains
         end do
         call add_forces(dom, first, nb, fe)
       else
+        ! nodal pressures (nodal_pressures): the weighted pressures added element
+        ! by element in ascending id, each node's mean formed once its last
+        ! element is done
+        do e = first, last
+          if (dom%el_state(e) == el_eroded) cycle
+          do k = 1, 4
+            n = dom%el_conn(e,k)
+            if (n > dom%n_owned_nodes) cycle
+            if (stab) then
+              dom%nd_p(n) = dom%nd_p(n) + dom%el_vol0(e)*dom%el_pavg(e)
+            else
+              dom%nd_p(n) = dom%nd_p(n) + dom%el_vol0(e)*dom%el_p(e)
+            end if
+          end do
+        end do
         do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
-          call node_pressure(dom, dom%blk_nd(k))
+          n = dom%blk_nd(k)
+          if (dom%nd_vol0(n) <= 0.0_rk) then
+            dom%nd_p(n) = 0.0_rk
+          else
+            dom%nd_p(n) = 0.25_rk*dom%nd_p(n)/dom%nd_vol0(n)
+          end if
         end do
       end if
     end do
