@@ -57,11 +57,15 @@ module udar_domain
     integer, allocatable :: el_state(:)         !< intact, fractured or eroded (udar_fracture)
     real(rk), allocatable :: el_damage(:)       !< -, fracture at 1 (eps_p/eps_f or Johnson-Cook damage)
     real(rk), allocatable :: el_eps_tot(:)      !< -, accumulated equivalent deviatoric (total) strain
-    real(rk), allocatable :: el_f(:,:)          !< (12,n) N, element nodal forces (x,y,z of corner 1..4):
-                                                !< element-major so the node-wise assembly reads contiguously
     ! vectorized blocks: runs of consecutive elements of one material
     integer :: n_blocks = 0
     integer, allocatable :: blk_first(:), blk_last(:)
+    !> owned nodes by the block holding their last (highest-id) incident
+    !> element: blk_nd(blk_nd_ptr(b):blk_nd_ptr(b+1)-1), ascending, are the
+    !> nodes whose element lists are complete once block b is done, so an
+    !> element pass can sum them (in the lists' fixed order) while the
+    !> block's values are still in cache
+    integer, allocatable :: blk_nd_ptr(:), blk_nd(:)
     ! ---- model
     type(material_cfg_t), allocatable :: mat(:)
     integer :: n_parts = 0
@@ -125,9 +129,10 @@ contains
     if (allocated(d%el_state)) b = b + bytes_i(d%el_state)
     if (allocated(d%el_damage)) b = b + bytes_r(d%el_damage)
     if (allocated(d%el_eps_tot)) b = b + bytes_r(d%el_eps_tot)
-    if (allocated(d%el_f)) b = b + bytes_r2(d%el_f)
     if (allocated(d%blk_first)) b = b + bytes_i(d%blk_first)
     if (allocated(d%blk_last)) b = b + bytes_i(d%blk_last)
+    if (allocated(d%blk_nd_ptr)) b = b + bytes_i(d%blk_nd_ptr)
+    if (allocated(d%blk_nd)) b = b + bytes_i(d%blk_nd)
     if (allocated(d%fixed_nodes)) b = b + bytes_i(d%fixed_nodes)
     if (allocated(d%sym_nodes)) b = b + bytes_i(d%sym_nodes)
     if (allocated(d%sym_normal)) b = b + bytes_r2(d%sym_normal)

@@ -15,7 +15,7 @@
 module udar_distribution
   use udar_kinds, only: rk
   use udar_domain, only: domain_t
-  use udar_setup, only: build_incidence, build_blocks
+  use udar_setup, only: build_incidence, build_blocks, build_node_schedule
   use udar_comms, only: halo_t, halo_max_components, comms_size, comms_alltoall_counts, comms_alltoallv_int
   implicit none
   private
@@ -118,6 +118,7 @@ contains
     loc%mat = glob%mat
     call build_incidence(loc)
     call build_blocks(loc)
+    call build_node_schedule(loc)
     ! model and conditions (velocity conditions on every local node: harmless
     ! on ghosts, which the halo overwrites)
     loc%n_parts = glob%n_parts

@@ -17,8 +17,8 @@ module udar_run
   use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_value
   use udar_fatal, only: fatal, fatal_all, fatal_unless_all_ok, exit_physics, exit_io, log_error_here
   use udar_log, only: log_info, log_warn
-  use udar_element_driver, only: element_volumes, nodal_volumes, element_update, nodal_pressures, &
-      element_forces_averaged, assemble_forces, element_stable_dt, nodal_reference_volumes, &
+  use udar_element_driver, only: element_volumes, element_update, nodal_pressures, &
+      element_forces_averaged, element_stable_dt, nodal_reference_volumes, &
       element_altitudes
   use udar_fracture, only: fracture_enabled, el_intact, el_eroded
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions, &
@@ -258,15 +258,19 @@ contains
       st%cycle = st%cycle + 1
       cycles_run = cycles_run + 1
       st%dt_old = dt
-      ! ---- elements: stress(n+1), forces(n+1)
+      ! ---- elements: stress(n+1), forces(n+1); the nodal sums (J, p, f) in the
+      ! element passes, each node as soon as its last element is done
       if (dom%anti_locking) then
         call element_volumes(dom)
-        call nodal_volumes(dom)
         call comms_halo_exchange_scalar(halo, dom%nd_j)
       end if
       call element_update(dom, dt, st%dt_stable, dt_elem, bad, bad_avg, n_eroded_now, eroded_any)
       n_eroded_by = n_eroded_by + n_eroded_now
-      if (eroded_any) call nodal_reference_volumes(dom, rebase=dom%anti_locking)
+      if (eroded_any) then
+        call nodal_reference_volumes(dom, rebase=dom%anti_locking)
+        ! the nodal pressures again with the new reference volumes
+        if (dom%anti_locking) call nodal_pressures(dom)
+      end if
       if (ct%n_tets > 0) call share_erosion(sum(n_eroded_now) > 0, .true.)
       ! the lowest global id that inverted itself, else the lowest whose nodal
       ! average did: one reduction a cycle (keys above n_global_elems are the latter)
@@ -292,11 +296,9 @@ contains
         if (st%dt_stable < cfg%run%dt_warn_ratio*st%dt0/10.0_rk**dt_warn_level) call warn_small_step()
       end if
       if (dom%anti_locking) then
-        call nodal_pressures(dom)
         call comms_halo_exchange_scalar(halo, dom%nd_p)
         call element_forces_averaged(dom)
       end if
-      call assemble_forces(dom)
       if (st%cycle >= cfg%run%max_cycles) done = .true.
 
       ! ---- balance, checks, output

@@ -20,7 +20,7 @@ module udar_setup
   use udar_strength, only: initial_hardening, thermal_softening
   implicit none
   private
-  public :: build_domain, init_state, count_bodies, build_incidence, build_blocks, find_group, group_list
+  public :: build_domain, init_state, count_bodies, build_incidence, build_blocks, build_node_schedule, find_group, group_list
 
 contains
 
@@ -182,7 +182,7 @@ contains
     dom%nd_j = 1.0_rk
     allocate(dom%el_vol(ne), dom%el_h(ne), dom%el_mass(ne), dom%el_j(ne), dom%el_e(ne), dom%el_wp(ne), dom%el_p(ne), &
              dom%el_q(ne), dom%el_pavg(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_hard(ne), &
-             dom%el_soft(ne), dom%el_f(12,ne))
+             dom%el_soft(ne))
     do e = 1, ne
       dom%el_mass(e) = dom%mat(dom%el_mat(e))%rho0*dom%el_vol0(e)
       dom%el_temp(e) = dom%mat(dom%el_mat(e))%initial_temperature
@@ -193,7 +193,7 @@ contains
     dom%el_h = huge(1.0_rk)
     dom%el_j = 1.0_rk
     dom%el_e = 0.0_rk; dom%el_wp = 0.0_rk; dom%el_p = 0.0_rk; dom%el_q = 0.0_rk; dom%el_pavg = 0.0_rk; dom%el_s = 0.0_rk
-    dom%el_eps_p = 0.0_rk; dom%el_f = 0.0_rk
+    dom%el_eps_p = 0.0_rk
     allocate(dom%el_state(ne), source=0)
     allocate(dom%el_damage(ne), dom%el_eps_tot(ne), source=0.0_rk)
   end subroutine
@@ -252,6 +252,38 @@ contains
     dom%n_blocks = nb
     dom%blk_first = f(1:nb)
     dom%blk_last = l(1:nb)
+  end subroutine
+
+  !> The owned nodes grouped by the block of their last incident element
+  !> (domain_t blk_nd), ascending within a block (counting sort); a node
+  !> without elements goes with block 1. Needs the incidence, the blocks
+  !> and n_owned_nodes.
+  subroutine build_node_schedule(dom)
+    type(domain_t), intent(inout) :: dom
+    integer, allocatable :: blk_of(:), nd_blk(:), fill(:)
+    integer :: b, n, k
+    allocate(blk_of(dom%n_elems), nd_blk(dom%n_owned_nodes))
+    do b = 1, dom%n_blocks
+      blk_of(dom%blk_first(b):dom%blk_last(b)) = b
+    end do
+    if (allocated(dom%blk_nd_ptr)) deallocate(dom%blk_nd_ptr, dom%blk_nd)
+    allocate(dom%blk_nd_ptr(max(dom%n_blocks, 1) + 1), source=0)
+    do n = 1, dom%n_owned_nodes
+      nd_blk(n) = 1
+      if (dom%nd_el_ptr(n+1) > dom%nd_el_ptr(n)) nd_blk(n) = blk_of(dom%nd_el(dom%nd_el_ptr(n+1) - 1))
+      dom%blk_nd_ptr(nd_blk(n)+1) = dom%blk_nd_ptr(nd_blk(n)+1) + 1
+    end do
+    dom%blk_nd_ptr(1) = 1
+    do b = 1, size(dom%blk_nd_ptr) - 1
+      dom%blk_nd_ptr(b+1) = dom%blk_nd_ptr(b+1) + dom%blk_nd_ptr(b)
+    end do
+    allocate(dom%blk_nd(dom%n_owned_nodes))
+    allocate(fill(size(dom%blk_nd_ptr) - 1), source=dom%blk_nd_ptr(1:size(dom%blk_nd_ptr)-1))
+    do n = 1, dom%n_owned_nodes
+      k = fill(nd_blk(n))
+      dom%blk_nd(k) = n
+      fill(nd_blk(n)) = k + 1
+    end do
   end subroutine
 
   subroutine boundaries_check(cfg, mesh, errs)
