@@ -4,7 +4,7 @@ program udar
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use udar_kinds, only: rk, i8, max_path_len
   use udar_comms, only: comms_init, comms_finalize, comms_is_root, comms_size, comms_rank, comms_bcast_int, &
-      halo_t, comms_max_int
+      halo_t, comms_max_int, comms_max_i8, comms_sum_int
   use udar_distribution, only: distribute_domain
   use udar_fatal, only: fatal_all, exit_input
   use udar_log, only: log_info, log_warn, log_to_stderr
@@ -14,8 +14,9 @@ program udar
   use udar_input_errors, only: input_errors_t, input_errors_report
   use udar_deck, only: deck_read, deck_where
   use udar_gmsh, only: gmsh_mesh_t, gmsh_read
-  use udar_domain, only: domain_t
-  use udar_setup, only: build_domain, count_bodies
+  use udar_domain, only: domain_t, domain_bytes
+  use udar_memory, only: peak_rss_bytes, rss_bytes
+  use udar_setup, only: build_domain, init_state, count_bodies
   use udar_run, only: run_simulation, run_result_t
   use udar_checkpoint, only: checkpoint_model_hash, checkpoint_mesh_hash, checkpoint_latest
   use udar_contact_model, only: contact_t
@@ -43,7 +44,7 @@ program udar
   character(len=max_path_len) :: restart_arg = ''   !< --restart CHECKPOINT | auto
   real(rk) :: wall_limit_arg = 0.0_rk               !< --wall-limit S: overrides &run wall_limit
   character(len=:), allocatable :: pending, restart_path
-  integer(i8) :: model_hash, mesh_hash
+  integer(i8) :: model_hash, mesh_hash, glob_bytes
 
   ! first: a batch system's signal during set-up is kept, not fatal
   call signals_install()
@@ -115,6 +116,7 @@ program udar
   write(line, '(a,i0,a,i0,a,i0,a)') 'mesh '//trim(cfg%mesh%file)//': ', mesh%n_nodes, ' nodes, ', mesh%n_tets, &
     ' tetrahedra, ', mesh%n_inverted, ' reoriented at read time'
   call log_info(line)
+  mesh = gmsh_mesh_t()     ! the domain and the contact surfaces hold all that is needed of it
   n_bodies = count_bodies(dom)
   if (n_bodies > 1 .and. contacts%n_interfaces == 0) then
     write(line, '(a,i0,a)') 'the mesh holds ', n_bodies, ' separate bodies and the deck no &contact: '// &
@@ -144,9 +146,12 @@ program udar
                                      max(cfg%output%checkpoint_keep, 1))
     if (len(restart_path) == 0) call log_info('--restart auto: no checkpoint of this case yet; starting at t = 0')
   end if
+  glob_bytes = domain_bytes(dom)
   call decompose(dom, local, halo)
   call contact_distribute(contacts, local)
+  call log_memory('start-up', local)
   call run_simulation(cfg, local, halo, contacts, restart_path, model_hash, mesh_hash, res)
+  call log_memory('run', local)
   write(line, '(a,i0,a,es12.5,a,es10.3,a)') 'udar: done: ', res%cycles, ' cycles to t = ', &
     res%time, ' s, energy error ', res%energy_error, ', '//fixed(res%wall_seconds, 2)//' s wall ('// &
     fixed(res%ns_per_element_cycle, 1)//' ns per element-cycle); fields '// &
@@ -157,7 +162,8 @@ program udar
 contains
 
   !> METIS partition on rank 0 (one answer for all), the local domain and
-  !> halo of this rank, and the partition report. The global domain is freed.
+  !> halo of this rank, and the partition report. The global domain is freed
+  !> before the local state is allocated (the start-up peak).
   subroutine decompose(glob, loc, halo)
     type(domain_t), intent(inout) :: glob
     type(domain_t), intent(out) :: loc
@@ -179,7 +185,36 @@ contains
       if (comms_is_root()) call log_partition(glob, part, n, stats)
     end if
     call distribute_domain(glob, part, comms_rank(), loc, halo)
+    deallocate(part)
     glob = domain_t()
+    call init_state(loc)
+  end subroutine
+
+  !> Memory, largest rank: at start-up, the peak so far and what the domains
+  !> hold (the local domains of all ranks, ghosts included, and the global
+  !> mesh domain every rank builds while splitting it, glob_bytes); after
+  !> the run, the resident memory (the steady footprint) and the process peak.
+  !> Per global element, for `make bench` and doc/performance.md.
+  subroutine log_memory(stage, loc)
+    character(len=*), intent(in) :: stage
+    type(domain_t), intent(in) :: loc
+    integer(i8) :: peak, resident, local_bytes
+    real(rk) :: ne
+    peak = comms_max_i8(peak_rss_bytes())
+    resident = comms_max_i8(rss_bytes())
+    local_bytes = comms_sum_int(domain_bytes(loc))
+    ne = real(max(loc%n_global_elems, 1), rk)
+    if (stage == 'start-up') then
+      write(line, '(a,f0.1,a,i0,a,i0,a,i0,a)') 'memory: start-up peak ', peak/1048576.0_rk, ' MiB = ', &
+        nint(peak/ne), ' bytes per element (largest rank); domains ', nint(local_bytes/ne), ' bytes per '// &
+        'element (all ranks), global mesh domain ', nint(glob_bytes/ne), ' bytes per element (each rank, '// &
+        'freed before the run)'
+    else
+      write(line, '(a,f0.1,a,i0,a,f0.1,a,i0,a)') 'memory: resident after the run ', resident/1048576.0_rk, &
+        ' MiB = ', nint(resident/ne), ' bytes per element, process peak ', peak/1048576.0_rk, ' MiB = ', &
+        nint(peak/ne), ' bytes per element (largest rank)'
+    end if
+    call log_info(line)
   end subroutine
 
   !> udar --check --ranks N: the partition a run on N ranks would get.

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # make bench: ns per element-cycle and peak memory per element on the OFHC
 # copper Taylor bar (Johnson-Cook + Mie-Grueneisen, anti-locking on and off)
-# at about 20k and 200k tetrahedra. Not a test: the machine is shared and
-# noisy, so compare ratios measured in one run. Figures are printed and
-# saved in bench/results/.
+# at about 20k and 200k tetrahedra; memory per element at 3k, 200k and 1M
+# tetrahedra on 1 and 2 ranks. Not a test: the machine is shared and noisy,
+# so compare ratios measured in one run. Figures are printed and saved in
+# bench/results/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -14,7 +15,7 @@ out=bench/results/bench-$(date +%Y%m%d-%H%M%S).txt
 {
   echo "# udar bench $(date -Iseconds) on $(hostname), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
   echo "# version $(bin/udar --version), commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
-  printf '%-10s %-12s %10s %8s %12s %14s %12s\n' case anti_locking tets cycles wall_s ns_per_el_cyc bytes_per_el
+  printf '%-10s %-12s %10s %8s %12s %14s %12s %12s\n' case anti_locking tets cycles wall_s ns_per_el_cyc bytes_per_el domain_b_el
 } | tee "$out"
 for spec in "20k 0.42 300" "200k 0.19 60"; do
   set -- $spec
@@ -33,16 +34,61 @@ for spec in "20k 0.42 300" "200k 0.19 60"; do
     ns=$(grep -o '[0-9.]* ns per element-cycle' "$W/log" | cut -d' ' -f1)
     wall=$(grep -o '[0-9.]* s wall' "$W/log" | cut -d' ' -f1)
     rss_kb=$(cat "$W/rss")
-    printf '%-10s %-12s %10s %8s %12s %14s %12d\n' "ofhc_$name" "${al//./}" "$tets" "$ncyc" "$wall" "$ns" \
-      $(( rss_kb * 1024 / tets )) | tee -a "$out"
+    dom=$(grep -o 'domains [0-9]* bytes per element' "$W/log" | awk '{print $2}')
+    printf '%-10s %-12s %10s %8s %12s %14s %12d %12s\n' "ofhc_$name" "${al//./}" "$tets" "$ncyc" "$wall" "$ns" \
+      $(( rss_kb * 1024 / tets )) "$dom" | tee -a "$out"
   done
 done
-echo "# bytes_per_el is the peak resident memory of the whole process over the tetrahedron count" | tee -a "$out"
+echo "# bytes_per_el is the peak resident memory of the whole process over the tetrahedron count;" \
+     "domain_b_el the bytes of the domain's own arrays (udar_domain domain_bytes) over it" | tee -a "$out"
+
+# ---- memory: the bar at about 3k (the fixed cost of MPI and HDF5), 200k and
+# 1M tets on 1 and 2 ranks, 5 cycles each (udar's 'memory:' log lines, largest
+# rank): the start-up peak (reading, partitioning and distributing the mesh),
+# the resident memory after the run (the steady footprint) and the process
+# peak; the per-element slope between 200k and 1M is the cost of an element
+# without the fixed cost
+if [ "$(id -u)" = 0 ]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
+export OMPI_MCA_rmaps_base_oversubscribe=1
+gmsh -3 -v 0 -setnumber h 0.8 input/taylor_ofhc/taylor_ofhc.geo -o "$W/bar_3k.msh"
+gmsh -3 -v 0 -setnumber h 0.108 input/taylor_ofhc/taylor_ofhc.geo -o "$W/bar_1m.msh"
+echo "# memory: OFHC bar, anti-locking on, 5 cycles; bytes per element = bytes / global tets; largest rank" | tee -a "$out"
+printf '%-10s %5s %8s %8s %10s %10s %10s %10s %8s %8s\n' case ranks nodes tets startup_MiB resident_MiB peak_MiB \
+  peak_b_el domain global | tee -a "$out"
+declare -A peak_mib tets_of
+for name in 3k 200k 1m; do
+  deck=$W/mem_$name.nml
+  sed -e "s|file = 'taylor_ofhc.msh'|file = '$W/bar_$name.msh'|" \
+      -e "s|directory = 'out'|directory = '$W/out'|" \
+      -e "s|cycle_print = 500|cycle_print = 100000, max_cycles = 5|" \
+      -e "s|dt_field = 10.0e-6|dt_field = 0.0|" -e "s|dt_history = 0.2e-6|dt_history = 1.0|" \
+      input/taylor_ofhc/taylor_ofhc.nml > "$deck"
+  for n in 1 2; do
+    mpirun -np $n bin/udar "$deck" > "$W/log" 2>&1
+    nodes=$(grep -o '[0-9]* nodes, [0-9]* tetrahedra' "$W/log" | awk '{print $1}')
+    tets=$(grep -o '[0-9]* tetrahedra' "$W/log" | head -1 | cut -d' ' -f1)
+    su=$(sed -n 's/.*start-up peak \([0-9.]*\) MiB.*/\1/p' "$W/log")
+    res=$(sed -n 's/.*resident after the run \([0-9.]*\) MiB.*/\1/p' "$W/log")
+    pk=$(sed -n 's/.*process peak \([0-9.]*\) MiB = \([0-9]*\) bytes.*/\1/p' "$W/log")
+    pkb=$(sed -n 's/.*process peak \([0-9.]*\) MiB = \([0-9]*\) bytes.*/\2/p' "$W/log")
+    dom=$(grep -o 'domains [0-9]* bytes per element' "$W/log" | awk '{print $2}')
+    glob=$(grep -o 'global mesh domain [0-9]* bytes per element' "$W/log" | awk '{print $4}')
+    printf '%-10s %5d %8s %8s %10s %10s %10s %10s %8s %8s\n' "ofhc_$name" $n "$nodes" "$tets" "$su" "$res" "$pk" \
+      "$pkb" "$dom" "$glob" | tee -a "$out"
+    peak_mib[$name$n]=$pk; tets_of[$name]=$tets
+  done
+done
+for n in 1 2; do
+  echo "${peak_mib[200k$n]} ${peak_mib[1m$n]} ${tets_of[200k]} ${tets_of[1m]} ${peak_mib[3k$n]}" | awk -v n=$n \
+    '{printf "memory slope on %d rank(s), 200k -> 1M: %.0f bytes per element (largest rank); fixed cost (3k bar) %.1f MiB\n",
+      n, ($2-$1)*1048576/($4-$3), $5}' | tee -a "$out"
+done
+echo "# startup: peak while reading, partitioning and distributing the mesh; resident: after the run;" \
+     "peak: whole process; domain: the local domains of all ranks (ghosts included), global: the mesh domain" \
+     "every rank holds at start-up (bytes per element)" | tee -a "$out"
 
 # ---- parallel: the 200k bar (anti-locking on) on 1 and 2 ranks, alternated
 # twice, best of each; speedup from the cycle-loop time
-if [ "$(id -u)" = 0 ]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
-export OMPI_MCA_rmaps_base_oversubscribe=1
 deck=$W/bench_200k_.true..nml
 echo "# parallel: 200k bar, anti-locking on, 60 cycles; ns per element-cycle = loop wall time / (global elements x cycles)" | tee -a "$out"
 best1=1e30; best2=1e30
@@ -60,7 +106,6 @@ echo "$best1 $best2" | awk '{printf "speedup on 2 ranks %.2f, parallel efficienc
 
 # ---- projected scaling from the partition alone: a 1M-tet bar split into
 # 2..64 parts; ghost-element work and halo sizes (udar --check --ranks N)
-gmsh -3 -v 0 -setnumber h 0.108 input/taylor_ofhc/taylor_ofhc.geo -o "$W/bar_1m.msh"
 sed -e "s|file = 'taylor_ofhc.msh'|file = '$W/bar_1m.msh'|" input/taylor_ofhc/taylor_ofhc.nml > "$W/bar_1m.nml"
 scaling=doc/scaling.md
 {

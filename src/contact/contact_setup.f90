@@ -122,7 +122,7 @@ contains
     ct%m = glob%nd_mass(ct%gidx)
     allocate(ct%x(3, ct%n_nodes), ct%v(3, ct%n_nodes))
     allocate(ct%h(ct%n_nodes), source=huge(1.0_rk))
-    ct%x = glob%nd_x(:, ct%gidx)
+    ct%x = glob%nd_x0(:, ct%gidx)
     ct%v = glob%nd_v(:, ct%gidx)
     ct%sym_planes = sym_planes(ct%gidx)
 
@@ -213,8 +213,8 @@ contains
       it%move_overlaps = cfg%contacts(k)%initial_overlap == overlap_move
       s = 0
       do t = 1, size(tri, 2)
-        s = s + norm2(glob%nd_x(:,tri(2,t)) - glob%nd_x(:,tri(1,t))) + norm2(glob%nd_x(:,tri(3,t)) - &
-            glob%nd_x(:,tri(2,t))) + norm2(glob%nd_x(:,tri(1,t)) - glob%nd_x(:,tri(3,t)))
+        s = s + norm2(glob%nd_x0(:,tri(2,t)) - glob%nd_x0(:,tri(1,t))) + norm2(glob%nd_x0(:,tri(3,t)) - &
+            glob%nd_x0(:,tri(2,t))) + norm2(glob%nd_x0(:,tri(1,t)) - glob%nd_x0(:,tri(3,t)))
       end do
       it%h_mean = s/max(3*size(tri, 2), 1)
       ! half an element of reach beyond the margin: a full search every few

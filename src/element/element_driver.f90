@@ -1,37 +1,60 @@
 !> Element passes of one cycle, over vectorized blocks: gather nodal data,
 !> call the pure kernels, keep element state. Nodal averages (anti-locking)
-!> and force assembly run over the node->element lists in ascending element
-!> id, so every sum has one fixed order whatever the partition. Element
-!> passes cover every local element (owned and ghost); nodal passes the
-!> owned nodes, whose element lists are complete.
+!> run over the node->element lists in ascending element id, inside the
+!> element passes as each node's list completes; the nodal forces are
+!> added element by element in ascending id (the same order). So every
+!> sum has one fixed order whatever the partition. Element passes cover
+!> every local element (owned and ghost); nodal sums the owned nodes,
+!> whose element lists are complete.
 module udar_element_driver
   use udar_kinds, only: rk
   use udar_domain, only: domain_t, block_size
-  use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_volume, tet_stiffness_bound
+  use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_volumes, tet_stiffness_bound
   use udar_strength, only: strength_block, thermal_softening_update, von_mises
   use udar_fracture, only: el_fractured, el_eroded, el_intact, erode_strain, erode_time_step, erode_inverted, &
       fracture_update, fracture_enabled, erosion_enabled, deviatoric_rate
-  use udar_hydro, only: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_pressures, &
+  use udar_hydro, only: volumetric_update, dilatational_speed2, blended_volume_ratios, blended_pressures, &
       step_shear_modulus, step_volumetric_share
   use udar_config, only: tet_stabilised
   implicit none
   private
-  public :: element_volumes, nodal_volumes, element_update, nodal_pressures, &
-            element_forces_averaged, assemble_forces, element_stiffness_bounds, nodal_stable_dt, element_time_steps, &
-            nodal_reference_volumes, element_altitudes
+  public :: element_volumes, element_update, nodal_pressures, element_forces_averaged, element_stiffness_bounds, &
+            nodal_stable_dt, element_time_steps, nodal_reference_volumes, element_altitudes
 
 contains
 
-  !> Current element volumes from the nodal coordinates.
+  !> Current element volumes from the nodal coordinates and the owned nodes'
+  !> volume ratios J_a = V_a / Vref_a, V_a a quarter of each incident
+  !> element's volume (Bonet and Burton 1998), Vref_a = V0_a until erosion
+  !> rebases it; eroded elements left out, 1 at a node they all left. The
+  !> volumes are added to nd_j element by element in ascending id (each
+  !> node's list order), and a node's ratio is formed once the block holding
+  !> its last element is done (domain_t blk_nd).
   subroutine element_volumes(dom)
     type(domain_t), intent(inout) :: dom
-    real(rk) :: xe(4,3)
-    integer :: e, a
-    do e = 1, dom%n_elems
-      do a = 1, 4
-        xe(a,:) = dom%nd_x(:,dom%el_conn(e,a))
+    real(rk) :: xe(block_size,4,3)
+    integer :: b, k, n, e, c, first, nb
+    dom%nd_j(1:dom%n_owned_nodes) = 0.0_rk
+    do b = 1, dom%n_blocks
+      first = dom%blk_first(b)
+      nb = dom%blk_last(b) - first + 1
+      call gather_block(dom, dom%nd_x, first, nb, xe)
+      call tet_volumes(block_size, nb, xe, dom%el_vol(first:first+nb-1))
+      do e = first, first + nb - 1
+        if (dom%el_state(e) == el_eroded) cycle
+        do c = 1, 4
+          n = dom%el_conn(e,c)
+          if (n <= dom%n_owned_nodes) dom%nd_j(n) = dom%nd_j(n) + dom%el_vol(e)
+        end do
       end do
-      dom%el_vol(e) = tet_volume(xe)
+      do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
+        n = dom%blk_nd(k)
+        if (dom%nd_vref(n) > 0.0_rk) then
+          dom%nd_j(n) = 0.25_rk*dom%nd_j(n)/dom%nd_vref(n)
+        else
+          dom%nd_j(n) = 1.0_rk
+        end if
+      end do
     end do
   end subroutine
 
@@ -88,38 +111,35 @@ contains
     end do
   end subroutine
 
-  !> Nodal volume ratio J_a = V_a / Vref_a, V_a a quarter of each incident
-  !> element's volume (Bonet and Burton 1998), Vref_a = V0_a until erosion
-  !> rebases it; eroded elements left out, 1 at a node they all left.
-  subroutine nodal_volumes(dom)
-    type(domain_t), intent(inout) :: dom
-    integer :: n
-    do n = 1, dom%n_owned_nodes
-      dom%nd_j(n) = 1.0_rk
-      if (dom%nd_vref(n) > 0.0_rk) dom%nd_j(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_vol)/dom%nd_vref(n)
-    end do
-  end subroutine
-
   !> Nodal pressure: reference-volume-weighted mean of the incident elements'
   !> EOS pressures; the weights make the averaged forces the exact gradient of
-  !> the averaged-volume energy. Eroded elements left out.
+  !> the averaged-volume energy. Eroded elements left out. element_update
+  !> computes them as it goes (the same sums in the same order); again here
+  !> after erosion changed nd_vol0.
   subroutine nodal_pressures(dom)
     type(domain_t), intent(inout) :: dom
     integer :: n
     do n = 1, dom%n_owned_nodes
-      dom%nd_p(n) = 0.0_rk
-      if (dom%nd_vol0(n) <= 0.0_rk) cycle
-      if (dom%stab_beta > 0.0_rk) then
-        dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_pavg, w=dom%el_vol0)/dom%nd_vol0(n)
-      else
-        dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_p, w=dom%el_vol0)/dom%nd_vol0(n)
-      end if
+      call node_pressure(dom, n)
     end do
   end subroutine
 
+  subroutine node_pressure(dom, n)
+    type(domain_t), intent(inout) :: dom
+    integer, intent(in) :: n
+    dom%nd_p(n) = 0.0_rk
+    if (dom%nd_vol0(n) <= 0.0_rk) return
+    if (dom%stab_beta > 0.0_rk) then
+      dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_pavg, w=dom%el_vol0)/dom%nd_vol0(n)
+    else
+      dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_p, w=dom%el_vol0)/dom%nd_vol0(n)
+    end if
+  end subroutine
+
   !> Stress update of every element over dt with the velocities v(n+1/2) on
-  !> the geometry x(n+1); forces too unless anti-locking needs the nodal
-  !> pressures first. Fracture and erosion: a fractured element keeps no
+  !> the geometry x(n+1); the nodal forces too unless anti-locking needs the
+  !> nodal pressures first, which are then computed (nodal_pressures) as the
+  !> blocks complete each owned node's element list. Fracture and erosion: a fractured element keeps no
   !> deviator and no tension; an eroded one passes through the kernels as an
   !> element at rest (no strain, no force, its state frozen) and is left out
   !> of the time step. Keeps each element's stiffness bound for the nodal
@@ -141,13 +161,18 @@ contains
                 bulk(ld), visc(ld), lam(ld)
     logical :: gone(ld), no_shear(ld), erodible, fracturing, fractured, stab, geo
     real(rk) :: t_old, d_eps, jbar(ld), je(ld)
-    integer :: b, i, e, nb, first, last, k
+    integer :: b, i, e, nb, first, last, k, n
     bad_elem = 0
     bad_j = 0
     n_eroded = 0
     eroded_any = .false.
     stab = dom%stab_beta > 0.0_rk
     geo = dom%tet_formulation == tet_stabilised
+    if (dom%anti_locking) then
+      dom%nd_p(1:dom%n_owned_nodes) = 0.0_rk
+    else
+      dom%nd_f(:,1:dom%n_owned_nodes) = 0.0_rk
+    end if
     do b = 1, dom%n_blocks
       call block_geometry(dom, b, first, last, nb, vol, grad, h)
       call gather_block(dom, dom%nd_v, first, nb, ve)
@@ -190,16 +215,17 @@ contains
         ! keep the arithmetic finite until the run stops
         if (vol(i) <= 0.0_rk .or. gone(i)) vol(i) = dom%el_vol0(e)
         if (j_new(i) <= 0.0_rk) j_new(i) = dom%el_j(e)
-        if (stab) then
-          ! stabilised: the EOS sees the nodal average blended with the element's own ratio
-          jbar(i) = j_new(i)
-          je(i) = vol(i)/dom%el_vol0(e)
-          if (.not. gone(i)) j_new(i) = blended_volume_ratio(geo, dom%stab_beta, jbar(i), je(i))
-        end if
         no_shear(i) = gone(i) .or. dom%el_state(e) == el_fractured
         ! accumulated total strain: only eroding materials use it
         if (erodible .and. .not. gone(i)) dom%el_eps_tot(e) = dom%el_eps_tot(e) + dt*deviatoric_rate(d(i,:))
       end do
+      if (stab) then
+        ! stabilised: the EOS sees the nodal average blended with the element's own ratio
+        jbar(1:nb) = j_new(1:nb)
+        je(1:nb) = vol(1:nb)/dom%el_vol0(first:last)
+        call blended_volume_ratios(geo, dom%stab_beta, nb, jbar, je, j_new)
+        j_new(1:nb) = merge(jbar(1:nb), j_new(1:nb), gone(1:nb))
+      end if
       do k = 1, 6
         s(1:nb,k) = merge(0.0_rk, dom%el_s(first:last,k), no_shear(1:nb))
       end do
@@ -297,7 +323,31 @@ contains
         do i = 1, nb
           if (gone(i)) fe(i,:,:) = 0.0_rk
         end do
-        call store_forces(dom, first, nb, fe)
+        call add_forces(dom, first, nb, fe)
+      else
+        ! nodal pressures (nodal_pressures): the weighted pressures added element
+        ! by element in ascending id, each node's mean formed once its last
+        ! element is done
+        do e = first, last
+          if (dom%el_state(e) == el_eroded) cycle
+          do k = 1, 4
+            n = dom%el_conn(e,k)
+            if (n > dom%n_owned_nodes) cycle
+            if (stab) then
+              dom%nd_p(n) = dom%nd_p(n) + dom%el_vol0(e)*dom%el_pavg(e)
+            else
+              dom%nd_p(n) = dom%nd_p(n) + dom%el_vol0(e)*dom%el_p(e)
+            end if
+          end do
+        end do
+        do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
+          n = dom%blk_nd(k)
+          if (dom%nd_vol0(n) <= 0.0_rk) then
+            dom%nd_p(n) = 0.0_rk
+          else
+            dom%nd_p(n) = 0.25_rk*dom%nd_p(n)/dom%nd_vol0(n)
+          end if
+        end do
       end if
     end do
   contains
@@ -375,8 +425,9 @@ contains
   end subroutine
 
   !> Forces with the element pressure replaced by the mean of its nodes'
-  !> averaged pressures (plus its own viscosity). The gradients are
-  !> recomputed from x(n+1): cheaper than storing and reloading them.
+  !> averaged pressures (plus its own viscosity), added to the owned nodes'
+  !> forces (add_forces). The gradients are recomputed from x(n+1): cheaper
+  !> than storing and reloading them (measured: slower at 200k elements).
   subroutine element_forces_averaged(dom)
     type(domain_t), intent(inout) :: dom
     integer, parameter :: ld = block_size
@@ -385,6 +436,7 @@ contains
     logical :: stab, geo
     stab = dom%stab_beta > 0.0_rk
     geo = dom%tet_formulation == tet_stabilised
+    dom%nd_f(:,1:dom%n_owned_nodes) = 0.0_rk
     do b = 1, dom%n_blocks
       call block_geometry(dom, b, first, last, nb, vol, grad, h)
       do i = 1, nb
@@ -405,7 +457,7 @@ contains
       do i = 1, nb
         if (dom%el_state(first + i - 1) == el_eroded) fe(i,:,:) = 0.0_rk
       end do
-      call store_forces(dom, first, nb, fe)
+      call add_forces(dom, first, nb, fe)
     end do
   end subroutine
 
@@ -439,36 +491,22 @@ contains
     end do
   end subroutine
 
-  !> Block forces (ld,4,3) into the element-major el_f(12,n).
-  subroutine store_forces(dom, first, nb, fe)
+  !> Block forces (ld,4,3) added to the owned nodes' forces, element after
+  !> element: each node's sum runs in ascending element id, the order of its
+  !> node->element list. nd_f of the owned nodes is zeroed before the first block.
+  subroutine add_forces(dom, first, nb, fe)
     type(domain_t), intent(inout) :: dom
     integer, intent(in) :: first, nb
     real(rk), intent(in) :: fe(block_size,4,3)
-    integer :: a, i
+    integer :: a, i, n
     do i = 1, nb
       do a = 1, 4
-        dom%el_f(3*a-2, first+i-1) = fe(i,a,1)
-        dom%el_f(3*a-1, first+i-1) = fe(i,a,2)
-        dom%el_f(3*a,   first+i-1) = fe(i,a,3)
+        n = dom%el_conn(first+i-1, a)
+        if (n > dom%n_owned_nodes) cycle
+        dom%nd_f(1,n) = dom%nd_f(1,n) + fe(i,a,1)
+        dom%nd_f(2,n) = dom%nd_f(2,n) + fe(i,a,2)
+        dom%nd_f(3,n) = dom%nd_f(3,n) + fe(i,a,3)
       end do
-    end do
-  end subroutine
-
-  !> Nodal forces: element contributions summed in ascending element id.
-  subroutine assemble_forces(dom)
-    type(domain_t), intent(inout) :: dom
-    integer :: n, k, c, e
-    real(rk) :: fx, fy, fz
-    do n = 1, dom%n_owned_nodes
-      fx = 0.0_rk; fy = 0.0_rk; fz = 0.0_rk
-      do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
-        c = 3*dom%nd_el_corner(k)
-        e = dom%nd_el(k)
-        fx = fx + dom%el_f(c-2, e)
-        fy = fy + dom%el_f(c-1, e)
-        fz = fz + dom%el_f(c, e)
-      end do
-      dom%nd_f(1,n) = fx; dom%nd_f(2,n) = fy; dom%nd_f(3,n) = fz
     end do
   end subroutine
 end module udar_element_driver

@@ -7,8 +7,9 @@ module udar_hydro
   use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
   implicit none
   private
-  public :: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_pressures, step_shear_modulus, &
-            step_volumetric_share
+  real(rk), parameter :: near_one = 0.1_rk   !< |r - 1| up to which near_one_power replaces r**beta
+  public :: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_volume_ratios, blended_pressures, &
+            step_shear_modulus, step_volumetric_share
 
   !> The share of an element's volumetric stiffness that the nodal time step
   !> of the nodal-averaged elements counts beyond their own beta: their
@@ -84,11 +85,59 @@ contains
   elemental real(rk) function blended_volume_ratio(geometric, beta, jbar, je) result(j)
     logical, intent(in) :: geometric
     real(rk), intent(in) :: beta, jbar, je
+    real(rk) :: r
     if (geometric) then
-      j = jbar*(je/jbar)**beta
+      r = je/jbar
+      if (abs(r - 1.0_rk) <= near_one) then
+        j = jbar*near_one_power(r, beta)
+      else
+        j = jbar*r**beta
+      end if
     else
       j = (1.0_rk - beta)*jbar + beta*je
     end if
+  end function
+
+  !> blended_volume_ratio of the first nb elements of a block, the same
+  !> values; the power near 1 (every element but a badly distorted one) in a
+  !> loop that vectorizes.
+  pure subroutine blended_volume_ratios(geometric, beta, nb, jbar, je, j)
+    logical, intent(in) :: geometric
+    integer, intent(in) :: nb
+    real(rk), intent(in) :: beta, jbar(nb), je(nb)
+    real(rk), intent(inout) :: j(nb)
+    real(rk) :: r
+    integer :: i
+    if (.not. geometric) then
+      j = (1.0_rk - beta)*jbar + beta*je
+      return
+    end if
+    do i = 1, nb
+      r = je(i)/jbar(i)
+      j(i) = jbar(i)*near_one_power(min(max(r, 1.0_rk - near_one), 1.0_rk + near_one), beta)
+    end do
+    ! scalar: a vectorized power (libmvec) could differ from the scalar one
+    ! in the last bit, by the element's place in its block
+!GCC$ novector
+    do i = 1, nb
+      r = je(i)/jbar(i)
+      if (abs(r - 1.0_rk) > near_one) j(i) = jbar(i)*r**beta
+    end do
+  end subroutine
+
+  !> r^beta for |r - 1| <= near_one and 0 <= beta <= 1 as exp(beta ln r),
+  !> both from series with no library call: ln r = 2 atanh(u), u = (r-1)/(r+1),
+  !> |u| < 0.053, to u^13 (truncation below 1e-19); exp(y), |y| < 0.106, to
+  !> y^10 (below 1e-18). Within a few ulp of r**beta.
+  elemental real(rk) function near_one_power(r, beta) result(rp)
+    real(rk), intent(in) :: r, beta
+    real(rk) :: u, u2, y
+    u = (r - 1.0_rk)/(r + 1.0_rk)
+    u2 = u*u
+    y = beta*2.0_rk*u*(1.0_rk + u2*(1.0_rk/3 + u2*(1.0_rk/5 + u2*(1.0_rk/7 + u2*(1.0_rk/9 + u2*(1.0_rk/11 &
+        + u2*(1.0_rk/13)))))))
+    rp = 1.0_rk + y*(1.0_rk + y*(1.0_rk/2 + y*(1.0_rk/6 + y*(1.0_rk/24 + y*(1.0_rk/120 + y*(1.0_rk/720 &
+         + y*(1.0_rk/5040 + y*(1.0_rk/40320 + y*(1.0_rk/362880 + y*(1.0_rk/3628800))))))))))
   end function
 
   !> The work-conjugate split of the EOS pressure p at the blended J: the

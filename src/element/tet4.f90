@@ -8,7 +8,7 @@ module udar_tet4
   use udar_kinds, only: rk
   implicit none
   private
-  public :: tet_volume, tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_stiffness_bound
+  public :: tet_volume, tet_volumes, tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_stiffness_bound
 
 contains
 
@@ -20,6 +20,20 @@ contains
     v = (d1(1)*(d2(2)*d3(3) - d2(3)*d3(2)) + d1(2)*(d2(3)*d3(1) - d2(1)*d3(3)) &
        + d1(3)*(d2(1)*d3(2) - d2(2)*d3(1))) / 6.0_rk
   end function
+
+  !> tet_volume of the first nb elements of a block, the same arithmetic.
+  pure subroutine tet_volumes(ld, nb, x, vol)
+    integer, intent(in) :: ld, nb
+    real(rk), intent(in) :: x(ld,4,3)
+    real(rk), intent(inout) :: vol(nb)
+    real(rk) :: d1(3), d2(3), d3(3)
+    integer :: i
+    do i = 1, nb
+      d1 = x(i,2,:) - x(i,1,:); d2 = x(i,3,:) - x(i,1,:); d3 = x(i,4,:) - x(i,1,:)
+      vol(i) = (d1(1)*(d2(2)*d3(3) - d2(3)*d3(2)) + d1(2)*(d2(3)*d3(1) - d2(1)*d3(3)) &
+              + d1(3)*(d2(1)*d3(2) - d2(2)*d3(1))) / 6.0_rk
+    end do
+  end subroutine
 
   !> Volume, shape-function gradients dN_a/dx_k and g2max = max_a |grad N_a|^2
   !> (the altitude over face a is 1/|grad N_a|: smallest altitude 1/sqrt(g2max)).

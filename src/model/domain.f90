@@ -5,11 +5,11 @@
 !> global index, owned and ghost interleaved (el_owned). With one rank the
 !> local and global numberings coincide.
 module udar_domain
-  use udar_kinds, only: rk, max_name_len
+  use udar_kinds, only: rk, i8, max_name_len
   use udar_config, only: material_cfg_t
   implicit none
   private
-  public :: domain_t, wall_t, block_size
+  public :: domain_t, wall_t, block_size, domain_bytes
 
   integer, parameter :: block_size = 128   !< elements per vectorized block
 
@@ -59,11 +59,15 @@ module udar_domain
     integer, allocatable :: el_state(:)         !< intact, fractured or eroded (udar_fracture)
     real(rk), allocatable :: el_damage(:)       !< -, fracture at 1 (eps_p/eps_f or Johnson-Cook damage)
     real(rk), allocatable :: el_eps_tot(:)      !< -, accumulated equivalent deviatoric (total) strain
-    real(rk), allocatable :: el_f(:,:)          !< (12,n) N, element nodal forces (x,y,z of corner 1..4):
-                                                !< element-major so the node-wise assembly reads contiguously
     ! vectorized blocks: runs of consecutive elements of one material
     integer :: n_blocks = 0
     integer, allocatable :: blk_first(:), blk_last(:)
+    !> owned nodes by the block holding their last (highest-id) incident
+    !> element: blk_nd(blk_nd_ptr(b):blk_nd_ptr(b+1)-1), ascending, are the
+    !> nodes whose element lists are complete once block b is done, so an
+    !> element pass can sum them (in the lists' fixed order) while the
+    !> block's values are still in cache
+    integer, allocatable :: blk_nd_ptr(:), blk_nd(:)
     ! ---- model
     type(material_cfg_t), allocatable :: mat(:)
     integer :: n_parts = 0
@@ -79,4 +83,73 @@ module udar_domain
     real(rk) :: q_linear = 0.06_rk, q_quadratic = 1.5_rk
     real(rk) :: erode_dt_limit = 0.0_rk          !< s, an eroding material's element with a smaller stable step is eroded
   end type
+
+contains
+
+  !> Bytes held by the domain's arrays (memory reports; `make bench` divides
+  !> it by the element count). Every allocatable component is listed here.
+  pure integer(i8) function domain_bytes(d) result(b)
+    type(domain_t), intent(in) :: d
+    b = 0
+    if (allocated(d%nd_gidx)) b = b + bytes_i(d%nd_gidx)
+    if (allocated(d%el_gidx)) b = b + bytes_i(d%el_gidx)
+    if (allocated(d%el_owned)) b = b + size(d%el_owned, kind=i8)*storage_size(d%el_owned)/8
+    if (allocated(d%el_owned_list)) b = b + bytes_i(d%el_owned_list)
+    if (allocated(d%nd_id)) b = b + bytes_i(d%nd_id)
+    if (allocated(d%nd_part)) b = b + bytes_i(d%nd_part)
+    if (allocated(d%nd_x0)) b = b + bytes_r2(d%nd_x0)
+    if (allocated(d%nd_x)) b = b + bytes_r2(d%nd_x)
+    if (allocated(d%nd_v)) b = b + bytes_r2(d%nd_v)
+    if (allocated(d%nd_f)) b = b + bytes_r2(d%nd_f)
+    if (allocated(d%nd_mass)) b = b + bytes_r(d%nd_mass)
+    if (allocated(d%nd_vol0)) b = b + bytes_r(d%nd_vol0)
+    if (allocated(d%nd_j)) b = b + bytes_r(d%nd_j)
+    if (allocated(d%nd_vref)) b = b + bytes_r(d%nd_vref)
+    if (allocated(d%nd_p)) b = b + bytes_r(d%nd_p)
+    if (allocated(d%nd_el_ptr)) b = b + bytes_i(d%nd_el_ptr)
+    if (allocated(d%nd_el)) b = b + bytes_i(d%nd_el)
+    if (allocated(d%nd_el_corner)) b = b + bytes_i(d%nd_el_corner)
+    if (allocated(d%el_id)) b = b + bytes_i(d%el_id)
+    if (allocated(d%el_part)) b = b + bytes_i(d%el_part)
+    if (allocated(d%el_mat)) b = b + bytes_i(d%el_mat)
+    if (allocated(d%el_conn)) b = b + size(d%el_conn, kind=i8)*storage_size(d%el_conn)/8
+    if (allocated(d%el_vol0)) b = b + bytes_r(d%el_vol0)
+    if (allocated(d%el_vol)) b = b + bytes_r(d%el_vol)
+    if (allocated(d%el_mass)) b = b + bytes_r(d%el_mass)
+    if (allocated(d%el_h)) b = b + bytes_r(d%el_h)
+    if (allocated(d%el_j)) b = b + bytes_r(d%el_j)
+    if (allocated(d%el_e)) b = b + bytes_r(d%el_e)
+    if (allocated(d%el_wp)) b = b + bytes_r(d%el_wp)
+    if (allocated(d%el_p)) b = b + bytes_r(d%el_p)
+    if (allocated(d%el_q)) b = b + bytes_r(d%el_q)
+    if (allocated(d%el_pavg)) b = b + bytes_r(d%el_pavg)
+    if (allocated(d%el_s)) b = b + bytes_r2(d%el_s)
+    if (allocated(d%el_eps_p)) b = b + bytes_r(d%el_eps_p)
+    if (allocated(d%el_temp)) b = b + bytes_r(d%el_temp)
+    if (allocated(d%el_hard)) b = b + bytes_r(d%el_hard)
+    if (allocated(d%el_soft)) b = b + bytes_r(d%el_soft)
+    if (allocated(d%el_state)) b = b + bytes_i(d%el_state)
+    if (allocated(d%el_damage)) b = b + bytes_r(d%el_damage)
+    if (allocated(d%el_eps_tot)) b = b + bytes_r(d%el_eps_tot)
+    if (allocated(d%blk_first)) b = b + bytes_i(d%blk_first)
+    if (allocated(d%blk_last)) b = b + bytes_i(d%blk_last)
+    if (allocated(d%blk_nd_ptr)) b = b + bytes_i(d%blk_nd_ptr)
+    if (allocated(d%blk_nd)) b = b + bytes_i(d%blk_nd)
+    if (allocated(d%fixed_nodes)) b = b + bytes_i(d%fixed_nodes)
+    if (allocated(d%sym_nodes)) b = b + bytes_i(d%sym_nodes)
+    if (allocated(d%sym_normal)) b = b + bytes_r2(d%sym_normal)
+  contains
+    pure integer(i8) function bytes_i(a)
+      integer, intent(in) :: a(:)
+      bytes_i = size(a, kind=i8)*storage_size(a)/8
+    end function
+    pure integer(i8) function bytes_r(a)
+      real(rk), intent(in) :: a(:)
+      bytes_r = size(a, kind=i8)*storage_size(a)/8
+    end function
+    pure integer(i8) function bytes_r2(a)
+      real(rk), intent(in) :: a(:,:)
+      bytes_r2 = size(a, kind=i8)*storage_size(a)/8
+    end function
+  end function
 end module udar_domain

@@ -47,25 +47,20 @@ contains
     eta = 1.0_rk - j
     rho = rho0/j
     ph = mg_hugoniot(rho0, c0, s, eta)
-    if (eta > 0.0_rk) then
-      x = 1.0_rk - min(s*eta, 0.95_rk)
-      dph = rho0*c0**2*(1.0_rk + s*eta)/x**3
-    else
-      dph = rho0*c0**2
-    end if
+    ! branch-free (so that block loops vectorize): in tension x = 1 and the
+    ! factor 1 leave rho0 c0^2 exact
+    x = merge(1.0_rk - min(s*eta, 0.95_rk), 1.0_rk, eta > 0.0_rk)
+    dph = rho0*c0**2*merge(1.0_rk + s*eta, 1.0_rk, eta > 0.0_rk)/x**3
     ! d eta / d rho = rho0 / rho^2
     c2 = (dph*(1.0_rk - 0.5_rk*gamma0*eta) - 0.5_rk*gamma0*ph)*rho0/rho**2 + gamma0*rho0*p/rho**2
     c2 = max(c2, 0.01_rk*c0**2)
   end function
 
-  pure real(rk) function mg_hugoniot(rho0, c0, s, eta) result(ph)
+  pure elemental real(rk) function mg_hugoniot(rho0, c0, s, eta) result(ph)
     real(rk), intent(in) :: rho0, c0, s, eta
     real(rk) :: x
-    if (eta > 0.0_rk) then
-      x = 1.0_rk - min(s*eta, 0.95_rk)
-      ph = rho0*c0**2*eta/x**2
-    else
-      ph = rho0*c0**2*eta
-    end if
+    ! branch-free: in tension x = 1, and the division by 1 is exact
+    x = merge(1.0_rk - min(s*eta, 0.95_rk), 1.0_rk, eta > 0.0_rk)
+    ph = rho0*c0**2*eta/x**2
   end function
 end module udar_eos

@@ -199,7 +199,7 @@ contains
     real(rk), intent(in) :: dt, q_trial, eps_p, soft, rate_factor
     logical, intent(in) :: plastic_rate
     real(rk), intent(inout) :: de, sy, hard
-    real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, h, r, de_new, slope, de_rate1
+    real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, pr, h, r, de_new, slope, de_rate1, de_pw
     integer :: it
     g3 = 3.0_rk*mat%shear_modulus
     r = rate_factor
@@ -217,13 +217,16 @@ contains
     slope = 0.0_rk
     if (eps_p > 0.0_rk) slope = soft*r*mat%jc_b*mat%jc_n*pw0/eps_p
     de = min((q_trial - sy)/(g3 + slope), hi)
+    pr = 1.0_rk
     do it = 1, 80
       e = eps_p + de
       if (eps_p > 0.0_rk) then
-        pw = pw0*power_ratio(de/eps_p, mat%jc_n)
+        pr = power_ratio(de/eps_p, mat%jc_n)
+        pw = pw0*pr
       else
         pw = e**mat%jc_n
       end if
+      de_pw = de          ! the increment pr and pw belong to
       h = mat%jc_a + mat%jc_b*pw
       if (plastic_rate) then
         r = 1.0_rk
@@ -250,10 +253,13 @@ contains
     end do
     ! on the yield surface by construction of the return
     sy = q_trial - g3*de
+    ! the power of the last iteration again unless its step moved de
     if (eps_p > 0.0_rk) then
-      hard = mat%jc_a + mat%jc_b*pw0*power_ratio(de/eps_p, mat%jc_n)
+      if (de /= de_pw) pr = power_ratio(de/eps_p, mat%jc_n)
+      hard = mat%jc_a + mat%jc_b*pw0*pr
     else
-      hard = mat%jc_a + mat%jc_b*(eps_p + de)**mat%jc_n
+      if (de /= de_pw) pw = (eps_p + de)**mat%jc_n
+      hard = mat%jc_a + mat%jc_b*pw
     end if
   end subroutine
 

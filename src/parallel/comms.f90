@@ -10,7 +10,7 @@ module udar_comms
   private
   public :: comms_init, comms_finalize, comms_abort, comms_exit, comms_xor_i8, comms_rank, comms_size, &
             comms_is_root, comms_barrier, comms_min, comms_max, comms_wtime, &
-            comms_min_int, comms_max_int, comms_sum_int, comms_sum_exact, comms_alltoall_counts, &
+            comms_min_int, comms_max_int, comms_max_i8, comms_sum_int, comms_sum_exact, comms_alltoall_counts, &
             comms_alltoallv_int, comms_bcast_int, comms_halo_exchange, comms_halo_exchange_scalar, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, comms_world_handle, comms_info_null_handle
 
   !> A halo: which local nodes go to and come from which neighbour rank.
@@ -132,6 +132,12 @@ contains
     integer, intent(in) :: a
     integer :: ierr
     call MPI_Allreduce(a, comms_max_int, 1, MPI_INTEGER, MPI_MAX, MPI_COMM_WORLD, ierr)
+  end function
+
+  integer(i8) function comms_max_i8(a)
+    integer(i8), intent(in) :: a
+    integer :: ierr
+    call MPI_Allreduce(a, comms_max_i8, 1, MPI_INTEGER8, MPI_MAX, MPI_COMM_WORLD, ierr)
   end function
 
   !> Integer sums are exact, so any reduction order gives the same result.

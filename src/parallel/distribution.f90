@@ -1,5 +1,8 @@
-!> From the global domain (every rank reads the mesh) and the element
-!> partition to this rank's local domain and its halo.
+!> From the global mesh domain (every rank reads the mesh; udar_setup builds
+!> it without state) and the element partition to this rank's local domain
+!> and its halo. The local domain gets the mesh domain's arrays only; the
+!> caller frees the global one before udar_setup's init_state allocates the
+!> state, so that the two never coexist.
 !>
 !> Rules (the same as udar_decomposition): an element belongs to the rank
 !> METIS gives it; a node to the rank of its lowest-id incident element. A
@@ -12,7 +15,7 @@
 module udar_distribution
   use udar_kinds, only: rk
   use udar_domain, only: domain_t
-  use udar_setup, only: build_incidence, build_blocks
+  use udar_setup, only: build_incidence, build_blocks, build_node_schedule
   use udar_comms, only: halo_t, halo_max_components, comms_size, comms_alltoall_counts, comms_alltoallv_int
   implicit none
   private
@@ -93,17 +96,14 @@ contains
       ghost_owner(n) = owner(loc%nd_gidx(n))
     end do
     associate (gn => loc%nd_gidx, ge => loc%el_gidx)
+      ! nodal masses and reference volumes are sums over all of a node's
+      ! elements (a ghost node lacks some): taken from the whole mesh
       loc%nd_id = glob%nd_id(gn)
       loc%nd_part = glob%nd_part(gn)
       loc%nd_x0 = glob%nd_x0(:,gn)
-      loc%nd_x = glob%nd_x(:,gn)
       loc%nd_v = glob%nd_v(:,gn)
-      loc%nd_f = glob%nd_f(:,gn)
       loc%nd_mass = glob%nd_mass(gn)
       loc%nd_vol0 = glob%nd_vol0(gn)
-      loc%nd_vref = glob%nd_vref(gn)
-      loc%nd_j = glob%nd_j(gn)
-      loc%nd_p = glob%nd_p(gn)
       loc%el_id = glob%el_id(ge)
       loc%el_part = glob%el_part(ge)
       loc%el_mat = glob%el_mat(ge)
@@ -114,31 +114,13 @@ contains
       loc%el_owned = part(ge) == me
       loc%el_owned_list = pack([(e, e = 1, el)], loc%el_owned)
       loc%el_vol0 = glob%el_vol0(ge)
-      loc%el_vol = glob%el_vol(ge)
-      loc%el_h = glob%el_h(ge)
-      loc%el_k = glob%el_k(ge)
-      loc%el_mass = glob%el_mass(ge)
-      loc%el_j = glob%el_j(ge)
-      loc%el_e = glob%el_e(ge)
-      loc%el_wp = glob%el_wp(ge)
-      loc%el_p = glob%el_p(ge)
-      loc%el_q = glob%el_q(ge)
-      loc%el_pavg = glob%el_pavg(ge)
-      loc%el_s = glob%el_s(ge,:)
-      loc%el_eps_p = glob%el_eps_p(ge)
-      loc%el_temp = glob%el_temp(ge)
-      loc%el_hard = glob%el_hard(ge)
-      loc%el_soft = glob%el_soft(ge)
-      loc%el_state = glob%el_state(ge)
-      loc%el_damage = glob%el_damage(ge)
-      loc%el_eps_tot = glob%el_eps_tot(ge)
-      loc%el_f = glob%el_f(:,ge)
     end associate
+    loc%mat = glob%mat
     call build_incidence(loc)
     call build_blocks(loc)
+    call build_node_schedule(loc)
     ! model and conditions (velocity conditions on every local node: harmless
     ! on ghosts, which the halo overwrites)
-    loc%mat = glob%mat
     loc%n_parts = glob%n_parts
     loc%part_name = glob%part_name
     loc%fixed_nodes = pack(node_l(glob%fixed_nodes), node_l(glob%fixed_nodes) /= 0)

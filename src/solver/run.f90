@@ -17,8 +17,8 @@ module udar_run
   use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_value
   use udar_fatal, only: fatal, fatal_all, fatal_unless_all_ok, exit_physics, exit_io, log_error_here
   use udar_log, only: log_info, log_warn
-  use udar_element_driver, only: element_volumes, nodal_volumes, element_update, nodal_pressures, element_time_steps, &
-      element_forces_averaged, assemble_forces, element_stiffness_bounds, nodal_stable_dt, nodal_reference_volumes, &
+  use udar_element_driver, only: element_volumes, element_update, nodal_pressures, element_time_steps, &
+      element_forces_averaged, element_stiffness_bounds, nodal_stable_dt, nodal_reference_volumes, &
       element_altitudes
   use udar_fracture, only: fracture_enabled, el_intact, el_eroded
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions, &
@@ -110,7 +110,6 @@ contains
     wall0 = comms_wtime()
     fracture_on = any_fracture(dom)
     no = size(dom%el_owned_list)
-    allocate(work_svm(no), work_rho(no), work_elem(no), work_step(dom%n_elems))
     base = trim(cfg%output%directory)//'/'//trim(cfg%output%case_name)
     res%field_file = base//'.h5'
     res%history_file = base//'_history.csv'
@@ -161,6 +160,7 @@ contains
         return
       end if
       call reopen_outputs()
+      allocate(work_svm(no), work_rho(no), work_elem(no), work_step(dom%n_elems))   ! after the open: see below
       ! the time step comes from the checkpoint; the bounds only for output until the first update
       call element_stiffness_bounds(dom)
       ! each rank's accumulator adds to the global sum: the saved total goes to one rank
@@ -173,6 +173,10 @@ contains
       call log_info(line)
     else
       call open_outputs()
+      ! the field work arrays, allocated once the field file is open, take
+      ! the memory its opening freed (the connectivity copies) instead of
+      ! adding to the process peak
+      allocate(work_svm(no), work_rho(no), work_elem(no), work_step(dom%n_elems))
       call contact_overlaps(ct, dom, overlap_lines)
       do k = 1, size(overlap_lines)
         call log_info(trim(overlap_lines(k)))
@@ -257,15 +261,19 @@ contains
       st%cycle = st%cycle + 1
       cycles_run = cycles_run + 1
       st%dt_old = dt
-      ! ---- elements: stress(n+1), forces(n+1)
+      ! ---- elements: stress(n+1), forces(n+1); the nodal sums (J, p, f) in the
+      ! element passes, each node as soon as its last element is done
       if (dom%anti_locking) then
         call element_volumes(dom)
-        call nodal_volumes(dom)
         call comms_halo_exchange_scalar(halo, dom%nd_j)
       end if
       call element_update(dom, dt, bad, bad_avg, n_eroded_now, eroded_any)
       n_eroded_by = n_eroded_by + n_eroded_now
-      if (eroded_any) call nodal_reference_volumes(dom, rebase=dom%anti_locking)
+      if (eroded_any) then
+        call nodal_reference_volumes(dom, rebase=dom%anti_locking)
+        ! the nodal pressures again with the new reference volumes
+        if (dom%anti_locking) call nodal_pressures(dom)
+      end if
       if (ct%n_tets > 0) call share_erosion(sum(n_eroded_now) > 0, .true.)
       ! the lowest global id that inverted itself, else the lowest whose nodal
       ! average did: one reduction a cycle (keys above n_global_elems are the latter)
@@ -286,11 +294,9 @@ contains
         call fatal_all(exit_physics, line)
       end if
       if (dom%anti_locking) then
-        call nodal_pressures(dom)
         call comms_halo_exchange_scalar(halo, dom%nd_p)
         call element_forces_averaged(dom)
       end if
-      call assemble_forces(dom)
       call nodal_stable_dt(dom, st%dt_stable, dt_node)
       dt_local = st%dt_stable
       st%dt_stable = comms_min(st%dt_stable)

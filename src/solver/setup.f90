@@ -1,5 +1,8 @@
-!> Builds the domain from the mesh and the deck: parts and materials, lumped
-!> masses, node->element lists, velocity conditions, walls, initial state.
+!> Builds the global mesh domain from the mesh and the deck: parts and
+!> materials, lumped masses, node->element lists, velocity conditions, walls.
+!> Every rank holds it at start-up, so it carries only what the partition,
+!> the ownership rules, contact set-up and the mesh hash need; the element
+!> and nodal state is allocated on the local domains only (init_state).
 !> Mesh-dependent deck mistakes (unknown group names, a curved symmetry
 !> surface) are added to the same error list as the deck's own.
 module udar_setup
@@ -17,18 +20,20 @@ module udar_setup
   use udar_strength, only: initial_hardening, thermal_softening
   implicit none
   private
-  public :: build_domain, count_bodies, build_incidence, build_blocks, find_group, group_list
+  public :: build_domain, init_state, count_bodies, build_incidence, build_blocks, build_node_schedule, find_group, group_list
 
 contains
 
+  !> Frees the mesh's tetrahedra and coordinates once they are used (the
+  !> start-up peak); its surface triangles and groups stay for the contact set-up.
   subroutine build_domain(cfg, mesh, dom, errs)
     type(config_t), intent(in) :: cfg
-    type(gmsh_mesh_t), intent(in) :: mesh
+    type(gmsh_mesh_t), intent(inout) :: mesh
     type(domain_t), intent(out) :: dom
     type(input_errors_t), intent(inout) :: errs
     integer, allocatable :: group_part(:), node_new(:), used(:), perm(:), elem_order(:)
     integer(i8), allocatable :: keys(:)
-    real(rk), allocatable :: centroid(:,:)
+    real(rk), allocatable :: centroid(:,:), el_mass(:)
     integer :: ip, ig, e, n, a, k, n_err0
     character(len=:), allocatable :: where
     real(rk) :: xe(4,3)
@@ -82,10 +87,12 @@ contains
     call morton_keys(mesh%x(used,:), keys)
     call stable_sort_permutation(keys, perm)
     node_new(used(perm)) = [(n, n = 1, dom%n_nodes)]
-    call allocate_state(dom)
+    allocate(dom%nd_id(dom%n_nodes), dom%nd_part(dom%n_nodes), dom%nd_x0(3,dom%n_nodes), dom%nd_v(3,dom%n_nodes), &
+             dom%nd_mass(dom%n_nodes), dom%nd_vol0(dom%n_nodes))
+    allocate(dom%el_id(dom%n_elems), dom%el_part(dom%n_elems), dom%el_mat(dom%n_elems), dom%el_conn(dom%n_elems,4), &
+             dom%el_vol0(dom%n_elems))
     dom%nd_id = mesh%node_tag(used(perm))
     dom%nd_x0 = transpose(mesh%x(used(perm),:))
-    dom%nd_x = dom%nd_x0
     deallocate(keys, perm)
     allocate(keys(dom%n_elems), perm(dom%n_elems), centroid(dom%n_elems,3), elem_order(dom%n_elems))
     do k = 1, 3
@@ -93,6 +100,7 @@ contains
                              + mesh%x(mesh%tet(:,3),k) + mesh%x(mesh%tet(:,4),k))
     end do
     call morton_keys(centroid, keys)
+    deallocate(centroid)
     call stable_sort_permutation(keys, perm)
     ! then by material, keeping the curve order inside each material
     do e = 1, dom%n_elems
@@ -100,10 +108,12 @@ contains
     end do
     call stable_sort_permutation(keys, elem_order)
     elem_order = perm(elem_order)
+    deallocate(keys, perm)
     dom%el_id = mesh%tet_tag(elem_order)
     do a = 1, 4
       dom%el_conn(:,a) = node_new(mesh%tet(elem_order,a))
     end do
+    deallocate(mesh%tet, mesh%tet_tag)
 
     ! materials and parts
     dom%mat = cfg%materials
@@ -112,38 +122,35 @@ contains
     do ip = 1, dom%n_parts
       dom%part_name(ip) = cfg%parts(ip)%group
     end do
+    allocate(el_mass(dom%n_elems))
     do e = 1, dom%n_elems
       dom%el_part(e) = group_part(mesh%tet_group(elem_order(e)))
       dom%el_mat(e) = material_index(cfg, cfg%parts(dom%el_part(e))%material)
       do a = 1, 4
-        xe(a,:) = dom%nd_x(:,dom%el_conn(e,a))
+        xe(a,:) = dom%nd_x0(:,dom%el_conn(e,a))
       end do
       dom%el_vol0(e) = tet_volume(xe)
-      dom%el_mass(e) = dom%mat(dom%el_mat(e))%rho0*dom%el_vol0(e)
-      dom%el_temp(e) = dom%mat(dom%el_mat(e))%initial_temperature
-      dom%el_hard(e) = initial_hardening(dom%mat(dom%el_mat(e)))
-      dom%el_soft(e) = thermal_softening(dom%mat(dom%el_mat(e)), dom%el_temp(e))
+      el_mass(e) = dom%mat(dom%el_mat(e))%rho0*dom%el_vol0(e)   ! as init_state computes it
     end do
-    dom%el_vol = dom%el_vol0
-    dom%el_h = huge(1.0_rk)
-    dom%el_j = 1.0_rk
+    deallocate(mesh%tet_group, elem_order)
 
-    call build_incidence(dom)
-    ! lumped masses, nodal reference volumes, node parts, initial velocities
+    ! (the corners are for the local domains' assembly only)
+    call build_incidence(dom, corners=.false.)
+    ! lumped masses, nodal reference volumes, node parts, initial velocities:
+    ! sums over all of a node's elements, so taken here, on the whole mesh
     do n = 1, dom%n_nodes
       dom%nd_mass(n) = 0.0_rk
       dom%nd_vol0(n) = 0.0_rk
       do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
-        dom%nd_mass(n) = dom%nd_mass(n) + 0.25_rk*dom%el_mass(dom%nd_el(k))
+        dom%nd_mass(n) = dom%nd_mass(n) + 0.25_rk*el_mass(dom%nd_el(k))
         dom%nd_vol0(n) = dom%nd_vol0(n) + 0.25_rk*dom%el_vol0(dom%nd_el(k))
       end do
       dom%nd_part(n) = dom%el_part(dom%nd_el(dom%nd_el_ptr(n)))
       dom%nd_v(:,n) = cfg%parts(dom%nd_part(n))%velocity
     end do
-    dom%nd_vref = dom%nd_vol0
-    dom%nd_j = 1.0_rk
-    call build_blocks(dom)
+    deallocate(el_mass)
     call build_conditions(cfg, mesh, node_new, dom)
+    deallocate(mesh%x)
     ! initial velocities obey the velocity conditions (a fixed node starts at
     ! rest), so the initial energy holds no kinetic energy the first step removes
     call apply_velocity_conditions(dom)
@@ -155,39 +162,53 @@ contains
       dom%stab_beta = cfg%numerics%stabilisation
     dom%q_linear = cfg%numerics%q_linear
     dom%q_quadratic = cfg%numerics%q_quadratic
-    ! the whole mesh as one rank's domain: udar_distribution cuts it up
+    ! the whole mesh (no local numbering, no state): udar_distribution cuts it up
     dom%n_global_nodes = dom%n_nodes
     dom%n_global_elems = dom%n_elems
     dom%n_owned_nodes = dom%n_nodes
-    dom%nd_gidx = [(n, n = 1, dom%n_nodes)]
-    dom%el_gidx = [(e, e = 1, dom%n_elems)]
-    allocate(dom%el_owned(dom%n_elems), source=.true.)
-    dom%el_owned_list = dom%el_gidx
   end subroutine
 
-  subroutine allocate_state(dom)
+  !> The initial state of a local domain that holds the mesh domain's
+  !> arrays (node ids, parts, x0, v, masses, reference volumes; element ids,
+  !> parts, materials, connectivity, el_vol0): allocates and fills the rest.
+  subroutine init_state(dom)
     type(domain_t), intent(inout) :: dom
-    integer :: nn, ne
+    integer :: nn, ne, e
     nn = dom%n_nodes; ne = dom%n_elems
-    allocate(dom%nd_id(nn), dom%nd_part(nn), dom%nd_x0(3,nn), dom%nd_x(3,nn), dom%nd_v(3,nn), &
-             dom%nd_f(3,nn), dom%nd_mass(nn), dom%nd_vol0(nn), dom%nd_vref(nn), dom%nd_j(nn), dom%nd_p(nn))
-    allocate(dom%el_id(ne), dom%el_part(ne), dom%el_mat(ne), dom%el_conn(ne,4), dom%el_vol0(ne), &
-             dom%el_vol(ne), dom%el_h(ne), dom%el_k(ne), dom%el_mass(ne), dom%el_j(ne), dom%el_e(ne), dom%el_wp(ne), dom%el_p(ne), &
-             dom%el_q(ne), dom%el_pavg(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_hard(ne), dom%el_soft(ne), &
-             dom%el_f(12,ne))
+    allocate(dom%nd_x(3,nn), dom%nd_f(3,nn), dom%nd_vref(nn), dom%nd_j(nn), dom%nd_p(nn))
+    dom%nd_x = dom%nd_x0
     dom%nd_f = 0.0_rk; dom%nd_p = 0.0_rk
+    dom%nd_vref = dom%nd_vol0
+    dom%nd_j = 1.0_rk
+    allocate(dom%el_vol(ne), dom%el_h(ne), dom%el_k(ne), dom%el_mass(ne), dom%el_j(ne), dom%el_e(ne), dom%el_wp(ne), dom%el_p(ne), &
+             dom%el_q(ne), dom%el_pavg(ne), dom%el_s(ne,6), dom%el_eps_p(ne), dom%el_temp(ne), dom%el_hard(ne), &
+             dom%el_soft(ne))
+    do e = 1, ne
+      dom%el_mass(e) = dom%mat(dom%el_mat(e))%rho0*dom%el_vol0(e)
+      dom%el_temp(e) = dom%mat(dom%el_mat(e))%initial_temperature
+      dom%el_hard(e) = initial_hardening(dom%mat(dom%el_mat(e)))
+      dom%el_soft(e) = thermal_softening(dom%mat(dom%el_mat(e)), dom%el_temp(e))
+    end do
+    dom%el_vol = dom%el_vol0
+    dom%el_h = huge(1.0_rk)
+    dom%el_j = 1.0_rk
     dom%el_e = 0.0_rk; dom%el_wp = 0.0_rk; dom%el_p = 0.0_rk; dom%el_q = 0.0_rk; dom%el_pavg = 0.0_rk; dom%el_s = 0.0_rk
-    dom%el_eps_p = 0.0_rk; dom%el_f = 0.0_rk; dom%el_k = 0.0_rk
+    dom%el_eps_p = 0.0_rk; dom%el_k = 0.0_rk
     allocate(dom%el_state(ne), source=0)
     allocate(dom%el_damage(ne), dom%el_eps_tot(ne), source=0.0_rk)
   end subroutine
 
   !> Node -> element lists by counting sort; elements are visited in
   !> ascending id, so each node's list is ascending: the assembly order.
-  subroutine build_incidence(dom)
+  !> corners = .false.: without each entry's corner number (nd_el_corner).
+  subroutine build_incidence(dom, corners)
     type(domain_t), intent(inout) :: dom
+    logical, intent(in), optional :: corners
     integer, allocatable :: fill(:)
     integer :: e, a, n, k
+    logical :: with_corners
+    with_corners = .true.
+    if (present(corners)) with_corners = corners
     allocate(dom%nd_el_ptr(dom%n_nodes+1), source=0)
     do a = 1, 4
       do e = 1, dom%n_elems
@@ -199,14 +220,15 @@ contains
     do n = 1, dom%n_nodes
       dom%nd_el_ptr(n+1) = dom%nd_el_ptr(n+1) + dom%nd_el_ptr(n)
     end do
-    allocate(dom%nd_el(dom%nd_el_ptr(dom%n_nodes+1)-1), dom%nd_el_corner(dom%nd_el_ptr(dom%n_nodes+1)-1))
+    allocate(dom%nd_el(dom%nd_el_ptr(dom%n_nodes+1)-1))
+    if (with_corners) allocate(dom%nd_el_corner(dom%nd_el_ptr(dom%n_nodes+1)-1))
     allocate(fill(dom%n_nodes), source=dom%nd_el_ptr(1:dom%n_nodes))
     do e = 1, dom%n_elems
       do a = 1, 4
         n = dom%el_conn(e,a)
         k = fill(n)
         dom%nd_el(k) = e
-        dom%nd_el_corner(k) = a
+        if (with_corners) dom%nd_el_corner(k) = a
         fill(n) = k + 1
       end do
     end do
@@ -230,6 +252,38 @@ contains
     dom%n_blocks = nb
     dom%blk_first = f(1:nb)
     dom%blk_last = l(1:nb)
+  end subroutine
+
+  !> The owned nodes grouped by the block of their last incident element
+  !> (domain_t blk_nd), ascending within a block (counting sort); a node
+  !> without elements goes with block 1. Needs the incidence, the blocks
+  !> and n_owned_nodes.
+  subroutine build_node_schedule(dom)
+    type(domain_t), intent(inout) :: dom
+    integer, allocatable :: blk_of(:), nd_blk(:), fill(:)
+    integer :: b, n, k
+    allocate(blk_of(dom%n_elems), nd_blk(dom%n_owned_nodes))
+    do b = 1, dom%n_blocks
+      blk_of(dom%blk_first(b):dom%blk_last(b)) = b
+    end do
+    if (allocated(dom%blk_nd_ptr)) deallocate(dom%blk_nd_ptr, dom%blk_nd)
+    allocate(dom%blk_nd_ptr(max(dom%n_blocks, 1) + 1), source=0)
+    do n = 1, dom%n_owned_nodes
+      nd_blk(n) = 1
+      if (dom%nd_el_ptr(n+1) > dom%nd_el_ptr(n)) nd_blk(n) = blk_of(dom%nd_el(dom%nd_el_ptr(n+1) - 1))
+      dom%blk_nd_ptr(nd_blk(n)+1) = dom%blk_nd_ptr(nd_blk(n)+1) + 1
+    end do
+    dom%blk_nd_ptr(1) = 1
+    do b = 1, size(dom%blk_nd_ptr) - 1
+      dom%blk_nd_ptr(b+1) = dom%blk_nd_ptr(b+1) + dom%blk_nd_ptr(b)
+    end do
+    allocate(dom%blk_nd(dom%n_owned_nodes))
+    allocate(fill(size(dom%blk_nd_ptr) - 1), source=dom%blk_nd_ptr(1:size(dom%blk_nd_ptr)-1))
+    do n = 1, dom%n_owned_nodes
+      k = fill(nd_blk(n))
+      dom%blk_nd(k) = n
+      fill(nd_blk(n)) = k + 1
+    end do
   end subroutine
 
   subroutine boundaries_check(cfg, mesh, errs)

@@ -11,8 +11,8 @@ program test_distribution_mpi
   use udar_input_errors, only: input_errors_t
   use udar_deck, only: deck_read
   use udar_gmsh, only: gmsh_mesh_t, gmsh_read
-  use udar_domain, only: domain_t
-  use udar_setup, only: build_domain
+  use udar_domain, only: domain_t, domain_bytes
+  use udar_setup, only: build_domain, init_state
   use udar_partition, only: partition_elements, partition_stats_t
   use udar_distribution, only: distribute_domain, node_owners
   use udar_strings, only: itoa
@@ -42,6 +42,18 @@ program test_distribution_mpi
   allocate(part(glob%n_elems), source=0)
   if (np > 1) call partition_elements(glob%n_nodes, glob%el_conn, np, part, stats, ok, msg)
   call distribute_domain(glob, part, me, loc, halo)
+  ! what every rank holds at start-up: the mesh, no state (doc/performance.md, Memory)
+  call agree('global_mesh_domain_holds_no_state', .not. (allocated(glob%el_s) .or. &
+    allocated(glob%el_e) .or. allocated(glob%el_mass) .or. allocated(glob%nd_x) .or. allocated(glob%nd_f) .or. &
+    allocated(glob%nd_el_corner) .or. allocated(glob%el_gidx)) .and. allocated(loc%el_conn) .and. &
+    .not. allocated(loc%el_s), 'only the mesh arrays before init_state')
+  call init_state(loc)
+  ! the per-element and per-node table of doc/performance.md: 248 bytes per
+  ! element (+4 per owned one), 152 per node (+4 per owned one), plus the small lists
+  call agree('domain_bytes_as_documented', domain_bytes(loc) == 248_i8*loc%n_elems + 4*size(loc%el_owned_list) + &
+    152_i8*loc%n_nodes + 4_i8*loc%n_owned_nodes + 8 + 12*loc%n_blocks + 4*size(loc%fixed_nodes) + &
+    28*size(loc%sym_nodes), &
+    itoa(int(domain_bytes(loc)))//' bytes on rank '//itoa(me))
 
   ! every element and node owned exactly once over the ranks
   call agree('elements_owned_once', comms_sum_int(int(count(loc%el_owned), i8)) == glob%n_elems .and. &

@@ -8,7 +8,7 @@ program test_kernels
   use udar_tet4, only: tet_volume, tet_gradients, tet_velocity_gradient
   use udar_strength, only: strength_block, von_mises, yield_stress, thermal_softening, power_ratio
   use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
-  use udar_hydro, only: volumetric_update, blended_volume_ratio, blended_pressures
+  use udar_hydro, only: volumetric_update, blended_volume_ratio, blended_volume_ratios, blended_pressures
   use udar_fracture, only: fracture_update, jc_fracture_strain
   use udar_config, only: fracture_plastic_strain, fracture_johnson_cook
   use unit_checks, only: check, check_summary
@@ -193,6 +193,32 @@ contains
     call check('blend_geometric_barrier', blended_volume_ratio(.true., 0.1_rk, 1.0_rk, 1.0e-6_rk) < 0.26_rk .and. &
                blended_volume_ratio(.false., 0.1_rk, 1.0_rk, 1.0e-6_rk) > 0.89_rk, &
                'Je -> 0: geometric J* -> 0 (0.25 at 1e-6), linear stays near 0.9')
+    call test_blend_power()
+  end subroutine
+
+  !> The geometric blend's power from series near 1 (hydro near_one_power):
+  !> within 2 ulp of jbar (je/jbar)**beta over |je/jbar - 1| <= 0.1, the
+  !> power itself beyond; the block kernel gives the elemental's values.
+  subroutine test_blend_power()
+    integer, parameter :: n = 4001
+    real(rk), parameter :: betas(3) = [0.1_rk, 0.5_rk, 0.99_rk]
+    real(rk) :: jb(n), je(n), jblk(n), jel(n), ref, worst, beta
+    integer :: i, k
+    worst = 0.0_rk
+    do k = 1, 3
+      beta = betas(k)
+      do i = 1, n
+        jb(i) = 0.6_rk + 0.8_rk*real(i, rk)/n
+        je(i) = jb(i)*(0.85_rk + 0.3_rk*real(mod(7*i, n), rk)/n)   ! ratios 0.85 .. 1.15
+        ref = jb(i)*(je(i)/jb(i))**beta
+        jel(i) = blended_volume_ratio(.true., beta, jb(i), je(i))
+        worst = max(worst, abs(jel(i) - ref)/spacing(ref))
+      end do
+      call blended_volume_ratios(.true., beta, n, jb, je, jblk)
+      call check('blend_block_is_elemental_'//r2s(beta), all(jblk == jel), &
+                 'blended_volume_ratios equals blended_volume_ratio bitwise')
+    end do
+    call check('blend_power_ulp', worst <= 2.0_rk, 'largest difference from the power '//r2s(worst)//' ulp')
   end subroutine
 
   subroutine test_eos()

@@ -1,11 +1,14 @@
 !> How safe is the time step? The highest frequency of the assembled,
 !> lumped-mass, linear-elastic tetrahedral mesh, by power iteration on
 !> M^-1 K with the element kernels' own gradients and forces, against the
-!> step the code takes: dt_safety (its default) times the element estimate
-!> min_e f h_e/c_e (f = stable_length_factor of the formulation, theory.md
-!> section 9). The critical step 2/omega_max must exceed it
+!> step the code takes: dt_safety (its default) times the nodal step
+!> min_n 2 sqrt(m_n/k_n), k_n the sum of the incident elements' stiffness
+!> bounds (tet_stiffness_bound with the formulation's volumetric share,
+!> theory.md section 9). The critical step 2/omega_max must exceed it
 !>  - on the undeformed OFHC Taylor bar (7316 tetrahedra) for Poisson's
-!>    ratios from 0 to 0.45, and
+!>    ratios from 0 to 0.45,
+!>  - on the structured elastic bar (hexahedra split into tetrahedra, where
+!>    min h/c overestimates the limit: 0.87 h/c at nu = 0), and
 !>  - on two deformed meshes from real runs of the default element
 !>    (tests/unit/meshes/*.txt: the Wilkins-Guinan bar at 80 us, with its
 !>    thin foot lip, and the OFHC bar at 600 m/s at 25 us, a disc),
@@ -18,8 +21,8 @@ program test_stable_step
   use udar_strings, only: r2s
   use udar_gmsh, only: gmsh_mesh_t, gmsh_read
   use udar_config, only: run_cfg_t, numerics_cfg_t
-  use udar_hydro, only: stable_length_factor
-  use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces
+  use udar_hydro, only: step_volumetric_share
+  use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_stiffness_bound
   use unit_checks, only: check, check_summary
   implicit none
   type(gmsh_mesh_t) :: mesh
@@ -52,6 +55,16 @@ program test_stable_step
   do k = 1, size(nus)
     call all_formulations('ofhc_bar_undeformed', 124.0e9_rk, nus(k), 8930.0_rk)
   end do
+  call gmsh_read(trim(unit_dir)//'/../regression/elastic_bar/elastic_bar.msh', 1.0_rk, mesh, ok, msg)
+  call check('mesh_read', ok, msg)
+  if (.not. ok) call check_summary()
+  n = mesh%n_nodes
+  ne = mesh%n_tets
+  tet = mesh%tet
+  x0 = mesh%x
+  x = mesh%x
+  call prepare(7850.0_rk)
+  call all_formulations('elastic_bar_structured', 200.0e9_rk, 0.0_rk, 7850.0_rk)
   call read_frame(trim(unit_dir)//'/meshes/wg_80us.txt')
   call prepare(8930.0_rk)
   call all_formulations('wilkins_guinan_80us', 117.0e9_rk, 0.35_rk, 8930.0_rk)
@@ -67,21 +80,30 @@ contains
   subroutine all_formulations(case_name, e_mod, nu, rho0)
     character(len=*), intent(in) :: case_name
     real(rk), intent(in) :: e_mod, nu, rho0
-    real(rk) :: bulk, shear, c2(ne), dt_crit, dt_est, ratio, f
-    integer :: form
+    real(rk) :: bulk, shear, c2(ne), dt_crit, dt_est, ratio, lam(ne), k_n(n), bulk_e(ne), g(ne,4,3), hc
+    integer :: form, e
     bulk = e_mod/(3.0_rk*(1.0_rk - 2.0_rk*nu))
     shear = e_mod/(2.0_rk*(1.0_rk + nu))
     ! the code's element wave speed: bulk part at rho0 (linear EOS), shear part at the current density
     c2 = bulk/rho0 + 4.0_rk/3.0_rk*shear/rho
+    hc = minval(h/sqrt(c2))
+    ! the code's tangent bulk modulus rho c^2 - 4G/3 (linear EOS: K rho/rho0)
+    bulk_e = rho*c2 - 4.0_rk/3.0_rk*shear
+    g = grad
     do form = 1, 3
       dt_crit = 2.0_rk/sqrt(largest_eigenvalue(form, bulk, shear))
-      f = stable_length_factor(form /= 1)
-      dt_est = f*minval(h/sqrt(c2))
+      call tet_stiffness_bound(ne, ne, vol, g, bulk_e, shear, &
+                               step_volumetric_share(form /= 1, merge(beta, 0.0_rk, form == 3)), lam)
+      k_n = 0
+      do e = 1, ne
+        k_n(tet(e,:)) = k_n(tet(e,:)) + lam(e)
+      end do
+      dt_est = 2.0_rk*sqrt(minval(mass/k_n))
       ratio = dt_crit/dt_est
-      print '(a,a,a,a,a,f5.2,a,i0,a,i0,a,es11.4,a,es11.4,a,f6.3,a,f6.3)', 'MEASURED ', case_name, ' ', &
+      print '(a,a,a,a,a,f5.2,a,i0,a,i0,a,es11.4,a,es11.4,a,f6.3,a,f6.3,a,f6.3)', 'MEASURED ', case_name, ' ', &
         trim(form_name(form)), ' nu = ', nu, ' (', n, ' nodes, ', ne, ' tets): 2/omega_max = ', dt_crit, &
-        ' s, estimate f min h/c = ', dt_est, ' s, ratio ', ratio, ', margin at the default dt_safety ', &
-        ratio/run_defaults%dt_safety
+        ' s, nodal step = ', dt_est, ' s (', dt_est/hc, ' min h/c), ratio ', ratio, &
+        ', margin at the default dt_safety ', ratio/run_defaults%dt_safety
       call check(case_name//'_'//trim(form_name(form))//'_default_step_below_the_assembled_limit_nu_'//r2s(nu), &
                  run_defaults%dt_safety < ratio, 'critical step '//r2s(ratio)//' times the estimate')
     end do
@@ -146,7 +168,7 @@ contains
     real(rk), intent(in) :: bulk, shear, u(:,:)
     real(rk), intent(out) :: ku(:,:)
     real(rk) :: ue(1,4,3), g(1,4,3), d(1,6), w(1,3), s(1,6), p(1), f(1,4,3)
-    real(rk) :: strain(ne,6), tr(ne), j_node(n), p_node(n), w_avg
+    real(rk) :: strain(ne,6), tr(ne), j_node(n), p_node(n), w_avg, p_el(ne)
     integer :: a, e
     w_avg = merge(0.0_rk, merge(1.0_rk, 1.0_rk - beta, form == 2), form == 1)
     do e = 1, ne
@@ -170,7 +192,8 @@ contains
       j_node = j_node/vol_node
       p_node = 0
       do e = 1, ne
-        p_node(tet(e,:)) = p_node(tet(e,:)) + 0.25_rk*vol(e)*w_avg*element_pressure(e)
+        p_el(e) = -bulk*(w_avg*0.25_rk*sum(j_node(tet(e,:))) + (1.0_rk - w_avg)*tr(e))
+        p_node(tet(e,:)) = p_node(tet(e,:)) + 0.25_rk*vol(e)*w_avg*p_el(e)
       end do
       p_node = p_node/vol_node
     end if
@@ -180,7 +203,7 @@ contains
       s(1,1:3) = 2.0_rk*shear*(strain(e,1:3) - tr(e)/3.0_rk)
       s(1,4:6) = 2.0_rk*shear*strain(e,4:6)
       if (w_avg > 0.0_rk) then
-        p(1) = 0.25_rk*sum(p_node(tet(e,:))) + (1.0_rk - w_avg)*element_pressure(e)
+        p(1) = 0.25_rk*sum(p_node(tet(e,:))) + (1.0_rk - w_avg)*p_el(e)
       else
         p(1) = -bulk*tr(e)
       end if
@@ -189,11 +212,6 @@ contains
         ku(:,tet(e,a)) = ku(:,tet(e,a)) - f(1,a,:)
       end do
     end do
-  contains
-    real(rk) function element_pressure(e) result(pe)
-      integer, intent(in) :: e
-      pe = -bulk*(w_avg*0.25_rk*sum(j_node(tet(e,:))) + (1.0_rk - w_avg)*tr(e))
-    end function
   end subroutine
 
   !> Power iteration on M^-1 K (symmetric in the M inner product); the
