@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # make bench: ns per element-cycle and peak memory per element on the OFHC
-# copper Taylor bar (Johnson-Cook + Mie-Grueneisen, anti-locking on and off)
-# at about 20k and 200k tetrahedra; memory per element at 3k, 200k and 1M
+# copper Taylor bar (Johnson-Cook + Mie-Grueneisen; the default element, the
+# nodal-averaged one of 0.4 and the plain one) at about 20k and 200k
+# tetrahedra; memory per element at 3k, 200k and 1M
 # tetrahedra on 1 and 2 ranks. Not a test: the machine is shared and noisy,
 # so compare ratios measured in one run. Figures are printed and saved in
 # bench/results/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
+PYTHON=${PYTHON:-/usr/bin/python3}
 W=$(mktemp -d)
 trap 'rm -rf "$W"' EXIT
 mkdir -p bench/results
@@ -15,27 +17,27 @@ out=bench/results/bench-$(date +%Y%m%d-%H%M%S).txt
 {
   echo "# udar bench $(date -Iseconds) on $(hostname), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
   echo "# version $(bin/udar --version), commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
-  printf '%-10s %-12s %10s %8s %12s %14s %12s %12s\n' case anti_locking tets cycles wall_s ns_per_el_cyc bytes_per_el domain_b_el
+  printf '%-10s %-12s %10s %8s %12s %14s %12s %12s\n' case element tets cycles wall_s ns_per_el_cyc bytes_per_el domain_b_el
 } | tee "$out"
 for spec in "20k 0.42 300" "200k 0.19 60"; do
   set -- $spec
   name=$1 h=$2 ncyc=$3
   gmsh -3 -v 0 -setnumber h "$h" input/taylor_ofhc/taylor_ofhc.geo -o "$W/bar_$name.msh"
-  for al in .true. .false.; do
+  for al in stabilised nodal plain; do
     deck=$W/bench_${name}_$al.nml
     sed -e "s|file = 'taylor_ofhc.msh'|file = '$W/bar_$name.msh'|" \
         -e "s|directory = 'out'|directory = '$W/out'|" \
         -e "s|cycle_print = 500|cycle_print = 100000, max_cycles = $ncyc|" \
         -e "s|dt_field = 10.0e-6|dt_field = 0.0|" -e "s|dt_history = 0.2e-6|dt_history = 1.0|" \
         input/taylor_ofhc/taylor_ofhc.nml > "$deck"
-    printf '&numerics anti_locking = %s /\n' "$al" >> "$deck"
+    printf "&numerics tet_formulation = '%s' /\n" "$al" >> "$deck"
     /usr/bin/time -f '%M' -o "$W/rss" bin/udar "$deck" > "$W/log" 2>&1
     tets=$(grep -o '[0-9]* tetrahedra' "$W/log" | cut -d' ' -f1)
     ns=$(grep -o '[0-9.]* ns per element-cycle' "$W/log" | cut -d' ' -f1)
     wall=$(grep -o '[0-9.]* s wall' "$W/log" | cut -d' ' -f1)
     rss_kb=$(cat "$W/rss")
     dom=$(grep -o 'domains [0-9]* bytes per element' "$W/log" | awk '{print $2}')
-    printf '%-10s %-12s %10s %8s %12s %14s %12d %12s\n' "ofhc_$name" "${al//./}" "$tets" "$ncyc" "$wall" "$ns" \
+    printf '%-10s %-12s %10s %8s %12s %14s %12d %12s\n' "ofhc_$name" "$al" "$tets" "$ncyc" "$wall" "$ns" \
       $(( rss_kb * 1024 / tets )) "$dom" | tee -a "$out"
   done
 done
@@ -89,8 +91,8 @@ echo "# startup: peak while reading, partitioning and distributing the mesh; res
 
 # ---- parallel: the 200k bar (anti-locking on) on 1 and 2 ranks, alternated
 # twice, best of each; speedup from the cycle-loop time
-deck=$W/bench_200k_.true..nml
-echo "# parallel: 200k bar, anti-locking on, 60 cycles; ns per element-cycle = loop wall time / (global elements x cycles)" | tee -a "$out"
+deck=$W/bench_200k_stabilised.nml
+echo "# parallel: 200k bar, default element, 60 cycles; ns per element-cycle = loop wall time / (global elements x cycles)" | tee -a "$out"
 best1=1e30; best2=1e30
 for rep in 1 2; do
   for n in 1 2; do
@@ -158,4 +160,36 @@ for h in 1.2e-3 0.6e-3 0.3e-3; do
     printf 'h %-7s %8s tets  %s  (tracking off)\n' "$h" "$tets" "$(grep '^contact:' "$W/log")" | tee -a "$out"
   fi
 done
+
+# ---- side by side with OpenRadioss (issue 12): the full OFHC cylinder
+# (bench/taylor_full.geo) at h 0.62 and 0.31 mm, 190 m/s to 80 us: cycles
+# and final length / footprint diameter. OpenRadioss's figures are from the
+# project's measurement (OpenRadioss built from source at commit
+# bd4557ba7503, gfortran 12.2, default element time step, scale 0.9, on this
+# kind of machine, 2026-11-24; doc/performance.md).
+echo "# side by side with OpenRadioss: full OFHC cylinder, 190 m/s, 80 us" | tee -a "$out"
+printf '%-7s %-22s %9s %9s %8s %16s %16s %10s\n' mesh element tets cycles ns "udar Lf/Dm mm" "OpenRadioss" "OR cycles" | tee -a "$out"
+declare -A or_ref=([coarse_plain]="17.23/12.81 3324" [coarse_stabilised]="17.32/14.48 5998" \
+                   [fine_plain]="17.38/13.57 9865" [fine_stabilised]="17.35/14.68 12995")
+for spec in "coarse 0.62" "fine 0.31"; do
+  set -- $spec
+  gmsh -3 -v 0 -setnumber h $2 -format msh22 bench/taylor_full.geo -o "$W/full_$1.msh"
+  for form in stabilised plain; do
+    sed -e "s|file = 'taylor_ofhc.msh'|file = '$W/full_$1.msh'|" -e "/surface = 'sym_/d" \
+        -e "s|directory = 'out'|directory = '$W/peer', case_name = '$1_$form'|" \
+        -e "s|cycle_print = 500|cycle_print = 1000000|" -e "s|dt_field = 10.0e-6|dt_field = 80.0e-6|" \
+        input/taylor_ofhc/taylor_ofhc.nml > "$W/peer.nml"
+    printf "&numerics tet_formulation = '%s' /\n" "$form" >> "$W/peer.nml"
+    bin/udar "$W/peer.nml" > "$W/log" 2>&1
+    tets=$(grep -o '[0-9]* tetrahedra' "$W/log" | head -1 | cut -d' ' -f1)
+    cyc=$(grep -o 'done: [0-9]* cycles' "$W/log" | awk '{print $2}')
+    ns=$(grep -o '[0-9.]* ns per element-cycle' "$W/log" | cut -d' ' -f1)
+    m=$($PYTHON postproc/taylor.py "$W/peer/$1_$form.h5" | grep -o 'length_m=[0-9.e-]* footprint_diameter_m=[0-9.e-]*' | \
+        awk -F'[= ]' '{printf "%.2f/%.2f", 1000*$2, 1000*$4}')
+    set -- $1 $2 ${or_ref[$1_$form]}
+    printf '%-7s %-22s %9s %9s %8s %16s %16s %10s\n' $1 "$form" "$tets" "$cyc" "$ns" "$m" "$3" "$4" | tee -a "$out"
+    set -- $1 $2
+  done
+done
+echo "# OpenRadioss: 'plain' rows against its default tetrahedron, 'stabilised' against Itetra4=3 (nodal pressure)" | tee -a "$out"
 echo "saved in $out"

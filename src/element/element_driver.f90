@@ -390,10 +390,11 @@ contains
     type(domain_t), intent(in) :: dom
     real(rk), intent(out) :: dt_stable
     integer, intent(out) :: node
-    real(rk) :: k_n, r
+    real(rk) :: k_n, r, r_min
     integer :: n, k
     dt_stable = huge(1.0_rk)
     node = 0
+    r_min = huge(1.0_rk)
     do n = 1, dom%n_owned_nodes
       k_n = 0.0_rk
       do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
@@ -401,11 +402,12 @@ contains
       end do
       if (k_n <= 0.0_rk) cycle
       r = dom%nd_mass(n)/k_n
-      if (4.0_rk*r < dt_stable**2) then
-        dt_stable = 2.0_rk*sqrt(r)
+      if (r < r_min) then
+        r_min = r
         node = n
       end if
     end do
+    if (node > 0) dt_stable = 2.0_rk*sqrt(r_min)
   end subroutine
 
   !> An element's own stable step from its stiffness bound and its lumped

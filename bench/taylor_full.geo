@@ -1,0 +1,22 @@
+// The full OFHC Taylor cylinder of the OpenRadioss side-by-side (issue 12):
+// L0 = 25.4 mm, D0 = 7.62 mm (units mm), axis +z, impact face at z = 0,
+// physical volume "rod", no symmetry planes. make bench meshes it with
+//   gmsh -3 -setnumber h 0.62 -format msh22   (coarse, about 19,500 tets)
+//   gmsh -3 -setnumber h 0.31 -format msh22   (fine, about 148,000 tets)
+SetFactory("OpenCASCADE");
+If (!Exists(h))
+  h = 0.62;
+EndIf
+R  = 3.81;
+L0 = 25.4;
+Cylinder(1) = {0, 0, 0, 0, 0, L0, R};
+Physical Volume("rod", 1) = {1};
+Mesh.CharacteristicLengthMin = h;
+Mesh.CharacteristicLengthMax = h;
+Mesh.CharacteristicLengthFromCurvature = 0;
+Mesh.CharacteristicLengthExtendFromBoundary = 1;
+Mesh.Algorithm = 6;      // Frontal-Delaunay 2D
+Mesh.Algorithm3D = 10;   // HXT
+Mesh.Optimize = 1;
+Mesh.OptimizeThreshold = 0.5;
+Mesh.ElementOrder = 1;
