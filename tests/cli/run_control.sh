@@ -13,7 +13,7 @@ source "$(dirname "$0")/common.sh" "$1"
 case=taylor_ofhc_baseline
 src=$ROOT/tests/regression/$case
 cp "$src/$case.msh" "$W/"
-sed 's/velocity = 0.0, 0.0, -190.0/velocity = 0.0, 0.0, -400.0/; s/^\( *\)t_end = .*/\1t_end = 10.0e-6/; s/^&run/\&run dt_warn_ratio = 0.9,/' \
+sed 's/velocity = 0.0, 0.0, -190.0/velocity = 0.0, 0.0, -400.0/; s/^\( *\)t_end = .*/\1t_end = 15.0e-6/; s/^&run/\&run dt_warn_ratio = 0.9,/' \
   "$src/$case.nml" > "$W/fast.nml"
 # the nodal-averaged element of 0.4, whose spurious mode crushes single elements
 echo "&numerics tet_formulation = 'nodal' /" >> "$W/fast.nml"
