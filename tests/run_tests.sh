@@ -31,11 +31,13 @@ regression() {   # case, binary [deck name, when the case has several]
   ( cd "$dir" && "$ROOT/$exe" $deck.nml ) && $PYTHON tests/regression/$case/check.py "$dir" $deck
 }
 
-# two decks of one case in one folder (the second usually the reference run)
+# two decks of one case in one folder (the second usually the reference run);
+# the case's file 'meshes' names meshes of other cases it uses
 regression_pair() {   # case, binary, deck, deck
-  local case=$1 exe=$2 dir=$WORK/$1
+  local case=$1 exe=$2 dir=$WORK/$1 m
   mkdir -p "$dir"
-  cp tests/regression/$case/*.nml tests/regression/$case/*.msh "$dir"/
+  cp tests/regression/$case/*.nml "$dir"/
+  for m in $(cat tests/regression/$case/meshes); do cp tests/regression/$m "$dir"/; done
   ( cd "$dir" && "$ROOT/$exe" $3.nml && "$ROOT/$exe" $4.nml ) && $PYTHON tests/regression/$case/check.py "$dir"
 }
 
