@@ -42,27 +42,12 @@ program test_stable_step
 
   call get_command_argument(1, unit_dir)
   beta = numerics_defaults%stabilisation
-  call gmsh_read(trim(unit_dir)//'/../regression/taylor_ofhc_baseline/taylor_ofhc_baseline.msh', 1.0e-3_rk, &
-                 mesh, ok, msg)
-  call check('mesh_read', ok, msg)
-  if (.not. ok) call check_summary()
-  n = mesh%n_nodes
-  ne = mesh%n_tets
-  tet = mesh%tet
-  x0 = mesh%x
-  x = mesh%x
+  call read_undeformed(trim(unit_dir)//'/../regression/taylor_ofhc_baseline/taylor_ofhc_baseline.msh', 1.0e-3_rk)
   call prepare(8930.0_rk)
   do k = 1, size(nus)
     call all_formulations('ofhc_bar_undeformed', 124.0e9_rk, nus(k), 8930.0_rk)
   end do
-  call gmsh_read(trim(unit_dir)//'/../regression/elastic_bar/elastic_bar.msh', 1.0_rk, mesh, ok, msg)
-  call check('mesh_read', ok, msg)
-  if (.not. ok) call check_summary()
-  n = mesh%n_nodes
-  ne = mesh%n_tets
-  tet = mesh%tet
-  x0 = mesh%x
-  x = mesh%x
+  call read_undeformed(trim(unit_dir)//'/../regression/elastic_bar/elastic_bar.msh', 1.0_rk)
   call prepare(7850.0_rk)
   call all_formulations('elastic_bar_structured', 200.0e9_rk, 0.0_rk, 7850.0_rk)
   call read_frame(trim(unit_dir)//'/meshes/wg_80us.txt')
@@ -107,6 +92,20 @@ contains
       call check(case_name//'_'//trim(form_name(form))//'_default_step_below_the_assembled_limit_nu_'//r2s(nu), &
                  run_defaults%dt_safety < ratio, 'critical step '//r2s(ratio)//' times the estimate')
     end do
+  end subroutine
+
+  !> A gmsh mesh, undeformed: reference and current coordinates the same.
+  subroutine read_undeformed(path, scale)
+    character(len=*), intent(in) :: path
+    real(rk), intent(in) :: scale
+    call gmsh_read(path, scale, mesh, ok, msg)
+    call check('mesh_read '//path, ok, msg)
+    if (.not. ok) call check_summary()
+    n = mesh%n_nodes
+    ne = mesh%n_tets
+    tet = mesh%tet
+    x0 = mesh%x
+    x = mesh%x
   end subroutine
 
   !> A deformed frame: reference and current coordinates, connectivity.
