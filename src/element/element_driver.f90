@@ -254,10 +254,9 @@ contains
         ! the element's stiffness bound (stiffened by its viscosity) and its own step
         call tet_stiffness_bound(ld, nb, vol, grad, bulk, step_shear_modulus(mat), &
                                  step_volumetric_share(dom%anti_locking, dom%stab_beta), lam)
-        do i = 1, nb
-          lam(i) = lam(i)*visc(i)
-          dt_el(i) = own_step(dom%el_mass(first + i - 1), lam(i))
-        end do
+        lam(1:nb) = lam(1:nb)*visc(1:nb)
+        ! its own step: only erosion by time step asks for it in the cycle
+        if (erodible) dt_el(1:nb) = own_step(dom%el_mass(first:last), lam(1:nb))
         ! plastic work heats the material (Taylor-Quinney share), which softens it
         do i = 1, nb
           if (w_pl(i) <= 0.0_rk) cycle

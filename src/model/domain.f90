@@ -90,66 +90,22 @@ contains
   !> it by the element count). Every allocatable component is listed here.
   pure integer(i8) function domain_bytes(d) result(b)
     type(domain_t), intent(in) :: d
-    b = 0
-    if (allocated(d%nd_gidx)) b = b + bytes_i(d%nd_gidx)
-    if (allocated(d%el_gidx)) b = b + bytes_i(d%el_gidx)
-    if (allocated(d%el_owned)) b = b + size(d%el_owned, kind=i8)*storage_size(d%el_owned)/8
-    if (allocated(d%el_owned_list)) b = b + bytes_i(d%el_owned_list)
-    if (allocated(d%nd_id)) b = b + bytes_i(d%nd_id)
-    if (allocated(d%nd_part)) b = b + bytes_i(d%nd_part)
-    if (allocated(d%nd_x0)) b = b + bytes_r2(d%nd_x0)
-    if (allocated(d%nd_x)) b = b + bytes_r2(d%nd_x)
-    if (allocated(d%nd_v)) b = b + bytes_r2(d%nd_v)
-    if (allocated(d%nd_f)) b = b + bytes_r2(d%nd_f)
-    if (allocated(d%nd_mass)) b = b + bytes_r(d%nd_mass)
-    if (allocated(d%nd_vol0)) b = b + bytes_r(d%nd_vol0)
-    if (allocated(d%nd_j)) b = b + bytes_r(d%nd_j)
-    if (allocated(d%nd_vref)) b = b + bytes_r(d%nd_vref)
-    if (allocated(d%nd_p)) b = b + bytes_r(d%nd_p)
-    if (allocated(d%nd_el_ptr)) b = b + bytes_i(d%nd_el_ptr)
-    if (allocated(d%nd_el)) b = b + bytes_i(d%nd_el)
-    if (allocated(d%nd_el_corner)) b = b + bytes_i(d%nd_el_corner)
-    if (allocated(d%el_id)) b = b + bytes_i(d%el_id)
-    if (allocated(d%el_part)) b = b + bytes_i(d%el_part)
-    if (allocated(d%el_mat)) b = b + bytes_i(d%el_mat)
-    if (allocated(d%el_conn)) b = b + size(d%el_conn, kind=i8)*storage_size(d%el_conn)/8
-    if (allocated(d%el_vol0)) b = b + bytes_r(d%el_vol0)
-    if (allocated(d%el_vol)) b = b + bytes_r(d%el_vol)
-    if (allocated(d%el_mass)) b = b + bytes_r(d%el_mass)
-    if (allocated(d%el_h)) b = b + bytes_r(d%el_h)
-    if (allocated(d%el_j)) b = b + bytes_r(d%el_j)
-    if (allocated(d%el_e)) b = b + bytes_r(d%el_e)
-    if (allocated(d%el_wp)) b = b + bytes_r(d%el_wp)
-    if (allocated(d%el_p)) b = b + bytes_r(d%el_p)
-    if (allocated(d%el_q)) b = b + bytes_r(d%el_q)
-    if (allocated(d%el_pavg)) b = b + bytes_r(d%el_pavg)
-    if (allocated(d%el_s)) b = b + bytes_r2(d%el_s)
-    if (allocated(d%el_eps_p)) b = b + bytes_r(d%el_eps_p)
-    if (allocated(d%el_temp)) b = b + bytes_r(d%el_temp)
-    if (allocated(d%el_hard)) b = b + bytes_r(d%el_hard)
-    if (allocated(d%el_soft)) b = b + bytes_r(d%el_soft)
-    if (allocated(d%el_state)) b = b + bytes_i(d%el_state)
-    if (allocated(d%el_damage)) b = b + bytes_r(d%el_damage)
-    if (allocated(d%el_eps_tot)) b = b + bytes_r(d%el_eps_tot)
-    if (allocated(d%blk_first)) b = b + bytes_i(d%blk_first)
-    if (allocated(d%blk_last)) b = b + bytes_i(d%blk_last)
-    if (allocated(d%blk_nd_ptr)) b = b + bytes_i(d%blk_nd_ptr)
-    if (allocated(d%blk_nd)) b = b + bytes_i(d%blk_nd)
-    if (allocated(d%fixed_nodes)) b = b + bytes_i(d%fixed_nodes)
-    if (allocated(d%sym_nodes)) b = b + bytes_i(d%sym_nodes)
-    if (allocated(d%sym_normal)) b = b + bytes_r2(d%sym_normal)
+    b = sum([bytes(d%nd_gidx), bytes(d%el_gidx), bytes(d%el_owned), bytes(d%el_owned_list), bytes(d%nd_id), &
+             bytes(d%nd_part), bytes(d%nd_x0), bytes(d%nd_x), bytes(d%nd_v), bytes(d%nd_f), bytes(d%nd_mass), &
+             bytes(d%nd_vol0), bytes(d%nd_j), bytes(d%nd_vref), bytes(d%nd_p), bytes(d%nd_el_ptr), &
+             bytes(d%nd_el), bytes(d%nd_el_corner), bytes(d%el_id), bytes(d%el_part), bytes(d%el_mat), &
+             bytes(d%el_conn), bytes(d%el_vol0), bytes(d%el_vol), bytes(d%el_mass), bytes(d%el_h), &
+             bytes(d%el_k), bytes(d%el_j), bytes(d%el_e), bytes(d%el_wp), bytes(d%el_p), bytes(d%el_q), &
+             bytes(d%el_pavg), bytes(d%el_s), bytes(d%el_eps_p), bytes(d%el_temp), bytes(d%el_hard), &
+             bytes(d%el_soft), bytes(d%el_state), bytes(d%el_damage), bytes(d%el_eps_tot), &
+             bytes(d%blk_first), bytes(d%blk_last), bytes(d%blk_nd_ptr), bytes(d%blk_nd), &
+             bytes(d%fixed_nodes), bytes(d%sym_nodes), bytes(d%sym_normal)])
   contains
-    pure integer(i8) function bytes_i(a)
-      integer, intent(in) :: a(:)
-      bytes_i = size(a, kind=i8)*storage_size(a)/8
-    end function
-    pure integer(i8) function bytes_r(a)
-      real(rk), intent(in) :: a(:)
-      bytes_r = size(a, kind=i8)*storage_size(a)/8
-    end function
-    pure integer(i8) function bytes_r2(a)
-      real(rk), intent(in) :: a(:,:)
-      bytes_r2 = size(a, kind=i8)*storage_size(a)/8
+    !> Bytes of an array, 0 when it is not allocated (then it is absent).
+    pure integer(i8) function bytes(a)
+      class(*), intent(in), optional :: a(..)
+      bytes = 0
+      if (present(a)) bytes = size(a, kind=i8)*storage_size(a)/8
     end function
   end function
 end module udar_domain
