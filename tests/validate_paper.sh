@@ -3,7 +3,9 @@
 # cylinder at 30 degrees with f = 0.18 and f = 0 (Fig. 3), its normal impact,
 # and the yawed W-Ni-Fe rod through a plate (Fig. 4), run two at a time;
 # the numbers of doc/validation.md 4j-4l go to doc/validation/paper_decks.csv
-# and the sections at the paper's times to doc/validation/.
+# and the sections at the paper's times to doc/validation/. Then the
+# ricochet deck (not the paper's, the same algorithm at a grazing angle) with
+# the default and the plain element: doc/validation/ricochet.csv.
 source "$(dirname "$0")/validate_common.sh" paper
 # deck, folder, name of the projectile part, its initial axis (into the plate)
 decks=("oblique_cylinder oblique_cylinder cylinder 0.5 0 -0.8660254"
@@ -18,6 +20,8 @@ for d in "${decks[@]}"; do
   mesh_checked "$W/$1/$2.msh" "input/$2/$2.geo"
   sed "s|directory = '[^']*'|directory = 'out'|" "input/$2/$1.nml" > "$W/$1/$1.nml"
 done
+mkdir -p "$W/ricochet"
+mesh_checked "$W/ricochet/ricochet.msh" input/ricochet/ricochet.geo
 meshes_checked
 printf '%s\n' "${decks[@]}" | cut -d' ' -f1 | \
   xargs -P "$JOBS" -I{} sh -c "cd '$W/{}' && '$W/udar' {}.nml > run.log 2>&1 || echo 'FAILED {}'"
@@ -53,4 +57,38 @@ for t in 0 16 44.03; do
 done
 $S "$W/yawed_rod/out/yawed_rod.h5" --time 16 --color plastic_strain --vmax 2 --xlim -30 80 --ylim -70 30 \
    --title "Fig. 4 deck, 16 us: plastic strain" -o doc/validation/yawed_rod_16us_eps.png
+echo "results in $csv"
+
+# Ricochet (validation.md 4d): when the rod leaves the plate (last cycle with a
+# contact force) and its centre of mass velocity over the last microsecond,
+# from the history, with the default element and the plain one
+for form in stabilised plain; do
+  sed -e "s|directory = '[^']*'|directory = 'out_$form'|" input/ricochet/ricochet.nml > "$W/ricochet/$form.nml"
+  printf "&numerics tet_formulation = '%s' /\n" $form >> "$W/ricochet/$form.nml"
+done
+printf '%s\n' stabilised plain | \
+  xargs -P "$JOBS" -I{} sh -c "cd '$W/ricochet' && '$W/udar' {}.nml > {}.log 2>&1 || echo 'FAILED ricochet {}'"
+csv=doc/validation/ricochet.csv
+echo "tet_formulation,cycles,leaves_plate_us,rod_com_velocity_x_m_s,rod_com_velocity_z_m_s,energy_error,wall_s" > $csv
+for form in stabilised plain; do
+  log="$W/ricochet/$form.log"
+  $PYTHON - "$W/ricochet/out_$form/${form}_history.csv" "$form" \
+    "$(grep -o 'done: [0-9]*' "$log" | cut -d' ' -f2)" \
+    "$(grep -o 'energy error *[-0-9.E+]*' "$log" | tail -1 | awk '{print $3}')" \
+    "$(grep -o '[0-9.]* s wall' "$log" | cut -d' ' -f1)" <<'PY' | tee -a $csv
+import sys, numpy as np
+path, form, cycles, err, wall = sys.argv[1:]
+h = np.genfromtxt(path, delimiter=',', names=True)
+t = h['time']
+touching = np.nonzero(h['contact_normal_rod_on_plate'] > 0)[0]
+late = t >= t[-1] - 1e-6
+vx = np.polyfit(t[late], h['com_x_rod'][late], 1)[0]
+vz = np.polyfit(t[late], h['com_z_rod'][late], 1)[0]
+print("%s,%s,%.1f,%.1f,%.1f,%s,%s" % (form, cycles, 1e6 * t[touching[-1]], vx, vz, err, wall))
+PY
+done
+for t in 0 10 30; do
+  $PYTHON postproc/section.py "$W/ricochet/out_stabilised/stabilised.h5" --plane y=0 --time $t --color plastic_strain \
+     --title "ricochet, 800 m/s at 15 deg, $t us: plastic strain" -o doc/validation/ricochet_${t}us.png
+done
 echo "results in $csv"
