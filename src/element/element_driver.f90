@@ -14,7 +14,7 @@ module udar_element_driver
   use udar_fracture, only: el_fractured, el_eroded, el_intact, erode_strain, erode_time_step, erode_inverted, &
       fracture_update, fracture_enabled, erosion_enabled, deviatoric_rate
   use udar_hydro, only: volumetric_update, dilatational_speed2, blended_volume_ratios, blended_pressures, &
-      step_shear_modulus, step_volumetric_share
+      step_shear_modulus, step_volumetric_share, tangent_bulk_modulus
   use udar_config, only: tet_stabilised
   implicit none
   private
@@ -148,20 +148,28 @@ contains
   !> nodal-averaged volume ratio is non-positive (a neighbour inverted), or
   !> 0 (elements of eroding materials are eroded instead), the owned
   !> elements eroded this cycle by reason (udar_fracture erode_*), and
-  !> whether any local element was eroded.
-  subroutine element_update(dom, dt, bad_elem, bad_j, n_eroded, eroded_any)
+  !> whether any local element was eroded. Also the nodal time step of the
+  !> new bounds over the owned nodes and its node (nodal_stable_dt's result,
+  !> bitwise: the same sums in the same order, formed as the blocks complete
+  !> each node's element list instead of in a pass of their own).
+  subroutine element_update(dom, dt, bad_elem, bad_j, n_eroded, eroded_any, dt_stable, dt_node)
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
     integer, intent(out) :: bad_elem, bad_j, n_eroded(3)
     logical, intent(out) :: eroded_any
+    real(rk), intent(out) :: dt_stable
+    integer, intent(out) :: dt_node
     integer, parameter :: ld = block_size
     real(rk) :: ve(ld,4,3), grad(ld,4,3), fe(ld,4,3)
     real(rk) :: vol(ld), h(ld), d(ld,6), w(ld,3), s(ld,6), p_app(ld), trd(ld), j_new(ld), &
                 w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld), dt_el(ld), &
                 bulk(ld), visc(ld), lam(ld)
     logical :: gone(ld), no_shear(ld), erodible, fracturing, fractured, stab, geo
-    real(rk) :: t_old, d_eps, jbar(ld), je(ld)
+    real(rk) :: t_old, d_eps, jbar(ld), je(ld), r_min
     integer :: b, i, e, nb, first, last, k, n
+    r_min = huge(1.0_rk)
+    dt_node = 0
+    dom%nd_k(1:dom%n_owned_nodes) = 0.0_rk
     bad_elem = 0
     bad_j = 0
     n_eroded = 0
@@ -323,10 +331,17 @@ contains
           if (gone(i)) fe(i,:,:) = 0.0_rk
         end do
         call add_forces(dom, first, nb, fe)
+        do e = first, last
+          if (dom%el_state(e) == el_eroded) cycle    ! its bound is 0
+          do k = 1, 4
+            n = dom%el_conn(e,k)
+            if (n <= dom%n_owned_nodes) dom%nd_k(n) = dom%nd_k(n) + dom%el_k(e)
+          end do
+        end do
       else
-        ! nodal pressures (nodal_pressures): the weighted pressures added element
-        ! by element in ascending id, each node's mean formed once its last
-        ! element is done
+        ! nodal pressures (nodal_pressures) and stiffness sums: the weighted
+        ! pressures and the bounds added element by element in ascending id,
+        ! each node's mean formed once its last element is done
         do e = first, last
           if (dom%el_state(e) == el_eroded) cycle
           do k = 1, 4
@@ -337,6 +352,7 @@ contains
             else
               dom%nd_p(n) = dom%nd_p(n) + dom%el_vol0(e)*dom%el_p(e)
             end if
+            dom%nd_k(n) = dom%nd_k(n) + dom%el_k(e)
           end do
         end do
         do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
@@ -348,7 +364,13 @@ contains
           end if
         end do
       end if
+      do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
+        n = dom%blk_nd(k)
+        call keep_stiffest(n, dom%nd_mass(n), dom%nd_k(n), r_min, dt_node)
+      end do
     end do
+    dt_stable = huge(1.0_rk)
+    if (dt_node > 0) dt_stable = 2.0_rk*sqrt(r_min)
   contains
     !> Element e leaves the mesh: its mass stays at its nodes, its internal
     !> energy (frozen from now on) is the eroded energy.
@@ -372,7 +394,7 @@ contains
       associate (mat => dom%mat(dom%el_mat(first)))
         g = step_shear_modulus(mat)
         call dilatational_speed2(mat, nb, dom%el_j(first:last), dom%el_p(first:last), dom%el_mass(first:last), vol, c2)
-        bulk(1:nb) = c2(1:nb)*dom%el_mass(first:last)/vol(1:nb) - 4.0_rk/3.0_rk*g
+        bulk(1:nb) = tangent_bulk_modulus(c2(1:nb), dom%el_mass(first:last)/vol(1:nb), 4.0_rk/3.0_rk*g)
         call tet_stiffness_bound(ld, nb, vol, grad, bulk, g, step_volumetric_share(dom%anti_locking, dom%stab_beta), &
                                  lam)
       end associate
@@ -389,7 +411,7 @@ contains
     type(domain_t), intent(in) :: dom
     real(rk), intent(out) :: dt_stable
     integer, intent(out) :: node
-    real(rk) :: k_n, r, r_min
+    real(rk) :: k_n, r_min
     integer :: n, k
     dt_stable = huge(1.0_rk)
     node = 0
@@ -399,14 +421,26 @@ contains
       do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
         k_n = k_n + dom%el_k(dom%nd_el(k))
       end do
-      if (k_n <= 0.0_rk) cycle
-      r = dom%nd_mass(n)/k_n
-      if (r < r_min) then
-        r_min = r
-        node = n
-      end if
+      call keep_stiffest(n, dom%nd_mass(n), k_n, r_min, node)
     end do
     if (node > 0) dt_stable = 2.0_rk*sqrt(r_min)
+  end subroutine
+
+  !> The smallest m/k so far and its node (the lowest index among equal
+  !> ratios, so the answer does not depend on the order nodes come in);
+  !> nodes without stiffness do not limit the step.
+  pure subroutine keep_stiffest(n, mass, k_n, r_min, node)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: mass, k_n
+    real(rk), intent(inout) :: r_min
+    integer, intent(inout) :: node
+    real(rk) :: r
+    if (k_n <= 0.0_rk) return
+    r = mass/k_n
+    if (r < r_min .or. (r == r_min .and. n < node)) then
+      r_min = r
+      node = n
+    end if
   end subroutine
 
   !> An element's own stable step from its stiffness bound and its lumped

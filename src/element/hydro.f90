@@ -9,7 +9,7 @@ module udar_hydro
   private
   real(rk), parameter :: near_one = 0.1_rk   !< |r - 1| up to which near_one_power replaces r**beta
   public :: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_volume_ratios, blended_pressures, &
-            step_shear_modulus, step_volumetric_share
+            step_shear_modulus, step_volumetric_share, tangent_bulk_modulus
 
   !> The share of an element's volumetric stiffness that the nodal time step
   !> of the nodal-averaged elements counts beyond their own beta: their
@@ -73,7 +73,7 @@ contains
         e(i) = e_star
         p(i) = 0.0_rk
       end if
-      bulk_tan(i) = rho*c2(i) - g43
+      bulk_tan(i) = tangent_bulk_modulus(c2(i), rho, g43)
       visc(i) = ((eq + sqrt(eq*eq + c2(i)))/c)**2
     end do
   end subroutine
@@ -173,6 +173,14 @@ contains
     type(material_cfg_t), intent(in) :: mat
     g = 0.0_rk
     if (mat%strength /= strength_none) g = mat%shear_modulus
+  end function
+
+  !> The tangent bulk modulus rho c_b^2 of the stiffness bound from the
+  !> squared dilatational speed c2 = c_b^2 + g43/rho (dilatational_speed2),
+  !> g43 = 4/3 of step_shear_modulus.
+  elemental real(rk) function tangent_bulk_modulus(c2, rho, g43) result(k)
+    real(rk), intent(in) :: c2, rho, g43
+    k = rho*c2 - g43
   end function
 
   !> Square of the dilatational wave speed: bulk sound speed at (J, p) plus

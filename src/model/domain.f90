@@ -37,6 +37,7 @@ module udar_domain
     real(rk), allocatable :: nd_vol0(:), nd_j(:)     !< m3, -: nodal reference volume and volume ratio (anti-locking)
     real(rk), allocatable :: nd_vref(:)   !< m3, the volume nd_j is taken against (nd_vol0, rebased at erosion)
     real(rk), allocatable :: nd_p(:)            !< Pa, nodal average pressure (anti-locking)
+    real(rk), allocatable :: nd_k(:)            !< N/m, sum of the incident elements' stiffness bounds (time step)
     ! node -> incident elements, each list ascending in element id (fixed assembly order)
     integer, allocatable :: nd_el_ptr(:), nd_el(:), nd_el_corner(:)
     ! ---- elements
@@ -92,7 +93,7 @@ contains
     type(domain_t), intent(in) :: d
     b = sum([bytes(d%nd_gidx), bytes(d%el_gidx), bytes(d%el_owned), bytes(d%el_owned_list), bytes(d%nd_id), &
              bytes(d%nd_part), bytes(d%nd_x0), bytes(d%nd_x), bytes(d%nd_v), bytes(d%nd_f), bytes(d%nd_mass), &
-             bytes(d%nd_vol0), bytes(d%nd_j), bytes(d%nd_vref), bytes(d%nd_p), bytes(d%nd_el_ptr), &
+             bytes(d%nd_vol0), bytes(d%nd_j), bytes(d%nd_vref), bytes(d%nd_p), bytes(d%nd_k), bytes(d%nd_el_ptr), &
              bytes(d%nd_el), bytes(d%nd_el_corner), bytes(d%el_id), bytes(d%el_part), bytes(d%el_mat), &
              bytes(d%el_conn), bytes(d%el_vol0), bytes(d%el_vol), bytes(d%el_mass), bytes(d%el_h), &
              bytes(d%el_k), bytes(d%el_j), bytes(d%el_e), bytes(d%el_wp), bytes(d%el_p), bytes(d%el_q), &

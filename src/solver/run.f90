@@ -267,7 +267,7 @@ contains
         call element_volumes(dom)
         call comms_halo_exchange_scalar(halo, dom%nd_j)
       end if
-      call element_update(dom, dt, bad, bad_avg, n_eroded_now, eroded_any)
+      call element_update(dom, dt, bad, bad_avg, n_eroded_now, eroded_any, st%dt_stable, dt_node)
       n_eroded_by = n_eroded_by + n_eroded_now
       if (eroded_any) then
         call nodal_reference_volumes(dom, rebase=dom%anti_locking)
@@ -297,7 +297,6 @@ contains
         call comms_halo_exchange_scalar(halo, dom%nd_p)
         call element_forces_averaged(dom)
       end if
-      call nodal_stable_dt(dom, st%dt_stable, dt_node)
       dt_local = st%dt_stable
       st%dt_stable = comms_min(st%dt_stable)
       if (cfg%run%dt_warn_ratio > 0.0_rk) then

@@ -175,9 +175,9 @@ contains
     type(domain_t), intent(inout) :: dom
     integer :: nn, ne, e
     nn = dom%n_nodes; ne = dom%n_elems
-    allocate(dom%nd_x(3,nn), dom%nd_f(3,nn), dom%nd_vref(nn), dom%nd_j(nn), dom%nd_p(nn))
+    allocate(dom%nd_x(3,nn), dom%nd_f(3,nn), dom%nd_vref(nn), dom%nd_j(nn), dom%nd_p(nn), dom%nd_k(nn))
     dom%nd_x = dom%nd_x0
-    dom%nd_f = 0.0_rk; dom%nd_p = 0.0_rk
+    dom%nd_f = 0.0_rk; dom%nd_p = 0.0_rk; dom%nd_k = 0.0_rk
     dom%nd_vref = dom%nd_vol0
     dom%nd_j = 1.0_rk
     allocate(dom%el_vol(ne), dom%el_h(ne), dom%el_k(ne), dom%el_mass(ne), dom%el_j(ne), dom%el_e(ne), dom%el_wp(ne), dom%el_p(ne), &

@@ -1,7 +1,8 @@
 !> Unit test of udar_distribution and the halo exchange, on any number of
 !> ranks (run alone and under mpirun -np 3): the elastic-bar mesh of the
 !> regression tests, partitioned by METIS, distributed, then checked against
-!> the global domain every rank still holds.
+!> the global domain every rank still holds; and the nodal time step the
+!> stress pass forms as it goes against the separate pass over the node lists.
 !> Args: <tests/unit dir> <work dir>.
 program test_distribution_mpi
   use udar_kinds, only: rk, i8, max_path_len
@@ -15,7 +16,8 @@ program test_distribution_mpi
   use udar_setup, only: build_domain, init_state
   use udar_partition, only: partition_elements, partition_stats_t
   use udar_distribution, only: distribute_domain, node_owners
-  use udar_strings, only: itoa
+  use udar_strings, only: itoa, r2s
+  use udar_element_driver, only: element_volumes, element_update, nodal_stable_dt
   use unit_checks, only: check, check_summary
   implicit none
   type(config_t) :: cfg
@@ -30,6 +32,9 @@ program test_distribution_mpi
   logical :: ok, fine
   integer :: np, me, n, e, k, g, n_bad
   real(rk), allocatable :: s(:)
+  real(rk) :: dt_fused, dt_pass
+  integer :: node_fused, node_pass, bad, bad_avg, n_eroded(3)
+  logical :: eroded_any
 
   call comms_init()
   np = comms_size()
@@ -49,11 +54,28 @@ program test_distribution_mpi
     .not. allocated(loc%el_s), 'only the mesh arrays before init_state')
   call init_state(loc)
   ! the per-element and per-node table of doc/performance.md: 256 bytes per
-  ! element (+4 per owned one), 152 per node (+4 per owned one), plus the small lists
+  ! element (+4 per owned one), 160 per node (+4 per owned one), plus the small lists
   call agree('domain_bytes_as_documented', domain_bytes(loc) == 256_i8*loc%n_elems + 4*size(loc%el_owned_list) + &
-    152_i8*loc%n_nodes + 4_i8*loc%n_owned_nodes + 8 + 12*loc%n_blocks + 4*size(loc%fixed_nodes) + &
+    160_i8*loc%n_nodes + 4_i8*loc%n_owned_nodes + 8 + 12*loc%n_blocks + 4*size(loc%fixed_nodes) + &
     28*size(loc%sym_nodes), &
     itoa(int(domain_bytes(loc)))//' bytes on rank '//itoa(me))
+
+  ! the nodal step summed in the stress pass (element_update) is the one of
+  ! the separate pass over the node lists (nodal_stable_dt) to the bit, and
+  ! names the same node: a velocity field that strains every element
+  ! differently, two steps of 10 ns
+  do n = 1, loc%n_nodes
+    loc%nd_v(:,n) = 50.0_rk*[sin(0.7_rk*loc%nd_gidx(n)), cos(1.3_rk*loc%nd_gidx(n)), sin(2.9_rk*loc%nd_gidx(n))]
+  end do
+  do k = 1, 2
+    loc%nd_x = loc%nd_x + 1.0e-8_rk*loc%nd_v
+    call element_volumes(loc)
+    call element_update(loc, 1.0e-8_rk, bad, bad_avg, n_eroded, eroded_any, dt_fused, node_fused)
+    call nodal_stable_dt(loc, dt_pass, node_pass)
+    call agree('nodal_step_in_the_stress_pass_'//itoa(k), dt_fused == dt_pass .and. node_fused == node_pass .and. &
+      node_pass > 0, r2s(dt_fused)//' s at node '//itoa(node_fused)//' against '//r2s(dt_pass)//' s at node '// &
+      itoa(node_pass)//' on rank '//itoa(me))
+  end do
 
   ! every element and node owned exactly once over the ranks
   call agree('elements_owned_once', comms_sum_int(int(count(loc%el_owned), i8)) == glob%n_elems .and. &
