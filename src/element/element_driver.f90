@@ -23,8 +23,8 @@ module udar_element_driver
 
 contains
 
-  !> Current element volumes from the nodal coordinates and the owned nodes'
-  !> volume ratios J_a = V_a / Vref_a, V_a a quarter of each incident
+  !> The owned nodes' volume ratios from the current coordinates:
+  !> J_a = V_a / Vref_a, V_a a quarter of each incident
   !> element's volume (Bonet and Burton 1998), Vref_a = V0_a until erosion
   !> rebases it; eroded elements left out, 1 at a node they all left. The
   !> volumes are added to nd_j element by element in ascending id (each
@@ -32,19 +32,20 @@ contains
   !> its last element is done (domain_t blk_nd).
   subroutine element_volumes(dom)
     type(domain_t), intent(inout) :: dom
-    real(rk) :: xe(block_size,4,3)
-    integer :: b, k, n, e, c, first, nb
+    real(rk) :: xe(block_size,4,3), vol(block_size)
+    integer :: b, k, n, i, c, first, nb
     dom%nd_j(1:dom%n_owned_nodes) = 0.0_rk
     do b = 1, dom%n_blocks
       first = dom%blk_first(b)
       nb = dom%blk_last(b) - first + 1
       call gather_block(dom, dom%nd_x, first, nb, xe)
-      call tet_volumes(block_size, nb, xe, dom%el_vol(first:first+nb-1))
-      do e = first, first + nb - 1
-        if (dom%el_state(e) == el_eroded) cycle
+      ! into the block only: element_update stores the same volumes
+      call tet_volumes(block_size, nb, xe, vol)
+      do i = 1, nb
+        if (dom%el_state(first+i-1) == el_eroded) cycle
         do c = 1, 4
-          n = dom%el_conn(e,c)
-          if (n <= dom%n_owned_nodes) dom%nd_j(n) = dom%nd_j(n) + dom%el_vol(e)
+          n = dom%el_conn(first+i-1,c)
+          if (n <= dom%n_owned_nodes) dom%nd_j(n) = dom%nd_j(n) + vol(i)
         end do
       end do
       do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
