@@ -10,7 +10,8 @@ PYTHON=${PYTHON:-/usr/bin/python3}
 W=${VALIDATE_WORK:-$ROOT/build/validate}/$1
 JOBS=${JOBS:-2}
 mkdir -p "$W" doc/validation
-cp bin/udar "$W/udar"
+# by a new name and a rename: a run of another script may still be using the old copy
+cp bin/udar "$W/udar.new.$$" && mv -f "$W/udar.new.$$" "$W/udar"
 
 # Mesh a .geo and compare the mesh with its row of doc/validation/meshes.csv
 # (the mesh the documented numbers were computed on): a different gmsh or an

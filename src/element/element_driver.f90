@@ -112,9 +112,11 @@ contains
     end do
   end subroutine
 
-  !> Nodal pressure: reference-volume-weighted mean of the incident elements'
-  !> EOS pressures; the weights make the averaged forces the exact gradient of
-  !> the averaged-volume energy. Eroded elements left out. element_update
+  !> Nodal pressure: the incident elements' EOS pressures weighted by their
+  !> reference volumes, over 4 Vref (the volume the node's J is taken
+  !> against; the weighted mean until erosion rebases Vref): the averaged
+  !> forces are then the exact gradient of the averaged-volume energy, also
+  !> after erosion (theory.md section 8). Eroded elements left out. element_update
   !> computes them as it goes (the same sums in the same order); again here
   !> after erosion changed nd_vol0.
   subroutine nodal_pressures(dom)
@@ -129,11 +131,11 @@ contains
     type(domain_t), intent(inout) :: dom
     integer, intent(in) :: n
     dom%nd_p(n) = 0.0_rk
-    if (dom%nd_vol0(n) <= 0.0_rk) return
+    if (dom%nd_vref(n) <= 0.0_rk) return
     if (dom%stab_beta > 0.0_rk) then
-      dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_pavg, w=dom%el_vol0)/dom%nd_vol0(n)
+      dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_pavg, w=dom%el_vol0)/dom%nd_vref(n)
     else
-      dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_p, w=dom%el_vol0)/dom%nd_vol0(n)
+      dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_p, w=dom%el_vol0)/dom%nd_vref(n)
     end if
   end subroutine
 
@@ -358,10 +360,10 @@ contains
         end do
         do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
           n = dom%blk_nd(k)
-          if (dom%nd_vol0(n) <= 0.0_rk) then
+          if (dom%nd_vref(n) <= 0.0_rk) then
             dom%nd_p(n) = 0.0_rk
           else
-            dom%nd_p(n) = 0.25_rk*dom%nd_p(n)/dom%nd_vol0(n)
+            dom%nd_p(n) = 0.25_rk*dom%nd_p(n)/dom%nd_vref(n)
           end if
         end do
       end if
