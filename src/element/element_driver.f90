@@ -484,8 +484,9 @@ contains
         ! stabilised: plus the element's own share, conjugate to its own volume ratio
         if (stab) p_app(i) = p_app(i) + blended_pressures(geo, .true., dom%stab_beta, dom%el_p(e), dom%el_j(e), &
                                                           1.0_rk, vol(i)/dom%el_vol0(e))
-        ! fractured: no tension from the averaged pressure either
-        if (dom%el_state(e) == el_fractured) p_app(i) = max(p_app(i), 0.0_rk)
+        ! a fractured element's own pressure is >= 0 already; the mean of its
+        ! nodes' is not clipped: clipping it broke the work identity of
+        ! theory.md section 8 (energy from nowhere, validation.md 4g)
         p_app(i) = p_app(i) + dom%el_q(e)
       end do
       do k = 1, 6
