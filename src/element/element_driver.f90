@@ -325,8 +325,8 @@ contains
       if (stab) dom%el_pavg(first:last) = blended_pressures(geo, .false., dom%stab_beta, p(1:nb), j_new(1:nb), &
                                                             jbar(1:nb), je(1:nb))
       dom%el_j(first:last) = j_new(1:nb)
-      dom%el_vol(first:last) = vol(1:nb)
-      dom%el_h(first:last) = merge(huge(1.0_rk), h(1:nb), gone(1:nb))
+      if (dom%keep_volumes) dom%el_vol(first:last) = vol(1:nb)
+      if (dom%keep_altitudes) dom%el_h(first:last) = merge(huge(1.0_rk), h(1:nb), gone(1:nb))
       if (.not. dom%anti_locking) then
         p_app(1:nb) = p(1:nb) + q(1:nb)
         call tet_internal_forces(ld, nb, vol, grad, s, p_app, fe)

@@ -23,7 +23,7 @@ contains
   end function
 
   !> Whether elements of a material are eroded (removed).
-  pure logical function erosion_enabled(mat)
+  elemental logical function erosion_enabled(mat)
     type(material_cfg_t), intent(in) :: mat
     erosion_enabled = mat%eps_erode > 0.0_rk
   end function

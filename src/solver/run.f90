@@ -20,7 +20,7 @@ module udar_run
   use udar_element_driver, only: element_volumes, element_update, nodal_pressures, element_time_steps, &
       element_forces_averaged, element_stiffness_bounds, nodal_stable_dt, nodal_reference_volumes, &
       element_altitudes
-  use udar_fracture, only: fracture_enabled, el_intact, el_eroded
+  use udar_fracture, only: fracture_enabled, erosion_enabled, el_intact, el_eroded
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions, &
       keep_constrained_positions, restore_constrained_positions
   use udar_strength, only: von_mises
@@ -200,6 +200,8 @@ contains
     ! erosion: elements of eroding materials whose step collapses; the
     ! nodal reference volumes without the elements already eroded (restart)
     dom%erode_dt_limit = cfg%numerics%erode_dt_ratio*st%dt0
+    dom%keep_volumes = any(erosion_enabled(dom%mat))
+    dom%keep_altitudes = ct%n_interfaces > 0
     call nodal_reference_volumes(dom, rebase=.false.)
     ! the altitudes of the last element pass (a restart reads them: slave
     ! nodes settled after that pass have moved since)
