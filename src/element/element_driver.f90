@@ -19,7 +19,7 @@ module udar_element_driver
   implicit none
   private
   public :: element_volumes, element_update, nodal_pressures, element_forces_averaged, element_stiffness_bounds, &
-            nodal_stable_dt, element_time_steps, nodal_reference_volumes, element_altitudes
+            nodal_stable_dt, element_time_steps, nodal_reference_volumes, element_altitudes, current_volume
 
 contains
 
@@ -58,6 +58,20 @@ contains
       end do
     end do
   end subroutine
+
+  !> Volume of element e at the current coordinates (el_vol is kept only
+  !> where erosion needs it).
+  real(rk) function current_volume(dom, e) result(v)
+    type(domain_t), intent(in) :: dom
+    integer, intent(in) :: e
+    real(rk) :: xe(1,4,3), vol(1)
+    integer :: c
+    do c = 1, 4
+      xe(1,c,:) = dom%nd_x(:, dom%el_conn(e,c))
+    end do
+    call tet_volumes(1, 1, xe, vol)
+    v = vol(1)
+  end function
 
   !> Smallest altitude of every element from the nodal coordinates (huge
   !> for eroded elements), as element_update keeps it.

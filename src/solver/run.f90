@@ -18,7 +18,7 @@ module udar_run
   use udar_fatal, only: fatal, fatal_all, fatal_unless_all_ok, exit_physics, exit_io, log_error_here
   use udar_log, only: log_info, log_warn
   use udar_element_driver, only: element_volumes, element_update, nodal_pressures, element_time_steps, &
-      element_forces_averaged, element_stiffness_bounds, nodal_stable_dt, nodal_reference_volumes, &
+      element_forces_averaged, element_stiffness_bounds, nodal_stable_dt, nodal_reference_volumes, current_volume, &
       element_altitudes
   use udar_fracture, only: fracture_enabled, erosion_enabled, el_intact, el_eroded
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions, &
@@ -501,7 +501,7 @@ contains
       part = comms_min_int(entry_or_huge(dom%el_part, e))
       j_el = huge(1.0_rk); j_lo = huge(1.0_rk); j_hi = -huge(1.0_rk)
       if (e > 0) then
-        j_el = dom%el_vol(e)/dom%el_vol0(e)
+        j_el = current_volume(dom, e)/dom%el_vol0(e)
         if (dom%anti_locking) then
           do i = 1, 4
             j_lo = min(j_lo, dom%nd_j(dom%el_conn(e,i)))
