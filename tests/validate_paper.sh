@@ -73,7 +73,7 @@ echo "tet_formulation,cycles,leaves_plate_us,rod_com_velocity_x_m_s,rod_com_velo
 for form in stabilised plain; do
   log="$W/ricochet/$form.log"
   $PYTHON - "$W/ricochet/out_$form/${form}_history.csv" "$form" \
-    "$(grep -o 'done: [0-9]*' "$log" | cut -d' ' -f2)" \
+    "$(grep -o 'done: [0-9][0-9]*' "$log" | cut -d' ' -f2)" \
     "$(grep -o 'energy error *[-0-9.E+]*' "$log" | tail -1 | awk '{print $3}')" \
     "$(grep -o '[0-9.]* s wall' "$log" | cut -d' ' -f1)" <<'PY' | tee -a $csv
 import sys, numpy as np

@@ -32,7 +32,7 @@ for run in "${jobs[@]}"; do
   D=$($PYTHON -c "import json,sys; m=json.loads(sys.argv[1]); print('%.3f' % (1e3*m['footprint_diameter_m']))" "$m")
   G=$($PYTHON -c "import json,sys; m=json.loads(sys.argv[1]); print('%.3f' % (1e3*m['gap_m']))" "$m")
   tets=$(grep -o '[0-9]* tetrahedra' "$W/$run.log" | head -1 | cut -d' ' -f1)
-  cyc=$(grep -o 'done: [0-9]*' "$W/$run.log" | cut -d' ' -f2)
+  cyc=$(grep -o 'done: [0-9][0-9]*' "$W/$run.log" | cut -d' ' -f2)
   wall=$(grep -o '[0-9.]* s wall' "$W/$run.log" | cut -d' ' -f1)
   err=$(grep -o 'energy error [-0-9.E]*,' "$W/$run.log" | tail -1 | cut -d' ' -f3 | tr -d ,)
   echo "$name,$h,$form,$tets,$cyc,$wall,$L,$D,$err,$G" | tee -a $csv
