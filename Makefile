@@ -93,10 +93,13 @@ $(EXE): $(OBJ) $(MAIN_OBJ)
 debug:
 	@$(MAKE) --no-print-directory BUILD=debug bin/udar-debug
 
-TEST_SUPPORT := $(BDIR)/tests/unit_checks.o
-$(TEST_SUPPORT): tests/unit/support/unit_checks.f90
+TEST_SUPPORT := $(BDIR)/tests/unit_checks.o $(BDIR)/tests/unit_domains.o
+$(BDIR)/tests/unit_checks.o: tests/unit/support/unit_checks.f90
 	@mkdir -p $(dir $@)
 	$(FC) $(FFLAGS) -J$(BDIR)/tests -c $< -o $@
+$(BDIR)/tests/unit_domains.o: tests/unit/support/unit_domains.f90 $(OBJ)
+	@mkdir -p $(dir $@)
+	$(FC) $(FFLAGS) -I$(BDIR)/mod -J$(BDIR)/tests -c $< -o $@
 
 $(BDIR)/tests/%: tests/unit/%.f90 $(OBJ) $(TEST_SUPPORT)
 	@mkdir -p $(dir $@)

@@ -13,11 +13,8 @@ program test_averaging_energy
   use udar_kinds, only: rk, max_path_len
   use udar_comms, only: comms_init, comms_finalize
   use udar_config, only: config_t
-  use udar_input_errors, only: input_errors_t
-  use udar_deck, only: deck_read
-  use udar_gmsh, only: gmsh_mesh_t, gmsh_read
   use udar_domain, only: domain_t, block_size
-  use udar_setup, only: build_domain, init_state
+  use udar_setup, only: init_state
   use udar_distribution, only: distribute_domain
   use udar_comms, only: halo_t
   use udar_tet4, only: tet_volumes
@@ -25,25 +22,19 @@ program test_averaging_energy
   use udar_element_driver, only: element_volumes, nodal_reference_volumes, nodal_pressures
   use udar_strings, only: r2s, itoa
   use unit_checks, only: check, check_summary
+  use unit_domains, only: elastic_bar_mesh_domain
   implicit none
   type(config_t) :: cfg
-  type(input_errors_t) :: errs
-  type(gmsh_mesh_t) :: mesh
   type(domain_t) :: glob, dom
   type(halo_t) :: halo
   character(len=max_path_len) :: unit_dir
-  character(len=:), allocatable :: msg
-  logical :: ok
   integer, allocatable :: part(:)
   integer :: e, n_eroded
   real(rk) :: lhs, rhs, scale
 
   call comms_init()
   call get_command_argument(1, unit_dir)
-  call deck_read(trim(unit_dir)//'/../regression/elastic_bar/elastic_bar.nml', cfg, errs)
-  call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg)
-  if (errs%count() /= 0 .or. .not. ok) error stop 'cannot read the elastic-bar deck and mesh'
-  call build_domain(cfg, mesh, glob, errs)
+  call elastic_bar_mesh_domain(trim(unit_dir), cfg, glob)
   allocate(part(glob%n_elems), source=0)
   call distribute_domain(glob, part, 0, dom, halo)
   call init_state(dom)

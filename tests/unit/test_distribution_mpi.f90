@@ -9,20 +9,16 @@ program test_distribution_mpi
   use udar_comms, only: comms_init, comms_finalize, comms_rank, comms_size, comms_max_int, comms_sum_int, &
       comms_is_root, halo_t, comms_halo_exchange, comms_halo_exchange_scalar
   use udar_config, only: config_t
-  use udar_input_errors, only: input_errors_t
-  use udar_deck, only: deck_read
-  use udar_gmsh, only: gmsh_mesh_t, gmsh_read
   use udar_domain, only: domain_t, domain_bytes
-  use udar_setup, only: build_domain, init_state
+  use udar_setup, only: init_state
   use udar_partition, only: partition_elements, partition_stats_t
   use udar_distribution, only: distribute_domain, node_owners
   use udar_strings, only: itoa, r2s
   use udar_element_driver, only: element_volumes, element_update, nodal_stable_dt
   use unit_checks, only: check, check_summary
+  use unit_domains, only: elastic_bar_mesh_domain
   implicit none
   type(config_t) :: cfg
-  type(input_errors_t) :: errs
-  type(gmsh_mesh_t) :: mesh
   type(domain_t) :: glob, loc
   type(halo_t) :: halo
   type(partition_stats_t) :: stats
@@ -40,10 +36,7 @@ program test_distribution_mpi
   np = comms_size()
   me = comms_rank()
   call get_command_argument(1, unit_dir)
-  call deck_read(trim(unit_dir)//'/../regression/elastic_bar/elastic_bar.nml', cfg, errs)
-  call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg)
-  if (errs%count() /= 0 .or. .not. ok) error stop 'cannot read the elastic-bar deck and mesh'
-  call build_domain(cfg, mesh, glob, errs)
+  call elastic_bar_mesh_domain(trim(unit_dir), cfg, glob)
   allocate(part(glob%n_elems), source=0)
   if (np > 1) call partition_elements(glob%n_nodes, glob%el_conn, np, part, stats, ok, msg)
   call distribute_domain(glob, part, me, loc, halo)

@@ -1,0 +1,31 @@
+!> Domains the unit tests build from the regression meshes, the way a run
+!> does (deck, gmsh mesh, the mesh domain), before partitioning.
+module unit_domains
+  use udar_config, only: config_t
+  use udar_input_errors, only: input_errors_t
+  use udar_deck, only: deck_read
+  use udar_gmsh, only: gmsh_mesh_t, gmsh_read
+  use udar_domain, only: domain_t
+  use udar_setup, only: build_domain
+  implicit none
+  private
+  public :: elastic_bar_mesh_domain
+
+contains
+
+  !> The mesh domain of the elastic-bar regression deck (4800 tetrahedra),
+  !> with its deck; unit_dir is tests/unit.
+  subroutine elastic_bar_mesh_domain(unit_dir, cfg, glob)
+    character(len=*), intent(in) :: unit_dir
+    type(config_t), intent(out) :: cfg
+    type(domain_t), intent(out) :: glob
+    type(input_errors_t) :: errs
+    type(gmsh_mesh_t) :: mesh
+    character(len=:), allocatable :: msg
+    logical :: ok
+    call deck_read(unit_dir//'/../regression/elastic_bar/elastic_bar.nml', cfg, errs)
+    call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg)
+    if (errs%count() /= 0 .or. .not. ok) error stop 'cannot read the elastic-bar deck and mesh'
+    call build_domain(cfg, mesh, glob, errs)
+  end subroutine
+end module unit_domains
