@@ -1,8 +1,11 @@
 // The full OFHC Taylor cylinder of the OpenRadioss side-by-side (issue 12):
 // L0 = 25.4 mm, D0 = 7.62 mm (units mm), axis +z, impact face at z = 0,
 // physical volume "rod", no symmetry planes. make bench meshes it with
-//   gmsh -3 -setnumber h 0.62 -format msh22   (coarse, about 19,500 tets)
-//   gmsh -3 -setnumber h 0.31 -format msh22   (fine, about 148,000 tets)
+//   gmsh -3 -v 0 -nt 1 -setnumber h 0.62 -format msh22 taylor_full.geo -o full_coarse.msh
+//   gmsh -3 -v 0 -nt 1 -setnumber h 0.31 -format msh22 taylor_full.geo -o full_fine.msh
+// in the folder of a copy of this file: with gmsh 4.8.4 the 3D mesh changes
+// with the paths on the command line and with the thread count, and is the
+// same from call to call for the same command line.
 SetFactory("OpenCASCADE");
 If (!Exists(h))
   h = 0.62;

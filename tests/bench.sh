@@ -173,7 +173,10 @@ declare -A or_ref=([coarse_plain]="17.23/12.81 3324" [coarse_stabilised]="17.32/
                    [fine_plain]="17.38/13.57 9865" [fine_stabilised]="17.35/14.68 12995")
 for spec in "coarse 0.62" "fine 0.31"; do
   set -- $spec
-  gmsh -3 -v 0 -setnumber h $2 -format msh22 bench/taylor_full.geo -o "$W/full_$1.msh"
+  # the same command line everywhere (relative names, one thread): gmsh's
+  # 3D mesh of this .geo changes with the paths it is given and the threads
+  cp bench/taylor_full.geo "$W/"
+  (cd "$W" && gmsh -3 -v 0 -nt 1 -setnumber h $2 -format msh22 taylor_full.geo -o full_$1.msh)
   for form in stabilised plain; do
     sed -e "s|file = 'taylor_ofhc.msh'|file = '$W/full_$1.msh'|" -e "/surface = 'sym_/d" \
         -e "s|directory = 'out'|directory = '$W/peer', case_name = '$1_$form'|" \
