@@ -34,3 +34,21 @@ mesh_checked() {
 meshes_checked() {
   if [ "${MESHES_ONLY:-0}" = 1 ]; then exit 0; fi
 }
+
+# A figure of a finished run from its log: the mesh line's tetrahedra, or
+# from udar's summary line ("udar: done: N cycles to t = ..., energy error
+# E, W s wall (...)"), so no other line that says "done:" or "energy
+# error" can be read instead.
+#   log_value LOG tets|cycles|energy_error|wall_s
+log_value() {
+  local line
+  case $2 in
+    tets) grep -o '[0-9]* tetrahedra' "$1" | head -1 | cut -d' ' -f1; return ;;
+  esac
+  line=$(grep '^udar: done: ' "$1" | tail -1)
+  case $2 in
+    cycles) sed -n 's/^udar: done: \([0-9]*\) cycles.*/\1/p' <<< "$line" ;;
+    energy_error) sed -n 's/.*energy error *\([-+0-9.E]*\),.*/\1/p' <<< "$line" ;;
+    wall_s) sed -n 's/.* \([0-9.]*\) s wall.*/\1/p' <<< "$line" ;;
+  esac
+}

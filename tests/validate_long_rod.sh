@@ -33,10 +33,10 @@ form=$(grep -o "tet_formulation = '[a-z_]*'" input/long_rod/long_rod.nml | cut -
 for run in "${runs[@]}"; do
   v=${run#v}; v=${v%%_h*}
   depth=$($PYTHON postproc/penetration.py "$W/$run/$run.h5" --radius 1.25e-3 | tail -1 | awk '{print $2}')
-  tets=$(grep -o '[0-9]* tetrahedra' "$W/$run.log" | head -1 | cut -d' ' -f1)
-  cyc=$(grep -o 'done: [0-9][0-9]*' "$W/$run.log" | cut -d' ' -f2)
-  wall=$(grep -o '[0-9.]* s wall' "$W/$run.log" | cut -d' ' -f1)
-  err=$(grep -o 'energy error *[-0-9.E+]*' "$W/$run.log" | tail -1 | awk '{print $3}')
+  tets=$(log_value "$W/$run.log" tets)
+  cyc=$(log_value "$W/$run.log" cycles)
+  wall=$(log_value "$W/$run.log" wall_s)
+  err=$(log_value "$W/$run.log" energy_error)
   pl=$(awk -v d="$depth" 'BEGIN{printf "%.3f", d/50.0}')
   diff=$(awk -v p="$pl" -v r="${ref[$v]}" 'BEGIN{printf "%+.1f", 100*(p/r - 1)}')
   echo "$v,$mm,${form:-stabilised},$tets,$cyc,$wall,$depth,$pl,${ref[$v]},$diff,$err" | tee -a $csv

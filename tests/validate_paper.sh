@@ -30,8 +30,8 @@ echo "deck,t_us,crater_on_axis_mm,projectile_left_along_axis_mm,intact_along_axi
 for d in "${decks[@]}"; do
   set -- $d
   line=$($PYTHON postproc/penetration.py "$W/$1/out/$1.h5" --rod $3 --target plate --radius 0.5e-3 --axis $4 $5 $6 | tail -1)
-  err=$(grep -o 'energy error *[-0-9.E+]*' "$W/$1/run.log" | tail -1 | awk '{print $3}')
-  wall=$(grep -o '[0-9.]* s wall' "$W/$1/run.log" | cut -d' ' -f1)
+  err=$(log_value "$W/$1/run.log" energy_error)
+  wall=$(log_value "$W/$1/run.log" wall_s)
   echo "$line" | awk -v n=$1 -v e=$err -v w=$wall '{print n","$1","$2","$3","$8","$9","$10","$4","$6","$7","e","w}' | tee -a $csv
 done
 S="$PYTHON postproc/section.py --plane y=0.3mm"
@@ -73,9 +73,7 @@ echo "tet_formulation,cycles,leaves_plate_us,rod_com_velocity_x_m_s,rod_com_velo
 for form in stabilised plain; do
   log="$W/ricochet/$form.log"
   $PYTHON - "$W/ricochet/out_$form/${form}_history.csv" "$form" \
-    "$(grep -o 'done: [0-9][0-9]*' "$log" | cut -d' ' -f2)" \
-    "$(grep -o 'energy error *[-0-9.E+]*' "$log" | tail -1 | awk '{print $3}')" \
-    "$(grep -o '[0-9.]* s wall' "$log" | cut -d' ' -f1)" <<'PY' | tee -a $csv
+    "$(log_value "$log" cycles)" "$(log_value "$log" energy_error)" "$(log_value "$log" wall_s)" <<'PY' | tee -a $csv
 import sys, numpy as np
 path, form, cycles, err, wall = sys.argv[1:]
 h = np.genfromtxt(path, delimiter=',', names=True)

@@ -31,10 +31,10 @@ for run in "${jobs[@]}"; do
   L=$($PYTHON -c "import json,sys; m=json.loads(sys.argv[1]); print('%.3f' % (1e3*m['length_m']))" "$m")
   D=$($PYTHON -c "import json,sys; m=json.loads(sys.argv[1]); print('%.3f' % (1e3*m['footprint_diameter_m']))" "$m")
   G=$($PYTHON -c "import json,sys; m=json.loads(sys.argv[1]); print('%.3f' % (1e3*m['gap_m']))" "$m")
-  tets=$(grep -o '[0-9]* tetrahedra' "$W/$run.log" | head -1 | cut -d' ' -f1)
-  cyc=$(grep -o 'done: [0-9][0-9]*' "$W/$run.log" | cut -d' ' -f2)
-  wall=$(grep -o '[0-9.]* s wall' "$W/$run.log" | cut -d' ' -f1)
-  err=$(grep -o 'energy error [-0-9.E]*,' "$W/$run.log" | tail -1 | cut -d' ' -f3 | tr -d ,)
+  tets=$(log_value "$W/$run.log" tets)
+  cyc=$(log_value "$W/$run.log" cycles)
+  wall=$(log_value "$W/$run.log" wall_s)
+  err=$(log_value "$W/$run.log" energy_error)
   echo "$name,$h,$form,$tets,$cyc,$wall,$L,$D,$err,$G" | tee -a $csv
 done
 # pictures of the finest runs with the default element

@@ -64,12 +64,9 @@ contains
   real(rk) function current_volume(dom, e) result(v)
     type(domain_t), intent(in) :: dom
     integer, intent(in) :: e
-    real(rk) :: xe(1,4,3), vol(1)
-    integer :: c
-    do c = 1, 4
-      xe(1,c,:) = dom%nd_x(:, dom%el_conn(e,c))
-    end do
-    call tet_volumes(1, 1, xe, vol)
+    real(rk) :: xe(block_size,4,3), vol(1)
+    call gather_block(dom, dom%nd_x, e, 1, xe)
+    call tet_volumes(block_size, 1, xe, vol)
     v = vol(1)
   end function
 

@@ -13,13 +13,12 @@ program test_averaging_energy
   use udar_kinds, only: rk, max_path_len
   use udar_comms, only: comms_init, comms_finalize
   use udar_config, only: config_t
-  use udar_domain, only: domain_t, block_size
+  use udar_domain, only: domain_t
   use udar_setup, only: init_state
   use udar_distribution, only: distribute_domain
   use udar_comms, only: halo_t
-  use udar_tet4, only: tet_volumes
   use udar_fracture, only: el_eroded
-  use udar_element_driver, only: element_volumes, nodal_reference_volumes, nodal_pressures
+  use udar_element_driver, only: element_volumes, nodal_reference_volumes, nodal_pressures, current_volume
   use udar_strings, only: r2s, itoa
   use unit_checks, only: check, check_summary
   use unit_domains, only: elastic_bar_mesh_domain
@@ -77,17 +76,9 @@ contains
 
   !> el_vol from the current coordinates (as element_update keeps it).
   subroutine store_element_volumes()
-    real(rk) :: xe(block_size,4,3)
-    integer :: b, i, c, first, nb
-    do b = 1, dom%n_blocks
-      first = dom%blk_first(b)
-      nb = dom%blk_last(b) - first + 1
-      do c = 1, 4
-        do i = 1, nb
-          xe(i,c,:) = dom%nd_x(:, dom%el_conn(first+i-1, c))
-        end do
-      end do
-      call tet_volumes(block_size, nb, xe, dom%el_vol(first:first+nb-1))
+    integer :: f
+    do f = 1, dom%n_elems
+      dom%el_vol(f) = current_volume(dom, f)
     end do
   end subroutine
 
