@@ -9,7 +9,8 @@
 module udar_element_driver
   use udar_kinds, only: rk
   use udar_domain, only: domain_t, block_size
-  use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_volumes, tet_stiffness_bound
+  use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_pressure_forces, tet_volumes, &
+      tet_stiffness_bound
   use udar_strength, only: strength_block, thermal_softening_update, von_mises
   use udar_fracture, only: el_fractured, el_eroded, el_intact, erode_strain, erode_time_step, erode_inverted, &
       fracture_update, fracture_enabled, erosion_enabled, deviatoric_rate
@@ -177,7 +178,7 @@ contains
     real(rk) :: ve(ld,4,3), grad(ld,4,3), fe(ld,4,3)
     real(rk) :: vol(ld), h(ld), d(ld,6), w(ld,3), s(ld,6), p_app(ld), trd(ld), j_new(ld), &
                 w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld), dt_el(ld), &
-                bulk(ld), visc(ld), lam(ld)
+                bulk(ld), visc(ld), lam(ld), p_node(ld)
     logical :: gone(ld), no_shear(ld), erodible, fracturing, fractured, stab, geo
     real(rk) :: t_old, d_eps, jbar(ld), je(ld), r_min
     integer :: b, i, e, nb, first, last, k, n
@@ -190,11 +191,8 @@ contains
     eroded_any = .false.
     stab = dom%stab_beta > 0.0_rk
     geo = dom%tet_formulation == tet_stabilised
-    if (dom%anti_locking) then
-      dom%nd_p(1:dom%n_owned_nodes) = 0.0_rk
-    else
-      dom%nd_f(:,1:dom%n_owned_nodes) = 0.0_rk
-    end if
+    dom%nd_f(:,1:dom%n_owned_nodes) = 0.0_rk
+    if (dom%anti_locking) dom%nd_p(1:dom%n_owned_nodes) = 0.0_rk
     do b = 1, dom%n_blocks
       call block_geometry(dom, b, first, last, nb, vol, grad, h)
       call gather_block(dom, dom%nd_v, first, nb, ve)
@@ -333,42 +331,43 @@ contains
       dom%el_e(first:last) = e_int(1:nb)
       dom%el_p(first:last) = p(1:nb)
       dom%el_q(first:last) = q(1:nb)
-      if (stab) dom%el_pavg(first:last) = blended_pressures(geo, .false., dom%stab_beta, p(1:nb), j_new(1:nb), &
-                                                            jbar(1:nb), je(1:nb))
       dom%el_j(first:last) = j_new(1:nb)
       if (dom%keep_volumes) dom%el_vol(first:last) = vol(1:nb)
       if (dom%keep_altitudes) dom%el_h(first:last) = merge(huge(1.0_rk), h(1:nb), gone(1:nb))
-      if (.not. dom%anti_locking) then
-        p_app(1:nb) = p(1:nb) + q(1:nb)
-        call tet_internal_forces(ld, nb, vol, grad, s, p_app, fe)
-        do i = 1, nb
-          if (gone(i)) fe(i,:,:) = 0.0_rk
-        end do
-        call add_forces(dom, first, nb, fe)
-        do e = first, last
-          if (dom%el_state(e) == el_eroded) cycle    ! its bound is 0
-          do k = 1, 4
-            n = dom%el_conn(e,k)
-            if (n <= dom%n_owned_nodes) dom%nd_k(n) = dom%nd_k(n) + dom%el_k(e)
-          end do
-        end do
+      ! forces of the deviator, the viscosity and the pressure the element
+      ! keeps for itself: all of it (plain), its own share (stabilised) or
+      ! none (nodal); the nodal pressures' part follows in
+      ! element_forces_averaged
+      p_app(1:nb) = q(1:nb)
+      if (.not. dom%anti_locking) p_app(1:nb) = p_app(1:nb) + p(1:nb)
+      if (stab) p_app(1:nb) = p_app(1:nb) + blended_pressures(geo, .true., dom%stab_beta, p(1:nb), j_new(1:nb), &
+                                                              1.0_rk, vol(1:nb)/dom%el_vol0(first:last))
+      call tet_internal_forces(ld, nb, vol, grad, s, p_app, fe)
+      do i = 1, nb
+        if (gone(i)) fe(i,:,:) = 0.0_rk
+      end do
+      call add_forces(dom, first, nb, fe)
+      ! the pressure each element gives its nodes' average (nodal_pressures)
+      if (stab) then
+        p_node(1:nb) = blended_pressures(geo, .false., dom%stab_beta, p(1:nb), j_new(1:nb), jbar(1:nb), je(1:nb))
+        if (dom%keep_volumes) dom%el_pavg(first:last) = p_node(1:nb)
       else
-        ! nodal pressures (nodal_pressures) and stiffness sums: the weighted
-        ! pressures and the bounds added element by element in ascending id,
-        ! each node's mean formed once its last element is done
-        do e = first, last
-          if (dom%el_state(e) == el_eroded) cycle
-          do k = 1, 4
-            n = dom%el_conn(e,k)
-            if (n > dom%n_owned_nodes) cycle
-            if (stab) then
-              dom%nd_p(n) = dom%nd_p(n) + dom%el_vol0(e)*dom%el_pavg(e)
-            else
-              dom%nd_p(n) = dom%nd_p(n) + dom%el_vol0(e)*dom%el_p(e)
-            end if
-            dom%nd_k(n) = dom%nd_k(n) + dom%el_k(e)
-          end do
+        p_node(1:nb) = p(1:nb)
+      end if
+      ! nodal pressures and stiffness sums: the weighted pressures and the
+      ! bounds added element by element in ascending id, each node's mean
+      ! formed once its last element is done
+      do i = 1, nb
+        if (gone(i)) cycle
+        e = first + i - 1
+        do k = 1, 4
+          n = dom%el_conn(e,k)
+          if (n > dom%n_owned_nodes) cycle
+          if (dom%anti_locking) dom%nd_p(n) = dom%nd_p(n) + dom%el_vol0(e)*p_node(i)
+          dom%nd_k(n) = dom%nd_k(n) + lam(i)
         end do
+      end do
+      if (dom%anti_locking) then
         do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
           n = dom%blk_nd(k)
           if (dom%nd_vref(n) <= 0.0_rk) then
@@ -473,40 +472,29 @@ contains
     dt_el = own_step(dom%el_mass, dom%el_k)
   end subroutine
 
-  !> Forces with the element pressure replaced by the mean of its nodes'
-  !> averaged pressures (plus its own viscosity), added to the owned nodes'
-  !> forces (add_forces). The gradients are recomputed from x(n+1): cheaper
-  !> than storing and reloading them (measured: slower at 200k elements).
+  !> The nodal pressures' forces: each element's share of them, the mean
+  !> of its nodes' averaged pressures, added to the owned nodes' forces
+  !> (add_forces) after the rest of its forces (element_update). Needs only
+  !> the coordinates, not the gradients: V grad N_a is a cofactor vector
+  !> (tet_pressure_forces).
   subroutine element_forces_averaged(dom)
     type(domain_t), intent(inout) :: dom
     integer, parameter :: ld = block_size
-    real(rk) :: p_app(ld), fe(ld,4,3), vol(ld), grad(ld,4,3), h(ld), sb(ld,6)
-    integer :: b, i, e, nb, first, last, k
-    logical :: stab, geo
-    stab = dom%stab_beta > 0.0_rk
-    geo = dom%tet_formulation == tet_stabilised
-    dom%nd_f(:,1:dom%n_owned_nodes) = 0.0_rk
+    real(rk) :: p_bar(ld), fe(ld,4,3), xe(ld,4,3)
+    integer :: b, i, e, nb, first
     do b = 1, dom%n_blocks
-      call block_geometry(dom, b, first, last, nb, vol, grad, h)
+      first = dom%blk_first(b)
+      nb = dom%blk_last(b) - first + 1
+      call gather_block(dom, dom%nd_x, first, nb, xe)
       do i = 1, nb
         e = first + i - 1
-        p_app(i) = 0.25_rk*(dom%nd_p(dom%el_conn(e,1)) + dom%nd_p(dom%el_conn(e,2)) &
+        ! a fractured element's mean is not clipped: clipping it broke the
+        ! work identity of theory.md section 8 (energy from nowhere, validation.md 4g)
+        p_bar(i) = 0.25_rk*(dom%nd_p(dom%el_conn(e,1)) + dom%nd_p(dom%el_conn(e,2)) &
                  + dom%nd_p(dom%el_conn(e,3)) + dom%nd_p(dom%el_conn(e,4)))
-        ! stabilised: plus the element's own share, conjugate to its own volume ratio
-        if (stab) p_app(i) = p_app(i) + blended_pressures(geo, .true., dom%stab_beta, dom%el_p(e), dom%el_j(e), &
-                                                          1.0_rk, vol(i)/dom%el_vol0(e))
-        ! a fractured element's own pressure is >= 0 already; the mean of its
-        ! nodes' is not clipped: clipping it broke the work identity of
-        ! theory.md section 8 (energy from nowhere, validation.md 4g)
-        p_app(i) = p_app(i) + dom%el_q(e)
+        if (dom%el_state(e) == el_eroded) p_bar(i) = 0.0_rk
       end do
-      do k = 1, 6
-        sb(1:nb,k) = dom%el_s(first:last,k)
-      end do
-      call tet_internal_forces(ld, nb, vol, grad, sb, p_app, fe)
-      do i = 1, nb
-        if (dom%el_state(first + i - 1) == el_eroded) fe(i,:,:) = 0.0_rk
-      end do
+      call tet_pressure_forces(ld, nb, xe, p_bar, fe)
       call add_forces(dom, first, nb, fe)
     end do
   end subroutine

@@ -8,7 +8,8 @@ module udar_tet4
   use udar_kinds, only: rk
   implicit none
   private
-  public :: tet_volume, tet_volumes, tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_stiffness_bound
+  public :: tet_volume, tet_volumes, tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_pressure_forces, &
+            tet_stiffness_bound
 
 contains
 
@@ -103,6 +104,29 @@ contains
         f(i,a,2) = -vol(i)*(s(i,4)*grad(i,a,1) + syy*grad(i,a,2) + s(i,5)*grad(i,a,3))
         f(i,a,3) = -vol(i)*(s(i,6)*grad(i,a,1) + s(i,5)*grad(i,a,2) + szz*grad(i,a,3))
       end do
+    end do
+  end subroutine
+
+  !> Internal nodal forces of a pressure p alone, f_a = V p grad N_a, from
+  !> the coordinates: V grad N_a is a sixth of the cofactor vector of
+  !> tet_gradients (no volume, no division).
+  pure subroutine tet_pressure_forces(ld, nb, x, p, f)
+    integer, intent(in) :: ld, nb
+    real(rk), intent(in) :: x(ld,4,3), p(nb)
+    real(rk), intent(inout) :: f(ld,4,3)
+    real(rk) :: d1x, d1y, d1z, d2x, d2y, d2z, d3x, d3y, d3z, r
+    integer :: i
+    do i = 1, nb
+      d1x = x(i,2,1) - x(i,1,1); d1y = x(i,2,2) - x(i,1,2); d1z = x(i,2,3) - x(i,1,3)
+      d2x = x(i,3,1) - x(i,1,1); d2y = x(i,3,2) - x(i,1,2); d2z = x(i,3,3) - x(i,1,3)
+      d3x = x(i,4,1) - x(i,1,1); d3y = x(i,4,2) - x(i,1,2); d3z = x(i,4,3) - x(i,1,3)
+      r = p(i)/6.0_rk
+      f(i,2,1) = r*(d2y*d3z - d2z*d3y); f(i,2,2) = r*(d2z*d3x - d2x*d3z); f(i,2,3) = r*(d2x*d3y - d2y*d3x)
+      f(i,3,1) = r*(d3y*d1z - d3z*d1y); f(i,3,2) = r*(d3z*d1x - d3x*d1z); f(i,3,3) = r*(d3x*d1y - d3y*d1x)
+      f(i,4,1) = r*(d1y*d2z - d1z*d2y); f(i,4,2) = r*(d1z*d2x - d1x*d2z); f(i,4,3) = r*(d1x*d2y - d1y*d2x)
+      f(i,1,1) = -(f(i,2,1) + f(i,3,1) + f(i,4,1))
+      f(i,1,2) = -(f(i,2,2) + f(i,3,2) + f(i,4,2))
+      f(i,1,3) = -(f(i,2,3) + f(i,3,3) + f(i,4,3))
     end do
   end subroutine
 
