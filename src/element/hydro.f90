@@ -2,7 +2,7 @@
 !> quadratic artificial viscosity, the energy equation solved exactly with
 !> the EOS (both EOS are linear in e), and the stable time step.
 module udar_hydro
-  use udar_kinds, only: rk
+  use udar_kinds, only: rk, block_size
   use udar_config, only: material_cfg_t, eos_mie_gruneisen, strength_none
   use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
   implicit none
@@ -42,7 +42,7 @@ contains
     logical, intent(in) :: no_tension(nb)
     real(rk), intent(inout) :: e(nb), p(nb), q(nb)
     real(rk), intent(out) :: bulk_tan(nb), visc(nb)
-    real(rk) :: c2(ld), a(ld), b(ld), rho, c, eq, dv, e_star, g43
+    real(rk) :: c2(block_size), a(block_size), b(block_size), rho, c, eq, dv, e_star, g43
     integer :: i
     call dilatational_speed2(mat, nb, j_old, p, mass, vol, c2)
     g43 = 4.0_rk/3.0_rk*step_shear_modulus(mat)

@@ -5,13 +5,11 @@
 !> global index, owned and ghost interleaved (el_owned). With one rank the
 !> local and global numberings coincide.
 module udar_domain
-  use udar_kinds, only: rk, i8, max_name_len
+  use udar_kinds, only: rk, i8, max_name_len, block_size
   use udar_config, only: material_cfg_t
   implicit none
   private
   public :: domain_t, wall_t, block_size, domain_bytes
-
-  integer, parameter :: block_size = 128   !< elements per vectorized block
 
   type :: wall_t
     real(rk) :: point(3) = 0.0_rk, normal(3) = 0.0_rk

@@ -2,7 +2,7 @@
 !> exactly orthogonal), hypoelastic trial step and radial return to the von
 !> Mises surface. Pure, block-wise (element index innermost).
 module udar_strength
-  use udar_kinds, only: rk
+  use udar_kinds, only: rk, block_size
   use udar_config, only: material_cfg_t, strength_none, strength_elastic, &
       strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, jc_rate_plastic
   implicit none
@@ -50,7 +50,7 @@ contains
     real(rk), intent(in) :: dt, d(ld,6), w(ld,3), soft(nb)
     real(rk), intent(inout) :: hard(nb), s(ld,6), eps_p(nb)
     real(rk), intent(inout) :: w_dev(nb), w_plastic(nb)
-    real(rk) :: q_trial(ld), rate(ld), rot_work(ld), trial_work(ld), scale(ld), d_eps(ld), sy(ld)
+    real(rk), dimension(block_size) :: q_trial, rate, rot_work, trial_work, scale, d_eps, sy
     real(rk) :: a, b, cc, c, r11, r12, r13, r21, r22, r23, r31, r32, r33
     real(rk) :: t11, t12, t13, t21, t22, t23, t31, t32, t33, x(6), dd(6), tr3, g2dt, factor
     integer :: i
@@ -192,14 +192,16 @@ contains
   !> iteration started from the return with the current hardening slope.
   !> hard = A + B eps_p^n is the cached state, so (eps_p + de)^n =
   !> eps_p^n (1 + de/eps_p)^n needs no power for the small increments of a
-  !> flowing element (power_ratio). sy enters with the flow stress at the
+  !> flowing element (power_ratio), and each later iterate's power is the
+  !> last one's times (1 + step/(eps_p + de_last))^n: one power at most per
+  !> return. sy enters with the flow stress at the
   !> start and leaves with the one at eps_p + de; hard is updated.
   pure subroutine jc_return(mat, dt, q_trial, eps_p, soft, rate_factor, plastic_rate, de, sy, hard)
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: dt, q_trial, eps_p, soft, rate_factor
     logical, intent(in) :: plastic_rate
     real(rk), intent(inout) :: de, sy, hard
-    real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, pr, h, r, de_new, slope, de_rate1, de_pw
+    real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, h, r, de_new, slope, de_rate1, de_pw
     integer :: it
     g3 = 3.0_rk*mat%shear_modulus
     r = rate_factor
@@ -217,16 +219,17 @@ contains
     slope = 0.0_rk
     if (eps_p > 0.0_rk) slope = soft*r*mat%jc_b*mat%jc_n*pw0/eps_p
     de = min((q_trial - sy)/(g3 + slope), hi)
-    pr = 1.0_rk
     do it = 1, 80
       e = eps_p + de
-      if (eps_p > 0.0_rk) then
-        pr = power_ratio(de/eps_p, mat%jc_n)
-        pw = pw0*pr
+      if (it > 1) then
+        ! from the last iterate: Newton's steps are small, so the series serves
+        pw = pw*power_ratio((de - de_pw)/(eps_p + de_pw), mat%jc_n)
+      else if (eps_p > 0.0_rk) then
+        pw = pw0*power_ratio(de/eps_p, mat%jc_n)
       else
         pw = e**mat%jc_n
       end if
-      de_pw = de          ! the increment pr and pw belong to
+      de_pw = de          ! the increment pw belongs to
       h = mat%jc_a + mat%jc_b*pw
       if (plastic_rate) then
         r = 1.0_rk
@@ -253,14 +256,9 @@ contains
     end do
     ! on the yield surface by construction of the return
     sy = q_trial - g3*de
-    ! the power of the last iteration again unless its step moved de
-    if (eps_p > 0.0_rk) then
-      if (de /= de_pw) pr = power_ratio(de/eps_p, mat%jc_n)
-      hard = mat%jc_a + mat%jc_b*pw0*pr
-    else
-      if (de /= de_pw) pw = (eps_p + de)**mat%jc_n
-      hard = mat%jc_a + mat%jc_b*pw
-    end if
+    ! the power of the last iteration, moved by its step if it moved de
+    if (de /= de_pw) pw = pw*power_ratio((de - de_pw)/(eps_p + de_pw), mat%jc_n)
+    hard = mat%jc_a + mat%jc_b*pw
   end subroutine
 
   !> (1 + x)^n for x > -1: the binomial series to x^6 where |x| < 0.02
