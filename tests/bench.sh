@@ -173,10 +173,16 @@ declare -A or_ref=([coarse_plain]="17.23/12.81 3324" [coarse_stabilised]="17.32/
                    [fine_plain]="17.38/13.57 9865" [fine_stabilised]="17.35/14.68 12995")
 for spec in "coarse 0.62" "fine 0.31"; do
   set -- $spec
-  # the same command line everywhere (relative names, one thread): gmsh's
-  # 3D mesh of this .geo changes with the paths it is given and the threads
-  cp bench/taylor_full.geo "$W/"
-  (cd "$W" && gmsh -3 -v 0 -nt 1 -setnumber h $2 -format msh22 taylor_full.geo -o full_$1.msh)
+  # gmsh 4.8.4's 3D mesh of this .geo changes with its working folder's
+  # path, the size of its environment and its threads (measured: the
+  # memory layout steers it), so it is made in one fixed folder with an
+  # empty environment and one thread, the same files from any caller
+  mesh_dir=/tmp/udar-bench-mesh
+  rm -rf "$mesh_dir"; mkdir -p "$mesh_dir"
+  cp bench/taylor_full.geo "$mesh_dir/"
+  (cd "$mesh_dir" && env -i PATH=/usr/bin:/bin gmsh -3 -v 0 -nt 1 -setnumber h $2 -format msh22 taylor_full.geo \
+     -o full_$1.msh)
+  mv "$mesh_dir/full_$1.msh" "$W/"; rm -rf "$mesh_dir"
   for form in stabilised plain; do
     sed -e "s|file = 'taylor_ofhc.msh'|file = '$W/full_$1.msh'|" -e "/surface = 'sym_/d" \
         -e "s|directory = 'out'|directory = '$W/peer', case_name = '$1_$form'|" \
