@@ -24,6 +24,10 @@ module udar_contact
   !> penetration beyond one step's approach still taken as crossed (of the
   !> mean master edge): rounding and the master triangle's own motion
   real(rk), parameter :: residual_tolerance = 1.0e-3_rk
+  !> the velocity matching's passes have converged (tolerance = 0) once the
+  !> largest change a pass makes is this share of the first pass's: to
+  !> round-off, so that the answer does not depend on the order of the nodes
+  real(rk), parameter :: contact_relative_tolerance = 1.0e-10_rk
   !> a return to the surface moves a slave node by at most this fraction of
   !> the smallest altitude of its elements: no element loses more than this
   !> share of its volume to a jump that no velocity (and no work) goes with;
@@ -141,8 +145,8 @@ contains
     logical, intent(in) :: move
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
-    real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), dvs(3), dvm(3,3), dn, dtan, &
-                mismatch, vm(3,3)
+    real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), dvs(3), dvm(3,3), dn, dtan(3), &
+                mismatch, first_change, vm(3,3)
     integer :: nt, t, k, ps, best, iter, a, pa
     logical :: closing, separating
     real(rk) :: room
@@ -162,7 +166,7 @@ contains
     it%passes = it%passes + 1
     if (.not. lists_hold()) call full_search()
     it%dn_sum = 0
-    it%dt_sum = 0
+    it%t_sum = 0
     ! ---- search: each slave node's master triangle, in ascending global id
     do k = 1, size(it%slave)
       ps = it%slave(k)
@@ -200,6 +204,7 @@ contains
     ! ---- velocity matching with friction, repeated: a correction moves master
     ! nodes that earlier slave nodes were matched to
     if (dt > 0.0_rk) then
+      first_change = 0
       do iter = 1, it%iterations
         mismatch = 0
         do k = 1, n_found
@@ -207,11 +212,12 @@ contains
           t = it%on_tri(k)
           vm = ct%v(:, it%tri(:,t))
           call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), ct%m(it%tri(:,t)), vm, it%area(:,k), &
-                                it%share(:,k), it%friction, it%dn_sum(k), it%dt_sum(k), dvs, dvm, closing, dn, dtan)
+                                it%share(:,k), it%friction, it%dn_sum(k), it%t_sum(:,k), dvs, dvm, closing, dn, dtan)
           if (.not. closing) cycle
           it%dn_sum(k) = it%dn_sum(k) + dn
-          it%dt_sum(k) = it%dt_sum(k) + dtan
-          mismatch = max(mismatch, dn)
+          it%t_sum(:,k) = it%t_sum(:,k) + dtan
+          ! what this pass still changed, pushes and take-backs alike
+          mismatch = max(mismatch, abs(dn), norm2(dtan))
           ! contact forces are internal: momentum is exchanged exactly, and
           ! whatever energy the matching dissipates shows in the energy error
           ct%v(:,ps) = ct%v(:,ps) + dvs
@@ -223,10 +229,17 @@ contains
             ct%x(:,pa) = ct%x(:,pa) + dt*dvm(:,a)
             ct%impulse(pa) = ct%impulse(pa) + it%share(a,k)*ct%m(ps)*dn
           end do
-          it%normal_impulse = it%normal_impulse + ct%m(ps)*dn
-          it%friction_impulse = it%friction_impulse + ct%m(ps)*dtan
         end do
-        if (it%tolerance > 0.0_rk .and. mismatch < it%tolerance) exit
+        it%sweeps = it%sweeps + 1
+        if (iter == 1) first_change = mismatch
+        ! converged: every node matched or released, its changes admissible
+        if (mismatch <= merge(it%tolerance, contact_relative_tolerance*first_change, it%tolerance > 0.0_rk)) exit
+        if (iter == it%iterations) it%sweep_limit_hits = it%sweep_limit_hits + 1
+      end do
+      ! the cycle's impulses: what each node has received in all the passes
+      do k = 1, n_found
+        it%normal_impulse = it%normal_impulse + ct%m(it%active(k))*it%dn_sum(k)
+        it%friction_impulse = it%friction_impulse + ct%m(it%active(k))*norm2(it%t_sum(:,k))
       end do
     end if
     ! ---- what is left behind the surface goes back along the normal (eq. 5);

@@ -64,26 +64,30 @@ contains
   !> 19-23, with the stick limit) of slave node s (mass ms, velocity vs)
   !> against the master triangle's nodes (masses mm, velocities vm(:,a)) at
   !> area coordinates g with shares r_share, along the unit normal n.
-  !> One pass of the iterations: dn_before, dt_before are the normal and
-  !> friction velocity changes this node already had in this cycle; the
-  !> friction of all passes together stays within f times their normal
-  !> change (Coulomb), and each pass within what stops the slip (stick).
-  !> Returns the velocity changes; momentum is conserved: ms dvs + sum_a
-  !> mm(a) dvm(:,a) = 0. Only a compressive normal change is made; a node
-  !> not yet corrected this cycle and moving away from the surface is left
-  !> alone (separation). acted: whether anything changed. dn, dt: this
-  !> pass's normal and friction velocity changes of the slave node (>= 0).
-  pure subroutine match_velocities(n, ms, vs, mm, vm, g, r_share, friction, dn_before, dt_before, dvs, dvm, &
-                                   acted, dn, dt)
-    real(rk), intent(in) :: n(3), ms, vs(3), mm(3), vm(3,3), g(3), r_share(3), friction, dn_before, dt_before
-    real(rk), intent(out) :: dvs(3), dvm(3,3), dn, dt
+  !> One pass of the iterations (projected Gauss-Seidel): dn_before and
+  !> t_before are the normal and tangential velocity changes this node has
+  !> received so far in this cycle. The change made now matches the normal
+  !> velocities and stops the slip, then is clamped so that the accumulated
+  !> changes stay admissible: the normal one compressive (dn >= -dn_before:
+  !> an earlier push that later corrections made too large is taken back),
+  !> the tangential one within friction times the normal one (Coulomb). So
+  !> the iterations converge to one answer whatever order the nodes come in.
+  !> A node that has received nothing and moves away from the surface is
+  !> left alone (separation). Momentum is conserved: ms dvs + sum_a mm(a)
+  !> dvm(:,a) = 0. Returns the velocity changes, whether anything changed
+  !> (acted), and this pass's normal change dn (signed) and tangential
+  !> change dtv of the slave node.
+  pure subroutine match_velocities(n, ms, vs, mm, vm, g, r_share, friction, dn_before, t_before, dvs, dvm, &
+                                   acted, dn, dtv)
+    real(rk), intent(in) :: n(3), ms, vs(3), mm(3), vm(3,3), g(3), r_share(3), friction, dn_before, t_before(3)
+    real(rk), intent(out) :: dvs(3), dvm(3,3), dn, dtv(3)
     logical, intent(out) :: acted
-    real(rk) :: v_master(3), denom, vs1(3), vm1(3,3), vr(3), vr_mag, e(3), gc(3)
+    real(rk) :: v_master(3), denom, vr(3), t_new(3), t_mag, limit, gc(3)
     integer :: a
     dvs = 0.0_rk
     dvm = 0.0_rk
     dn = 0.0_rk
-    dt = 0.0_rk
+    dtv = 0.0_rk
     acted = .false.
     gc = max(g, 0.0_rk)                     ! the contact point inside the triangle
     gc = gc/sum(gc)
@@ -95,31 +99,24 @@ contains
       dn = 0.0_rk                          ! separating: released
       return
     end if
-    dn = max(dn, 0.0_rk)
-    dvs = dn*n
+    dn = max(dn, -dn_before)
+    ! friction: the change that stops the relative tangential velocity (the
+    ! normal change leaves it as it is; the same denominator), the accumulated
+    ! tangential change limited to friction times the accumulated normal one
+    if (friction > 0.0_rk) then
+      vr = v_master - vs
+      vr = vr - dot_product(vr, n)*n
+      t_new = t_before + vr/denom
+      limit = friction*(dn_before + dn)
+      t_mag = norm2(t_new)
+      if (t_mag > limit) t_new = (limit/t_mag)*t_new
+      dtv = t_new - t_before
+    end if
+    dvs = dn*n + dtv
     do a = 1, 3
-      dvm(:,a) = -(r_share(a)*ms*dn/mm(a))*n
+      dvm(:,a) = -(r_share(a)*ms/mm(a))*dvs
     end do
-    acted = dn > 0.0_rk
-    if (friction <= 0.0_rk) return
-    ! friction: along the relative tangential velocity after the normal change
-    vs1 = vs + dvs
-    do a = 1, 3
-      vm1(:,a) = vm(:,a) + dvm(:,a)
-    end do
-    v_master = gc(1)*vm1(:,1) + gc(2)*vm1(:,2) + gc(3)*vm1(:,3)
-    vr = v_master - vs1
-    vr = vr - dot_product(vr, n)*n
-    vr_mag = norm2(vr)
-    if (vr_mag <= 0.0_rk) return
-    e = vr/vr_mag
-    dt = max(min(friction*(dn_before + dn) - dt_before, vr_mag/denom), 0.0_rk)
-    if (dt <= 0.0_rk) return
-    acted = .true.
-    dvs = dvs + dt*e
-    do a = 1, 3
-      dvm(:,a) = dvm(:,a) - (r_share(a)*ms*dt/mm(a))*e
-    end do
+    acted = dn /= 0.0_rk .or. any(dtv /= 0.0_rk)
   end subroutine
 
   pure function cross(a, b) result(c)

@@ -115,8 +115,9 @@ module udar_config
     character(len=max_name_len) :: master = ''   !< part (physical volume) or physical surface group name
     character(len=max_name_len) :: slave = ''    !< part (physical volume) or physical surface group name
     real(rk) :: friction = 0.0_rk                !< -, algorithmic friction coefficient f (0 = free sliding)
-    integer  :: iterations = 2                   !< -, passes of the velocity matching over the contact nodes
-    real(rk) :: tolerance = 0.0_rk               !< m/s, stop iterating below this normal-velocity mismatch; 0 = all passes
+    integer  :: iterations = 50                  !< -, at most this many passes of the velocity matching a cycle
+    real(rk) :: tolerance = 0.0_rk               !< m/s, stop once a pass changes no velocity by more; 0 = converged
+                                                 !< (1e-10 of the first pass's largest change)
     logical  :: symmetric = .false.              !< also a pass with master and slave swapped
     logical  :: tracking = .true.                !< candidate lists kept between full searches (else a full search every cycle)
     integer  :: weights = contact_weights_distance   !< shares of the master nodes: distance (paper eq. 12) | area

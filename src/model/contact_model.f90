@@ -4,7 +4,7 @@
 !> results cannot depend on the partition); each then keeps what concerns
 !> its own nodes.
 module udar_contact_model
-  use udar_kinds, only: rk, max_name_len
+  use udar_kinds, only: rk, i8, max_name_len
   use udar_contact_search, only: bucket_grid_t
   implicit none
   private
@@ -25,7 +25,7 @@ module udar_contact_model
     logical, allocatable :: near(:)        !< (contact nodes) work: the current slave node's ring
     logical, allocatable :: touched(:)     !< (slave nodes) in contact in the last pass (self-contact)
     real(rk) :: friction = 0
-    integer :: iterations = 2, weights = 1
+    integer :: iterations = 50, weights = 1
     real(rk) :: tolerance = 0
     logical :: move_overlaps = .false.     !< initial overlaps: move the slave nodes (else report only)
     real(rk) :: h_mean = 0                 !< m, mean master edge length
@@ -40,11 +40,13 @@ module udar_contact_model
     real(rk), allocatable :: wide_lo(:,:), wide_hi(:,:)           !< (3, n_tri) boxes of the last full search
     integer, allocatable :: cand_start(:), cand(:)                 !< CSR over slave nodes: candidate triangles
     integer :: full_searches = 0, passes = 0   !< counters for the log
+    integer(i8) :: sweeps = 0              !< velocity-matching passes over the slave nodes, all cycles (log)
+    integer :: sweep_limit_hits = 0        !< cycles that ended their passes at `iterations` unconverged (log)
     ! work arrays of the pass, sized once (no allocation in the cycle)
     real(rk), allocatable :: box_lo(:,:), box_hi(:,:)            !< (3, n_tri) widened bounding boxes
     integer, allocatable :: active(:), on_tri(:), slot(:)          !< slave nodes found, their triangles, slave index
     real(rk), allocatable :: normal(:,:), area(:,:), share(:,:)    !< (3, n_slave)
-    real(rk), allocatable :: dn_sum(:), dt_sum(:)                  !< velocity changes so far in the cycle
+    real(rk), allocatable :: dn_sum(:), t_sum(:,:)                 !< m/s, normal and tangential velocity changes so far in the cycle
     ! the last cycle
     real(rk) :: normal_impulse = 0, friction_impulse = 0   !< N s
     integer :: n_active = 0                !< slave nodes corrected
@@ -108,12 +110,12 @@ contains
     end if
     if (allocated(it%active)) then
       if (size(it%active) < ns) deallocate(it%active, it%on_tri, it%slot, it%cand_start, it%normal, it%area, &
-                                           it%share, it%dn_sum, it%dt_sum)
+                                           it%share, it%dn_sum, it%t_sum)
     end if
     if (.not. allocated(it%active)) then
       ns = max(ns, 3*size(it%slave)/2)
       allocate(it%active(ns), it%on_tri(ns), it%slot(ns), it%cand_start(ns + 1), it%normal(3,ns), it%area(3,ns), &
-               it%share(3,ns), it%dn_sum(ns), it%dt_sum(ns))
+               it%share(3,ns), it%dn_sum(ns), it%t_sum(3,ns))
     end if
     if (.not. allocated(it%cand)) allocate(it%cand(4*size(it%slave) + 1))
   end subroutine

@@ -444,6 +444,13 @@ contains
         write(line, '(a,i0,a,i0,a)') '         contact '//trim(ct%ifc(k)%name)//': full searches in ', &
           ct%ifc(k)%full_searches, ' of ', ct%ifc(k)%passes, ' passes (local tracking in the others)'
         call log_info(line)
+        write(line, '(a,f0.1,a,i0,a,i0,a)') '         contact '//trim(ct%ifc(k)%name)//': velocity matching ', &
+          real(ct%ifc(k)%sweeps, rk)/max(ct%ifc(k)%passes, 1), ' sweeps a pass on average; ', &
+          ct%ifc(k)%sweep_limit_hits, ' passes ended at iterations = ', ct%ifc(k)%iterations, ' unconverged'
+        call log_info(line)
+        if (ct%ifc(k)%sweep_limit_hits > 0) call log_warn('contact '//trim(ct%ifc(k)%name)// &
+          ': the velocity matching did not converge in '//itoa(ct%ifc(k)%sweep_limit_hits)// &
+          ' passes (raise &contact iterations): their result depends on the order of the nodes')
       end do
     end if
     res%stopped = stopping

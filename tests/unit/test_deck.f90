@@ -325,7 +325,7 @@ contains
         call check(c%symmetric .and. c%weights == contact_weights_area .and. &
                    c%initial_overlap == overlap_move, 'contact 1 switches (choices case-insensitive)')
         call check(d%master == 'x0' .and. d%slave == 'sphere', 'contact 2 names')
-        call check(d%friction == 0 .and. d%iterations == 2 .and. d%tolerance == 0 .and. &
+        call check(d%friction == 0 .and. d%iterations == 50 .and. d%tolerance == 0 .and. &
                    .not. d%symmetric .and. d%weights == contact_weights_distance .and. &
                    d%initial_overlap == overlap_report, 'contact 2 defaults')
       end associate
@@ -349,7 +349,7 @@ contains
                '&contact listed')
     call check(has_line("  tolerance = 0.01", '! m/s'), 'contact tolerance with its unit')
     call check(has_line("  weights = 'area'", '! distance | area'), 'contact weights with its choices')
-    call check(has_line("  iterations = 2", '! - (default)'), 'contact iterations (default)')
+    call check(has_line("  iterations = 50", '! - (default)'), 'contact iterations (default)')
     call check(has_line("  symmetric = .false.", '! (default)'), 'contact symmetric (default)')
     call check(has_line("  initial_overlap = 'report'", '! report | move (default)'), &
                'contact initial_overlap (default)')

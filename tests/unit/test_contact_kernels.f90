@@ -1,0 +1,116 @@
+!> Unit test of the contact correction's iterations (udar_contact_kernels,
+!> issue 13 item 1): four slave nodes strike one master triangle; the
+!> passes of match_velocities over them, as contact_enforce makes them,
+!> must converge to one answer whatever order the nodes are visited in:
+!> every node either matched (its normal velocity equal to the master's at
+!> its contact point) or separating with nothing received, momentum exact.
+program test_contact_kernels
+  use udar_kinds, only: rk
+  use udar_config, only: contact_weights_area
+  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities
+  use unit_checks, only: check, check_summary
+  implicit none
+  integer, parameter :: ns = 4
+  real(rk) :: xm(3,3), gs(3,ns), v_fwd(3,ns+3), v_rev(3,ns+3), dn_fwd(ns), dn_rev(ns), p0(3), worst, gap
+  real(rk) :: one_pass(3,ns+3), ten_passes(3,ns+3)
+  integer :: order(ns), k
+  character(len=200) :: detail
+  ! master triangle in the plane z = 0, outward normal +z, at rest;
+  ! slave nodes above it, at area coordinates gs, striking at 1 m/s
+  xm = reshape([0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk], [3, 3])
+  gs = reshape([0.6_rk, 0.2_rk, 0.2_rk, 0.2_rk, 0.6_rk, 0.2_rk, 0.2_rk, 0.2_rk, 0.6_rk, &
+                1.0_rk/3, 1.0_rk/3, 1.0_rk/3], [3, ns])
+  order = [1, 2, 3, 4]
+  call strike(order, 200, 0.0_rk, v_fwd, dn_fwd)
+  order = [4, 3, 2, 1]
+  call strike(order, 200, 0.0_rk, v_rev, dn_rev)
+  worst = maxval(abs(v_fwd - v_rev))
+  write(detail, '(a,es9.2,a)') 'largest velocity difference between the two orders ', worst, ' m/s (bound 1e-9)'
+  call check('contact_order_independent', worst < 1.0e-9_rk, trim(detail))
+  call check('contact_complementary', admissible(v_fwd, dn_fwd, gap) .and. admissible(v_rev, dn_rev, gap), &
+             'every slave node matched or separating with nothing received; worst normal gap '//s(gap)//' m/s')
+  p0 = 0.0_rk
+  p0(3) = -real(ns, rk)
+  worst = maxval(abs(sum(v_fwd, dim=2) - p0))
+  call check('contact_momentum', worst < 1.0e-14_rk, 'total momentum change '//s(worst)//' N s (unit masses)')
+  ! the passes do something: ten give a different (better) answer than one
+  call strike([1, 2, 3, 4], 1, 0.0_rk, one_pass, dn_fwd)
+  call strike([1, 2, 3, 4], 10, 0.0_rk, ten_passes, dn_fwd)
+  call check('contact_passes_improve', maxval(abs(one_pass - ten_passes)) > 1.0e-3_rk .and. &
+             maxval(abs(ten_passes - v_fwd)) < maxval(abs(one_pass - v_fwd)), &
+             'one pass '//s(maxval(abs(one_pass - v_fwd)))//' m/s, ten '//s(maxval(abs(ten_passes - v_fwd)))// &
+             ' m/s from the converged answer')
+  ! with friction and a tangential approach: still one answer
+  call strike([1, 2, 3, 4], 400, 0.3_rk, v_fwd, dn_fwd)
+  call strike([4, 3, 2, 1], 400, 0.3_rk, v_rev, dn_rev)
+  worst = maxval(abs(v_fwd - v_rev))
+  write(detail, '(a,es9.2,a)') 'friction 0.3: largest velocity difference between the orders ', worst, ' m/s (bound 1e-9)'
+  call check('contact_friction_order_independent', worst < 1.0e-9_rk, trim(detail))
+  call check_summary()
+contains
+  !> Passes of match_velocities over the slave nodes in the given order;
+  !> v: the slave velocities (1..ns) then the master nodes' (ns+1..ns+3);
+  !> dn: each slave node's accumulated normal change.
+  subroutine strike(order, passes, friction, v, dn_sum)
+    integer, intent(in) :: order(ns), passes
+    real(rk), intent(in) :: friction
+    real(rk), intent(out) :: v(3,ns+3), dn_sum(ns)
+    real(rk) :: xs(3), n(3), dist, share(3,ns), m(ns+3), t_sum(3,ns), dvs(3), dvm(3,3), dn, dtv(3), gg(3,ns)
+    logical :: acted
+    integer :: it, j, k, a
+    m = 1.0_rk
+    do k = 1, ns
+      xs = matmul(xm, gs(:,k)) + [0.0_rk, 0.0_rk, -1.0e-6_rk]      ! just behind the face
+      call triangle_projection(xm, xs, n, dist, gg(:,k))
+      call master_shares(contact_weights_area, xm, xs, gg(:,k), share(:,k))
+      v(:,k) = [0.2_rk*(k - 2), 0.1_rk, -1.0_rk]
+      if (friction <= 0.0_rk) v(1:2,k) = 0.0_rk
+    end do
+    v(:,ns+1:) = 0.0_rk
+    dn_sum = 0.0_rk
+    t_sum = 0.0_rk
+    do it = 1, passes
+      do j = 1, ns
+        k = order(j)
+        call match_velocities(n, m(k), v(:,k), m(ns+1:), v(:,ns+1:), gg(:,k), share(:,k), friction, dn_sum(k), &
+                              t_sum(:,k), dvs, dvm, acted, dn, dtv)
+        if (.not. acted) cycle
+        dn_sum(k) = dn_sum(k) + dn
+        t_sum(:,k) = t_sum(:,k) + dtv
+        v(:,k) = v(:,k) + dvs
+        do a = 1, 3
+          v(:,ns+a) = v(:,ns+a) + dvm(:,a)
+        end do
+      end do
+    end do
+  end subroutine
+
+  !> Each slave node matched (normal velocity equal to the master's at its
+  !> contact point within 1e-9 m/s) or separating (faster away) with no
+  !> accumulated normal change; gap: the largest violation.
+  logical function admissible(v, dn_sum, gap)
+    real(rk), intent(in) :: v(3,ns+3), dn_sum(ns)
+    real(rk), intent(out) :: gap
+    real(rk) :: rel
+    integer :: k
+    gap = 0.0_rk
+    do k = 1, ns
+      rel = v(3,k) - dot_product(gs(:,k), v(3,ns+1:))     ! > 0: separating
+      if (dn_sum(k) > 1.0e-12_rk) then
+        gap = max(gap, abs(rel))
+      else
+        gap = max(gap, max(-rel, 0.0_rk))
+      end if
+      if (dn_sum(k) < 0.0_rk) gap = huge(1.0_rk)
+    end do
+    admissible = gap < 1.0e-9_rk
+  end function
+
+  function s(x) result(str)
+    real(rk), intent(in) :: x
+    character(len=:), allocatable :: str
+    character(len=16) :: b
+    write(b, '(es10.3)') x
+    str = trim(adjustl(b))
+  end function
+end program test_contact_kernels
