@@ -76,6 +76,7 @@ run_test "cli/restart_erosion_anti_locking" tests/cli/restart_erosion.sh bin/uda
 run_test "cli/restart_erosion_stabilised" tests/cli/restart_erosion.sh bin/udar stabilised
 run_test "cli/tracking_rod_3kms" tests/cli/tracking.sh bin/udar rod_3kms 0.6e-6
 run_test "cli/tracking_oblique_friction" tests/cli/tracking.sh bin/udar oblique_friction
+run_test "cli/contact_mirrored" tests/cli/contact_mirrored.sh bin/udar
 run_test "cli/ranks_taylor_ofhc" tests/cli/rank_invariance.sh bin/udar taylor_ofhc_baseline 30.0e-6
 run_test "cli/ranks_taylor_wg_stabilised" tests/cli/rank_invariance.sh bin/udar taylor_wg 20.0e-6 stabilised
 run_test "cli/restart" tests/cli/restart.sh bin/udar

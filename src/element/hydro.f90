@@ -8,6 +8,8 @@ module udar_hydro
   implicit none
   private
   real(rk), parameter :: near_one = 0.1_rk   !< |r - 1| up to which near_one_power replaces r**beta
+  !> volume strain per sound transit (-trd h/c) below which a rate counts as rounding noise, not compression
+  real(rk), parameter :: compression_noise = 1.0e-12_rk
   public :: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_volume_ratios, blended_pressures, &
             step_shear_modulus, step_volumetric_share, tangent_bulk_modulus
 
@@ -58,7 +60,11 @@ contains
     do i = 1, nb
       rho = mass(i)/vol(i)
       c = sqrt(c2(i))
-      if (trd(i) < 0.0_rk) then
+      ! compressing faster than rounding noise (a volume strain of 1e-12 per
+      ! sound transit): the sign of noise would switch the linear term's
+      ! stiffening of the step on and off (visc) on a body at rest or in
+      ! rigid motion, and with it the step, by the numbering
+      if (trd(i) < -compression_noise*c/h(i)) then
         q(i) = rho*h(i)*(q_quad*h(i)*trd(i)**2 - q_lin*c*trd(i))
         eq = q_lin*c - q_quad*h(i)*trd(i)
       else
