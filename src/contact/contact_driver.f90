@@ -261,7 +261,9 @@ contains
         if (best == 0 .or. room <= 0.0_rk) exit
         call put_back(ps, -best_dist*best_n, room)
       end do
-      if (dt > 0.0_rk) then
+      ! slip at the contact points that carry a normal impulse (a node whose
+      ! push was all taken back by the later passes is not in contact)
+      if (dt > 0.0_rk .and. it%dn_sum(k) > 0.0_rk) then
         g = max(it%area(:,k), 0.0_rk)/sum(max(it%area(:,k), 0.0_rk))
         vm(:,1) = g(1)*ct%v(:,it%tri(1,t)) + g(2)*ct%v(:,it%tri(2,t)) + g(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps)
         vm(:,1) = vm(:,1) - dot_product(vm(:,1), it%normal(:,k))*it%normal(:,k)
