@@ -6,7 +6,7 @@
 !> its contact point) or separating with nothing received, momentum exact.
 program test_contact_kernels
   use udar_kinds, only: rk
-  use udar_config, only: contact_weights_area
+  use udar_config, only: contact_weights_area, contact_weights_distance
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities
   use unit_checks, only: check, check_summary
   implicit none
@@ -46,8 +46,65 @@ program test_contact_kernels
   worst = maxval(abs(v_fwd - v_rev))
   write(detail, '(a,es9.2,a)') 'friction 0.3: largest velocity difference between the orders ', worst, ' m/s (bound 1e-9)'
   call check('contact_friction_order_independent', worst < 1.0e-9_rk, trim(detail))
+  call test_single_correction()
   call check_summary()
 contains
+  !> One slave node against one master triangle, a frictionless push:
+  !> momentum is exact with either shares; the angular momentum about the
+  !> origin changes by (x_s - sum R_a x_a) x J, which is zero with area
+  !> shares (sum g_a x_a is the projection of x_s, and J is along n) and
+  !> not with the paper's distance shares; and at an edge's midpoint the
+  !> area shares give nothing to the opposite node.
+  subroutine test_single_correction()
+    real(rk) :: xa(3,3), xs(3), n(3), dist, g(3), share(3), vm(3,3), dvs(3), dvm(3,3), dn, dtv(3)
+    real(rk) :: dl(3), scale
+    real(rk), parameter :: ms = 0.7_rk, mm(3) = [1.3_rk, 0.6_rk, 2.1_rk]
+    logical :: acted
+    integer :: w, a
+    character(len=8), parameter :: names(2) = ['area    ', 'distance']
+    real(rk) :: moment_error(2)
+    xa = reshape([0.1_rk, -0.2_rk, 0.05_rk, 1.4_rk, 0.1_rk, -0.1_rk, 0.3_rk, 1.1_rk, 0.2_rk], [3, 3])
+    xs = 0.2_rk*xa(:,1) + 0.5_rk*xa(:,2) + 0.3_rk*xa(:,3)
+    call triangle_projection(xa, xs, n, dist, g)
+    xs = xs - 1.0e-3_rk*n                     ! 1 mm behind the face
+    call triangle_projection(xa, xs, n, dist, g)
+    vm = 0.0_rk
+    do w = 1, 2
+      call master_shares(merge(contact_weights_area, contact_weights_distance, w == 1), xa, xs, g, share)
+      call match_velocities(n, ms, -2.0_rk*n, mm, vm, g, share, 0.0_rk, 0.0_rk, [0.0_rk, 0.0_rk, 0.0_rk], &
+                            dvs, dvm, acted, dn, dtv)
+      dl = ms*cross3(xs, dvs)
+      do a = 1, 3
+        dl = dl + mm(a)*cross3(xa(:,a), dvm(:,a))
+      end do
+      scale = ms*dn*maxval(abs(xa))
+      moment_error(w) = norm2(dl)/scale
+      call check('single_correction_momentum_'//trim(names(w)), &
+                 norm2(ms*dvs + mm(1)*dvm(:,1) + mm(2)*dvm(:,2) + mm(3)*dvm(:,3)) < 1.0e-15_rk*ms*dn, &
+                 'ms dvs + sum ma dva = 0 with '//trim(names(w))//' shares')
+    end do
+    call check('single_correction_angular_momentum_area', moment_error(1) < 1.0e-14_rk, &
+               'angular momentum change '//s(moment_error(1))//' of ms dv_N |x| with area shares')
+    call check('single_correction_angular_momentum_distance', moment_error(2) > 1.0e-3_rk, &
+               'angular momentum change '//s(moment_error(2))//' of ms dv_N |x| with the paper''s distance shares'// &
+               ' (not a moment balance)')
+    ! a contact at the midpoint of edge 1-2: area shares 1/2, 1/2, 0
+    xs = 0.5_rk*(xa(:,1) + xa(:,2)) - 1.0e-3_rk*n
+    call triangle_projection(xa, xs, n, dist, g)
+    call master_shares(contact_weights_area, xa, xs, g, share)
+    call check('edge_midpoint_area_shares', abs(share(3)) < 1.0e-12_rk .and. abs(share(1) - 0.5_rk) < 1.0e-12_rk, &
+               'opposite node '//s(share(3))//', edge nodes '//s(share(1))//' '//s(share(2)))
+    call master_shares(contact_weights_distance, xa, xs, g, share)
+    call check('edge_midpoint_distance_shares', share(3) > 0.1_rk, &
+               'the paper''s shares give the opposite node '//s(share(3)))
+  end subroutine
+
+  pure function cross3(a, b) result(c)
+    real(rk), intent(in) :: a(3), b(3)
+    real(rk) :: c(3)
+    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
+  end function
+
   !> Passes of match_velocities over the slave nodes in the given order;
   !> v: the slave velocities (1..ns) then the master nodes' (ns+1..ns+3);
   !> dn: each slave node's accumulated normal change.
