@@ -215,7 +215,7 @@ module udar_deck
     character(len=code_len) :: kind = ''
     character(len=code_len) :: wall_type = 'frictionless'
     character(len=code_len) :: jc_rate_form = 'total'
-    character(len=code_len) :: weights = 'distance'
+    character(len=code_len) :: weights = 'area'
     character(len=code_len) :: initial_overlap = 'report'
     character(len=code_len) :: fracture = 'none'
     character(len=code_len) :: tet_formulation = 'stabilised'

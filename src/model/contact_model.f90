@@ -6,6 +6,7 @@
 module udar_contact_model
   use udar_kinds, only: rk, i8, max_name_len
   use udar_contact_search, only: bucket_grid_t
+  use udar_config, only: contact_weights_area
   implicit none
   private
   public :: size_interface_work, on_symmetry_plane, self_neighbourhoods
@@ -25,7 +26,7 @@ module udar_contact_model
     logical, allocatable :: near(:)        !< (contact nodes) work: the current slave node's ring
     logical, allocatable :: touched(:)     !< (slave nodes) in contact in the last pass (self-contact)
     real(rk) :: friction = 0
-    integer :: iterations = 50, weights = 1
+    integer :: iterations = 50, weights = contact_weights_area
     real(rk) :: tolerance = 0
     logical :: move_overlaps = .false.     !< initial overlaps: move the slave nodes (else report only)
     real(rk) :: h_mean = 0                 !< m, mean master edge length

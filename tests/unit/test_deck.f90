@@ -326,7 +326,7 @@ contains
                    c%initial_overlap == overlap_move, 'contact 1 switches (choices case-insensitive)')
         call check(d%master == 'x0' .and. d%slave == 'sphere', 'contact 2 names')
         call check(d%friction == 0 .and. d%iterations == 50 .and. d%tolerance == 0 .and. &
-                   .not. d%symmetric .and. d%weights == contact_weights_distance .and. &
+                   .not. d%symmetric .and. d%weights == contact_weights_area .and. &
                    d%initial_overlap == overlap_report, 'contact 2 defaults')
       end associate
     end if

@@ -40,14 +40,15 @@ fld = udar_results.open_fields(os.path.join(sys.argv[1], 'out', 'blocks_head_on.
 conn, part = fld.connectivity, fld.part_id
 step = fld.step(fld.nearest_step(5e-6))
 x, pc = step.coordinates, np.asarray(step.fields['contact_pressure'])
+x0 = fld.step(0).coordinates     # the contact faces by where they started (they deform unevenly)
 faces = np.sort(conn[:, [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]]].reshape(-1, 3), axis=1)
 face_part = np.repeat(part, 4)
 for name, pid, pick in (('striker', part.min(), np.max), ('target', part.max(), np.min)):
     fp = faces[face_part == pid]
     key, count = np.unique(fp, axis=0, return_counts=True)
     outer = key[count == 1]
-    z_face = pick(x[np.unique(conn[part == pid]), 2])
-    on = outer[np.all(np.abs(x[outer, 2] - z_face) < 5e-5, axis=1)]
+    z_face = pick(x0[np.unique(conn[part == pid]), 2])
+    on = outer[np.all(np.abs(x0[outer, 2] - z_face) < 5e-5, axis=1)]
     area = 0.5 * np.linalg.norm(np.cross(x[on[:, 1]] - x[on[:, 0]], x[on[:, 2]] - x[on[:, 0]]), axis=1)
     node_area = np.zeros(len(x))
     np.add.at(node_area, on.ravel(), np.repeat(area / 3, 3))
