@@ -6,7 +6,7 @@ module udar_contact_kernels
   use udar_config, only: contact_weights_distance
   implicit none
   private
-  public :: triangle_projection, master_shares, match_velocities
+  public :: triangle_projection, master_shares, match_velocities, cross
 
 contains
 
@@ -119,6 +119,7 @@ contains
     acted = dn /= 0.0_rk .or. any(dtv /= 0.0_rk)
   end subroutine
 
+  !> a x b.
   pure function cross(a, b) result(c)
     real(rk), intent(in) :: a(3), b(3)
     real(rk) :: c(3)

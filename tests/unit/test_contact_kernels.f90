@@ -7,7 +7,7 @@
 program test_contact_kernels
   use udar_kinds, only: rk
   use udar_config, only: contact_weights_area, contact_weights_distance
-  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities
+  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, cross
   use unit_checks, only: check, check_summary
   implicit none
   integer, parameter :: ns = 4
@@ -73,9 +73,9 @@ contains
       call master_shares(merge(contact_weights_area, contact_weights_distance, w == 1), xa, xs, g, share)
       call match_velocities(n, ms, -2.0_rk*n, mm, vm, g, share, 0.0_rk, 0.0_rk, [0.0_rk, 0.0_rk, 0.0_rk], &
                             dvs, dvm, acted, dn, dtv)
-      dl = ms*cross3(xs, dvs)
+      dl = ms*cross(xs, dvs)
       do a = 1, 3
-        dl = dl + mm(a)*cross3(xa(:,a), dvm(:,a))
+        dl = dl + mm(a)*cross(xa(:,a), dvm(:,a))
       end do
       scale = ms*dn*maxval(abs(xa))
       moment_error(w) = norm2(dl)/scale
@@ -98,12 +98,6 @@ contains
     call check('edge_midpoint_distance_shares', share(3) > 0.1_rk, &
                'the paper''s shares give the opposite node '//s(share(3)))
   end subroutine
-
-  pure function cross3(a, b) result(c)
-    real(rk), intent(in) :: a(3), b(3)
-    real(rk) :: c(3)
-    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-  end function
 
   !> Passes of match_velocities over the slave nodes in the given order;
   !> v: the slave velocities (1..ns) then the master nodes' (ns+1..ns+3);
