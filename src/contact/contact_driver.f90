@@ -222,12 +222,10 @@ contains
           ! whatever energy the matching dissipates shows in the energy error
           ct%v(:,ps) = ct%v(:,ps) + dvs
           ct%x(:,ps) = ct%x(:,ps) + dt*dvs
-          ct%impulse(ps) = ct%impulse(ps) + ct%m(ps)*dn
           do a = 1, 3
             pa = it%tri(a,t)
             ct%v(:,pa) = vm(:,a) + dvm(:,a)
             ct%x(:,pa) = ct%x(:,pa) + dt*dvm(:,a)
-            ct%impulse(pa) = ct%impulse(pa) + it%share(a,k)*ct%m(ps)*dn
           end do
         end do
         it%sweeps = it%sweeps + 1
@@ -238,8 +236,14 @@ contains
       end do
       ! the cycle's impulses: what each node has received in all the passes
       do k = 1, n_found
-        it%normal_impulse = it%normal_impulse + ct%m(it%active(k))*it%dn_sum(k)
-        it%friction_impulse = it%friction_impulse + ct%m(it%active(k))*norm2(it%t_sum(:,k))
+        ps = it%active(k)
+        it%normal_impulse = it%normal_impulse + ct%m(ps)*it%dn_sum(k)
+        it%friction_impulse = it%friction_impulse + ct%m(ps)*norm2(it%t_sum(:,k))
+        ct%impulse(ps) = ct%impulse(ps) + ct%m(ps)*it%dn_sum(k)
+        do a = 1, 3
+          pa = it%tri(a,it%on_tri(k))
+          ct%impulse(pa) = ct%impulse(pa) + it%share(a,k)*ct%m(ps)*it%dn_sum(k)
+        end do
       end do
     end if
     ! ---- what is left behind the surface goes back along the normal (eq. 5);

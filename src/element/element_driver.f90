@@ -268,7 +268,7 @@ contains
             hard(i) = dom%el_hard(e)
           end do
         end if
-        call volumetric_update(mat, dom%q_linear, dom%q_quadratic, ld, nb, dt, vol, h, trd, &
+        call volumetric_update(mat, dom%q_linear, dom%q_quadratic, nb, dt, vol, h, trd, &
                                dom%el_mass(first:last), dom%el_j(first:last), j_new, w_dev, no_shear(1:nb), &
                                e_int, p, q, bulk, visc)
         ! the element's stiffness bound (stiffened by its viscosity) and its own step

@@ -35,11 +35,11 @@ contains
   !> Fractured elements (no_tension) carry no tension: where the EOS would
   !> give p < 0 the pressure is 0 and the energy equation has no p dv term
   !> for the new pressure.
-  pure subroutine volumetric_update(mat, q_lin, q_quad, ld, nb, dt, vol, h, trd, mass, j_old, j_new, &
+  pure subroutine volumetric_update(mat, q_lin, q_quad, nb, dt, vol, h, trd, mass, j_old, j_new, &
                                     w_dev, no_tension, e, p, q, bulk_tan, visc)
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: q_lin, q_quad, dt
-    integer, intent(in) :: ld, nb
+    integer, intent(in) :: nb
     real(rk), intent(in) :: vol(nb), h(nb), trd(nb), mass(nb), j_old(nb), j_new(nb), w_dev(nb)
     logical, intent(in) :: no_tension(nb)
     real(rk), intent(inout) :: e(nb), p(nb), q(nb)
@@ -64,7 +64,7 @@ contains
       ! sound transit): the sign of noise would switch the linear term's
       ! stiffening of the step on and off (visc) on a body at rest or in
       ! rigid motion, and with it the step, by the numbering
-      if (trd(i) < -compression_noise*c/h(i)) then
+      if (trd(i)*h(i) < -compression_noise*c) then
         q(i) = rho*h(i)*(q_quad*h(i)*trd(i)**2 - q_lin*c*trd(i))
         eq = q_lin*c - q_quad*h(i)*trd(i)
       else

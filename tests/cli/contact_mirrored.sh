@@ -23,11 +23,10 @@ for side in plain mirrored; do
   fi
   grep -E 'velocity matching|tetrahedra' "$W/$side/run.log"
 done
-# the numbering differs: the first element's nodes are not the same
+# the contact force of every cycle, the original against the mirror image
 $PYTHON - "$W" "$case" <<'PY'
 import sys
 import numpy as np
-sys.path.insert(0, sys.argv[1].rsplit('/', 0)[0])
 w, case = sys.argv[1], sys.argv[2]
 def history(side):
     rows = [l for l in open(f'{w}/{side}/out/{case}_history.csv') if not l.startswith('#')]

@@ -13,7 +13,7 @@ program test_contact_kernels
   integer, parameter :: ns = 4
   real(rk) :: xm(3,3), gs(3,ns), v_fwd(3,ns+3), v_rev(3,ns+3), dn_fwd(ns), dn_rev(ns), p0(3), worst, gap
   real(rk) :: one_pass(3,ns+3), ten_passes(3,ns+3)
-  integer :: order(ns), k
+  integer :: order(ns)
   character(len=200) :: detail
   ! master triangle in the plane z = 0, outward normal +z, at rest;
   ! slave nodes above it, at area coordinates gs, striking at 1 m/s

@@ -257,9 +257,9 @@ contains
     vol = 1.0e-9_rk; h = 1.0e-3_rk; mass = mat%rho0*vol; j_old = 1; j_new = [1.002_rk, 0.998_rk]
     trd = (j_new - j_old)/1.0e-8_rk; w_dev = 0; e = 0; p = 0; q = 0
     e_i = e; p_i = p; q_i = q
-    call volumetric_update(mat, 0.0_rk, 0.0_rk, 2, 2, 1.0e-8_rk, vol, h, trd, mass, j_old, j_new, w_dev, &
+    call volumetric_update(mat, 0.0_rk, 0.0_rk, 2, 1.0e-8_rk, vol, h, trd, mass, j_old, j_new, w_dev, &
                            [.false., .false.], e_i, p_i, q_i, dt_el, visc)
-    call volumetric_update(mat, 0.0_rk, 0.0_rk, 2, 2, 1.0e-8_rk, vol, h, trd, mass, j_old, j_new, w_dev, &
+    call volumetric_update(mat, 0.0_rk, 0.0_rk, 2, 1.0e-8_rk, vol, h, trd, mass, j_old, j_new, w_dev, &
                            [.true., .true.], e, p, q, dt_el, visc)
     call check('fractured_no_tension', p_i(1) < 0 .and. p(1) == 0 .and. e(1) == 0, &
                'expanding: intact p = '//r2s(p_i(1))//' Pa, fractured p = '//r2s(p(1))//' Pa')
