@@ -144,7 +144,7 @@ contains
     integer, intent(in) :: n
     dom%nd_p(n) = 0.0_rk
     if (dom%nd_vref(n) <= 0.0_rk) return
-    if (dom%stab_beta > 0.0_rk) then
+    if (dom%stab_beta_large > 0.0_rk) then
       dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_pavg, w=dom%el_vol0)/dom%nd_vref(n)
     else
       dom%nd_p(n) = 0.25_rk*alive_incident_sum(dom, n, dom%el_p, w=dom%el_vol0)/dom%nd_vref(n)
@@ -180,7 +180,7 @@ contains
                 w_dev(ld), w_pl(ld), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld), dt_el(ld), &
                 bulk(ld), visc(ld), lam(ld), p_node(ld)
     logical :: gone(ld), no_shear(ld), erodible, fracturing, fractured, stab, geo
-    real(rk) :: t_old, d_eps, jbar(ld), je(ld), r_min
+    real(rk) :: t_old, d_eps, jbar(ld), je(ld), share(ld), r_min
     integer :: b, i, e, nb, first, last, k, n
     r_min = huge(1.0_rk)
     dt_node = 0
@@ -189,7 +189,7 @@ contains
     bad_j = 0
     n_eroded = 0
     eroded_any = .false.
-    stab = dom%stab_beta > 0.0_rk
+    stab = dom%stab_beta_large > 0.0_rk
     geo = dom%tet_formulation == tet_stabilised
     dom%nd_f(:,1:dom%n_owned_nodes) = 0.0_rk
     if (dom%anti_locking) dom%nd_p(1:dom%n_owned_nodes) = 0.0_rk
@@ -243,7 +243,7 @@ contains
         ! stabilised: the EOS sees the nodal average blended with the element's own ratio
         jbar(1:nb) = j_new(1:nb)
         je(1:nb) = vol(1:nb)/dom%el_vol0(first:last)
-        call blended_volume_ratios(geo, dom%stab_beta, nb, jbar, je, j_new)
+        call blended_volume_ratios(geo, dom%stab_beta, dom%stab_beta_large, dom%stab_onset, nb, jbar, je, j_new, share)
         j_new(1:nb) = merge(jbar(1:nb), j_new(1:nb), gone(1:nb))
       end if
       do k = 1, 6
@@ -273,7 +273,7 @@ contains
                                e_int, p, q, bulk, visc)
         ! the element's stiffness bound (stiffened by its viscosity) and its own step
         call tet_stiffness_bound(ld, nb, vol, grad, bulk, step_shear_modulus(mat), &
-                                 step_volumetric_share(dom%anti_locking, dom%stab_beta), lam)
+                                 step_volumetric_share(dom%anti_locking, dom%stab_beta_large), lam)
         lam(1:nb) = lam(1:nb)*visc(1:nb)
         ! its own step: only erosion by time step asks for it in the cycle
         if (erodible) dt_el(1:nb) = own_step(dom%el_mass(first:last), lam(1:nb))
@@ -340,7 +340,7 @@ contains
       ! element_forces_averaged
       p_app(1:nb) = q(1:nb)
       if (.not. dom%anti_locking) p_app(1:nb) = p_app(1:nb) + p(1:nb)
-      if (stab) p_app(1:nb) = p_app(1:nb) + blended_pressures(geo, .true., dom%stab_beta, p(1:nb), j_new(1:nb), &
+      if (stab) p_app(1:nb) = p_app(1:nb) + blended_pressures(geo, .true., share(1:nb), p(1:nb), j_new(1:nb), &
                                                               1.0_rk, vol(1:nb)/dom%el_vol0(first:last))
       call tet_internal_forces(ld, nb, vol, grad, s, p_app, fe)
       do i = 1, nb
@@ -349,7 +349,7 @@ contains
       call add_forces(dom, first, nb, fe)
       ! the pressure each element gives its nodes' average (nodal_pressures)
       if (stab) then
-        p_node(1:nb) = blended_pressures(geo, .false., dom%stab_beta, p(1:nb), j_new(1:nb), jbar(1:nb), je(1:nb))
+        p_node(1:nb) = blended_pressures(geo, .false., share(1:nb), p(1:nb), j_new(1:nb), jbar(1:nb), je(1:nb))
         if (dom%keep_volumes) dom%el_pavg(first:last) = p_node(1:nb)
       else
         p_node(1:nb) = p(1:nb)
@@ -408,7 +408,7 @@ contains
         g = step_shear_modulus(mat)
         call dilatational_speed2(mat, nb, dom%el_j(first:last), dom%el_p(first:last), dom%el_mass(first:last), vol, c2)
         bulk(1:nb) = tangent_bulk_modulus(c2(1:nb), dom%el_mass(first:last)/vol(1:nb), 4.0_rk/3.0_rk*g)
-        call tet_stiffness_bound(ld, nb, vol, grad, bulk, g, step_volumetric_share(dom%anti_locking, dom%stab_beta), &
+        call tet_stiffness_bound(ld, nb, vol, grad, bulk, g, step_volumetric_share(dom%anti_locking, dom%stab_beta_large), &
                                  lam)
       end associate
       dom%el_k(first:last) = merge(0.0_rk, lam(1:nb), dom%el_state(first:last) == el_eroded)

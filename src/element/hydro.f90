@@ -7,10 +7,11 @@ module udar_hydro
   use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
   implicit none
   private
-  real(rk), parameter :: near_one = 0.1_rk   !< |r - 1| up to which near_one_power replaces r**beta
+  real(rk), parameter :: near_one = 0.1_rk   !< |je/jbar - 1| up to which the blend needs no log or exp
   !> volume strain per sound transit (-trd h/c) below which a rate counts as rounding noise, not compression
   real(rk), parameter :: compression_noise = 1.0e-12_rk
   public :: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_volume_ratios, blended_pressures, &
+            blend_exponent, &
             step_shear_modulus, step_volumetric_share, tangent_bulk_modulus
 
   !> The share of an element's volumetric stiffness that the nodal time step
@@ -84,81 +85,113 @@ contains
     end do
   end subroutine
 
-  !> Stabilised nodal-averaged tetrahedron (doc/theory.md section 8): the
-  !> volume ratio the EOS sees blends the nodal average jbar with the
-  !> element's own je, geometric  J = jbar^(1-beta) je^beta  or linear
-  !> J = (1-beta) jbar + beta je.
-  elemental real(rk) function blended_volume_ratio(geometric, beta, jbar, je) result(j)
+  !> Stabilised nodal-averaged tetrahedron (doc/theory.md section 8.1): the
+  !> volume ratio j the EOS sees blends the nodal average jbar with the
+  !> element's own je, geometric  j = jbar exp(phi(s)), s = ln(je/jbar), or
+  !> linear  j = (1-beta0) jbar + beta0 je; share is the weight of the
+  !> element's own ratio, phi'(s) (blend_exponent) or beta0.
+  elemental subroutine blended_volume_ratio(geometric, beta0, beta1, s1, jbar, je, j, share)
     logical, intent(in) :: geometric
-    real(rk), intent(in) :: beta, jbar, je
-    real(rk) :: r
-    if (geometric) then
-      r = je/jbar
-      if (abs(r - 1.0_rk) <= near_one) then
-        j = jbar*near_one_power(r, beta)
-      else
-        j = jbar*r**beta
-      end if
+    real(rk), intent(in) :: beta0, beta1, s1, jbar, je
+    real(rk), intent(out) :: j, share
+    real(rk) :: r, phi
+    r = je/jbar
+    if (.not. geometric) then
+      j = (1.0_rk - beta0)*jbar + beta0*je
+      share = beta0
+    else if (abs(r - 1.0_rk) <= near_one) then
+      call blend_exponent(beta0, beta1, s1, near_one_log(r), phi, share)
+      j = jbar*near_zero_exp(phi)
     else
-      j = (1.0_rk - beta)*jbar + beta*je
+      call blend_exponent(beta0, beta1, s1, log(r), phi, share)
+      j = jbar*exp(phi)
     end if
-  end function
+  end subroutine
 
   !> blended_volume_ratio of the first nb elements of a block, the same
-  !> values; the power near 1 (every element but a badly distorted one) in a
-  !> loop that vectorizes.
-  pure subroutine blended_volume_ratios(geometric, beta, nb, jbar, je, j)
+  !> values; near jbar (every element but a badly distorted one) in a loop
+  !> that vectorizes.
+  pure subroutine blended_volume_ratios(geometric, beta0, beta1, s1, nb, jbar, je, j, share)
     logical, intent(in) :: geometric
     integer, intent(in) :: nb
-    real(rk), intent(in) :: beta, jbar(nb), je(nb)
-    real(rk), intent(inout) :: j(nb)
-    real(rk) :: r
+    real(rk), intent(in) :: beta0, beta1, s1, jbar(nb), je(nb)
+    real(rk), intent(inout) :: j(nb), share(nb)
+    real(rk) :: r, phi
     integer :: i
     if (.not. geometric) then
-      j = (1.0_rk - beta)*jbar + beta*je
+      j = (1.0_rk - beta0)*jbar + beta0*je
+      share = beta0
       return
     end if
     do i = 1, nb
-      r = je(i)/jbar(i)
-      j(i) = jbar(i)*near_one_power(min(max(r, 1.0_rk - near_one), 1.0_rk + near_one), beta)
+      r = min(max(je(i)/jbar(i), 1.0_rk - near_one), 1.0_rk + near_one)
+      call blend_exponent(beta0, beta1, s1, near_one_log(r), phi, share(i))
+      j(i) = jbar(i)*near_zero_exp(phi)
     end do
-    ! scalar: a vectorized power (libmvec) could differ from the scalar one
-    ! in the last bit, by the element's place in its block
+    ! scalar: a vectorized log or exp (libmvec) could differ from the scalar
+    ! one in the last bit, by the element's place in its block
 !GCC$ novector
     do i = 1, nb
       r = je(i)/jbar(i)
-      if (abs(r - 1.0_rk) > near_one) j(i) = jbar(i)*r**beta
+      if (abs(r - 1.0_rk) > near_one) then
+        call blend_exponent(beta0, beta1, s1, log(r), phi, share(i))
+        j(i) = jbar(i)*exp(phi)
+      end if
     end do
   end subroutine
 
-  !> r^beta for |r - 1| <= near_one and 0 <= beta <= 1 as exp(beta ln r),
-  !> both from series with no library call: ln r = 2 atanh(u), u = (r-1)/(r+1),
-  !> |u| < 0.053, to u^13 (truncation below 1e-19); exp(y), |y| < 0.106, to
-  !> y^10 (below 1e-18). Within a few ulp of r**beta.
-  elemental real(rk) function near_one_power(r, beta) result(rp)
-    real(rk), intent(in) :: r, beta
-    real(rk) :: u, u2, y
+  !> The exponent of the geometric blend and its slope, odd in s: the slope
+  !> (the element's own share) is beta0 at s = 0 and rises as (s/s1)^2 to
+  !> beta1 at |s| = s1, beta1 beyond; phi is its integral, so phi and phi'
+  !> are continuous. beta1 = beta0: phi = beta0 s, 0.5.2's constant share.
+  elemental subroutine blend_exponent(beta0, beta1, s1, s, phi, slope)
+    real(rk), intent(in) :: beta0, beta1, s1, s
+    real(rk), intent(out) :: phi, slope
+    real(rk) :: x2
+    if (abs(s) < s1) then
+      x2 = (s/s1)**2
+      slope = beta0 + (beta1 - beta0)*x2
+      phi = s*(beta0 + (beta1 - beta0)*x2/3.0_rk)
+    else
+      slope = beta1
+      phi = beta1*s - sign(2.0_rk/3.0_rk*(beta1 - beta0)*s1, s)
+    end if
+  end subroutine
+
+  !> ln r for |r - 1| <= near_one from the series of 2 atanh(u),
+  !> u = (r-1)/(r+1), |u| < 0.053, to u^13 (truncation below 1e-19): no
+  !> library call, so the loop vectorizes. Within a few ulp of log(r).
+  elemental real(rk) function near_one_log(r) result(s)
+    real(rk), intent(in) :: r
+    real(rk) :: u, u2
     u = (r - 1.0_rk)/(r + 1.0_rk)
     u2 = u*u
-    y = beta*2.0_rk*u*(1.0_rk + u2*(1.0_rk/3 + u2*(1.0_rk/5 + u2*(1.0_rk/7 + u2*(1.0_rk/9 + u2*(1.0_rk/11 &
+    s = 2.0_rk*u*(1.0_rk + u2*(1.0_rk/3 + u2*(1.0_rk/5 + u2*(1.0_rk/7 + u2*(1.0_rk/9 + u2*(1.0_rk/11 &
         + u2*(1.0_rk/13)))))))
-    rp = 1.0_rk + y*(1.0_rk + y*(1.0_rk/2 + y*(1.0_rk/6 + y*(1.0_rk/24 + y*(1.0_rk/120 + y*(1.0_rk/720 &
+  end function
+
+  !> exp(y) for |y| <= 0.106 (the blend's exponent near jbar: |s| <= 0.106,
+  !> slope at most 1) from its series to y^10 (truncation below 1e-18).
+  elemental real(rk) function near_zero_exp(y) result(ey)
+    real(rk), intent(in) :: y
+    ey = 1.0_rk + y*(1.0_rk + y*(1.0_rk/2 + y*(1.0_rk/6 + y*(1.0_rk/24 + y*(1.0_rk/120 + y*(1.0_rk/720 &
          + y*(1.0_rk/5040 + y*(1.0_rk/40320 + y*(1.0_rk/362880 + y*(1.0_rk/3628800))))))))))
   end function
 
   !> The work-conjugate split of the EOS pressure p at the blended J: the
   !> pressure the element puts into the nodal average (conjugate to jbar)
   !> and the one it applies itself (conjugate to its own je):
-  !>   geometric  p_avg = (1-beta) p J/jbar,  p_own = beta p J/je
-  !>   linear     p_avg = (1-beta) p,         p_own = beta p.
-  elemental real(rk) function blended_pressures(geometric, own, beta, p, j, jbar, je) result(pp)
+  !>   geometric  p_avg = (1-share) p J/jbar,  p_own = share p J/je
+  !>   linear     p_avg = (1-share) p,         p_own = share p
+  !> with share from blended_volume_ratio (dJ/dje = share J/je).
+  elemental real(rk) function blended_pressures(geometric, own, share, p, j, jbar, je) result(pp)
     logical, intent(in) :: geometric, own
-    real(rk), intent(in) :: beta, p, j, jbar, je
+    real(rk), intent(in) :: share, p, j, jbar, je
     if (own) then
-      pp = beta*p
+      pp = share*p
       if (geometric) pp = pp*j/je
     else
-      pp = (1.0_rk - beta)*p
+      pp = (1.0_rk - share)*p
       if (geometric) pp = pp*j/jbar
     end if
   end function

@@ -171,6 +171,8 @@ module udar_deck
        var_t('numerics', 'anti_locking', 'l', 1, 0, '', ''), &
        var_t('numerics', 'tet_formulation', 'c', 1, code_len, '', ''), &
        var_t('numerics', 'stabilisation', 'r', 1, 0, '-', 'in [0, 1)'), &
+       var_t('numerics', 'stabilisation_large', 'r', 1, 0, '-', 'in [0, 1)'), &
+       var_t('numerics', 'stabilisation_onset', 'r', 1, 0, '-', '> 0'), &
        var_t('numerics', 'q_linear', 'r', 1, 0, '-', '>= 0'), &
        var_t('numerics', 'q_quadratic', 'r', 1, 0, '-', '>= 0'), &
        var_t('numerics', 'erode_dt_ratio', 'r', 1, 0, '-', 'in [0, 1)'), &
@@ -626,8 +628,8 @@ contains
                          c%tracking, v%weights, v%initial_overlap)
       end associate
     case ('numerics')
-      call numerics_nml(v%num%anti_locking, v%tet_formulation, v%num%stabilisation, v%num%q_linear, &
-                        v%num%q_quadratic, v%num%erode_dt_ratio)
+      call numerics_nml(v%num%anti_locking, v%tet_formulation, v%num%stabilisation, v%num%stabilisation_large, &
+                        v%num%stabilisation_onset, v%num%q_linear, v%num%q_quadratic, v%num%erode_dt_ratio)
     case ('output')
       call output_nml(v%out%directory, v%out%case_name, v%out%dt_field, v%out%dt_history, v%out%dt_checkpoint, &
                       v%out%checkpoint_keep)
@@ -700,11 +702,14 @@ contains
       read(text, nml=contact, iostat=ios, iomsg=msg)
     end subroutine contact_nml
 
-    subroutine numerics_nml(anti_locking, tet_formulation, stabilisation, q_linear, q_quadratic, erode_dt_ratio)
+    subroutine numerics_nml(anti_locking, tet_formulation, stabilisation, stabilisation_large, stabilisation_onset, &
+                            q_linear, q_quadratic, erode_dt_ratio)
       logical, intent(inout) :: anti_locking
       character(len=*), intent(inout) :: tet_formulation
-      real(rk), intent(inout) :: stabilisation, q_linear, q_quadratic, erode_dt_ratio
-      namelist /numerics/ anti_locking, tet_formulation, stabilisation, q_linear, q_quadratic, erode_dt_ratio
+      real(rk), intent(inout) :: stabilisation, stabilisation_large, stabilisation_onset, q_linear, q_quadratic, &
+                                 erode_dt_ratio
+      namelist /numerics/ anti_locking, tet_formulation, stabilisation, stabilisation_large, stabilisation_onset, &
+                          q_linear, q_quadratic, erode_dt_ratio
       read(text, nml=numerics, iostat=ios, iomsg=msg)
     end subroutine numerics_nml
 
@@ -1120,6 +1125,9 @@ contains
     logical :: ok
     ok = choice(ctx, inst, 'tet_formulation', tet_txt, tet_words, tet_codes, cfg%numerics%tet_formulation)
     call check_ranges(ctx, inst, cfg_vals(cfg, g_numerics, 1))
+    ! the share grows with the departure from the nodes (theory.md 8.1)
+    call need(ctx, inst, 'stabilisation', cfg%numerics%stabilisation <= cfg%numerics%stabilisation_large, &
+              'at most stabilisation_large = '//r2s(cfg%numerics%stabilisation_large))
   end subroutine check_numerics
 
   subroutine check_output(ctx, inst, cfg, deck_path)
@@ -1508,7 +1516,7 @@ contains
     case (g_numerics)
       vals = [val_t(l=cfg%numerics%anti_locking), &
               choice_val(cfg%numerics%tet_formulation, tet_words, tet_codes), val(cfg%numerics%stabilisation), &
-              val(cfg%numerics%q_linear), &
+              val(cfg%numerics%stabilisation_large), val(cfg%numerics%stabilisation_onset), val(cfg%numerics%q_linear), &
               val(cfg%numerics%q_quadratic), val(cfg%numerics%erode_dt_ratio)]
     case default
       associate(o => cfg%output)

@@ -93,7 +93,9 @@ module udar_config
   type :: numerics_cfg_t
     logical  :: anti_locking = .true.   !< nodal-averaged volumetric strain (Bonet-Burton); .false. = plain tet
     integer  :: tet_formulation = tet_stabilised  !< with anti_locking: nodal, stabilised or stabilised_linear
-    real(rk) :: stabilisation = 0.1_rk  !< -, beta: weight of the element's own volume ratio (stabilised)
+    real(rk) :: stabilisation = 0.03_rk       !< -, beta0: weight of the element's own volume ratio near its nodes'
+    real(rk) :: stabilisation_large = 0.1_rk  !< -, beta1: the weight at a large departure (geometric blend)
+    real(rk) :: stabilisation_onset = 0.3_rk  !< -, |ln(Je/Jbar)| from which the weight is stabilisation_large
     real(rk) :: q_linear = 0.06_rk      !< -, linear artificial viscosity coefficient
     real(rk) :: q_quadratic = 1.5_rk    !< -, quadratic artificial viscosity coefficient
     real(rk) :: erode_dt_ratio = 0.1_rk !< -, an element of a material with eps_erode > 0 is eroded when its stable

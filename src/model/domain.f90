@@ -78,7 +78,9 @@ module udar_domain
     type(wall_t), allocatable :: walls(:)
     logical :: anti_locking = .true.             !< any nodal-averaged formulation (not the plain tet)
     integer :: tet_formulation = 2               !< udar_config tet_*: plain, nodal, stabilised, stabilised_linear
-    real(rk) :: stab_beta = 0.0_rk               !< -, weight of the element's own volume ratio (stabilised only)
+    real(rk) :: stab_beta = 0.0_rk        !< -, weight of the element's own volume ratio near its nodes' (stabilised only)
+    real(rk) :: stab_beta_large = 0.0_rk  !< -, that weight at a large departure from the nodes
+    real(rk) :: stab_onset = 1.0_rk       !< -, |ln(Je/Jbar)| from which the weight is stab_beta_large
     real(rk) :: q_linear = 0.06_rk, q_quadratic = 1.5_rk
     real(rk) :: erode_dt_limit = 0.0_rk          !< s, an eroding material's element with a smaller stable step is eroded
     !> whether the stress pass keeps el_vol (read only to rebase the nodal

@@ -133,6 +133,8 @@ contains
     loc%anti_locking = glob%anti_locking
     loc%tet_formulation = glob%tet_formulation
     loc%stab_beta = glob%stab_beta
+    loc%stab_beta_large = glob%stab_beta_large
+    loc%stab_onset = glob%stab_onset
     loc%q_linear = glob%q_linear
     loc%q_quadratic = glob%q_quadratic
 

@@ -157,9 +157,19 @@ contains
     dom%tet_formulation = cfg%numerics%tet_formulation
     if (.not. cfg%numerics%anti_locking) dom%tet_formulation = tet_plain
     dom%anti_locking = dom%tet_formulation /= tet_plain
+    ! the element's own share: growing with its departure from its nodes
+    ! (geometric blend), constant at the large share (linear blend), none
+    ! (plain, nodal)
     dom%stab_beta = 0.0_rk
-    if (dom%tet_formulation == tet_stabilised .or. dom%tet_formulation == tet_stabilised_linear) &
+    dom%stab_beta_large = 0.0_rk
+    dom%stab_onset = cfg%numerics%stabilisation_onset
+    if (dom%tet_formulation == tet_stabilised) then
       dom%stab_beta = cfg%numerics%stabilisation
+      dom%stab_beta_large = cfg%numerics%stabilisation_large
+    else if (dom%tet_formulation == tet_stabilised_linear) then
+      dom%stab_beta = cfg%numerics%stabilisation_large
+      dom%stab_beta_large = cfg%numerics%stabilisation_large
+    end if
     dom%q_linear = cfg%numerics%q_linear
     dom%q_quadratic = cfg%numerics%q_quadratic
     ! the whole mesh (no local numbering, no state): udar_distribution cuts it up

@@ -38,6 +38,7 @@ program test_averaging_energy
   call distribute_domain(glob, part, 0, dom, halo)
   call init_state(dom)
   dom%stab_beta = 0.0_rk         ! nodal_pressures averages el_p itself
+  dom%stab_beta_large = 0.0_rk
 
   ! a deformed state: every node moved by up to 2 % of the bar's width
   call move_nodes(0.02_rk, 1)

@@ -8,7 +8,7 @@ program test_kernels
   use udar_tet4, only: tet_volume, tet_gradients, tet_velocity_gradient
   use udar_strength, only: strength_block, von_mises, yield_stress, thermal_softening, power_ratio
   use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
-  use udar_hydro, only: volumetric_update, blended_volume_ratio, blended_volume_ratios, blended_pressures
+  use udar_hydro, only: volumetric_update, blended_volume_ratio, blended_volume_ratios, blended_pressures, blend_exponent
   use udar_fracture, only: fracture_update, jc_fracture_strain
   use udar_config, only: fracture_plastic_strain, fracture_johnson_cook
   use unit_checks, only: check, check_summary
@@ -169,56 +169,84 @@ contains
 
   !> Stabilised tetrahedron (theory.md 8.1): the blend's limits, and the two
   !> pressure shares are p times the partial derivatives of J* (central
-  !> differences), which is what makes the forces work-conjugate.
+  !> differences), which is what makes the forces work-conjugate: near the
+  !> nodes, on the share's ramp and beyond its onset, in compression and in
+  !> tension, through both evaluation paths (series and library).
   subroutine test_blend()
-    real(rk), parameter :: jb = 0.97_rk, je = 0.6_rk, p = 2.0e9_rk, dj = 1.0e-6_rk
-    real(rk) :: js, dbar, down, err
+    real(rk), parameter :: jb = 0.97_rk, p = 2.0e9_rk, dj = 1.0e-6_rk
+    real(rk), parameter :: b0 = 0.03_rk, b1 = 0.1_rk, s1 = 0.3_rk
+    real(rk), parameter :: jes(6) = [0.6_rk, 0.8_rk, 0.9_rk, 0.98_rk, 1.04_rk, 1.25_rk]
+    real(rk) :: js, jp, jm, dbar, down, err, sh, sh_lo, sh_hi, j_lo, j_hi, je, x(4), dummy
     logical :: geo
-    integer :: k
-    call check('blend_limits', abs(blended_volume_ratio(.true., 0.0_rk, jb, je) - jb) < 1e-15_rk .and. &
-               abs(blended_volume_ratio(.true., 1.0_rk, jb, je) - je) < 1e-15_rk .and. &
-               abs(blended_volume_ratio(.false., 0.0_rk, jb, je) - jb) < 1e-15_rk .and. &
-               abs(blended_volume_ratio(.false., 1.0_rk, jb, je) - je) < 1e-15_rk, 'beta = 0: Jbar, beta = 1: Je')
+    integer :: k, m
+    call blended_volume_ratio(.true., 0.0_rk, 0.0_rk, s1, jb, 0.6_rk, x(1), dummy)
+    call blended_volume_ratio(.true., 1.0_rk, 1.0_rk, s1, jb, 0.6_rk, x(2), dummy)
+    call blended_volume_ratio(.false., 0.0_rk, 0.0_rk, s1, jb, 0.6_rk, x(3), dummy)
+    call blended_volume_ratio(.false., 1.0_rk, 1.0_rk, s1, jb, 0.6_rk, x(4), dummy)
+    call check('blend_limits', abs(x(1) - jb) < 1e-15_rk .and. abs(x(2) - 0.6_rk) < 1e-15_rk .and. &
+               abs(x(3) - jb) < 1e-15_rk .and. abs(x(4) - 0.6_rk) < 1e-15_rk, 'beta = 0: Jbar, beta = 1: Je')
     err = 0.0_rk
     do k = 1, 2
       geo = k == 1
-      js = blended_volume_ratio(geo, 0.1_rk, jb, je)
-      dbar = (blended_volume_ratio(geo, 0.1_rk, jb + dj, je) - blended_volume_ratio(geo, 0.1_rk, jb - dj, je))/(2*dj)
-      down = (blended_volume_ratio(geo, 0.1_rk, jb, je + dj) - blended_volume_ratio(geo, 0.1_rk, jb, je - dj))/(2*dj)
-      err = max(err, abs(blended_pressures(geo, .false., 0.1_rk, p, js, jb, je)/(p*dbar) - 1), &
-                     abs(blended_pressures(geo, .true., 0.1_rk, p, js, jb, je)/(p*down) - 1))
+      do m = 1, size(jes)
+        je = jes(m)
+        call blended_volume_ratio(geo, b0, b1, s1, jb, je, js, sh)
+        call blended_volume_ratio(geo, b0, b1, s1, jb + dj, je, jp, dummy)
+        call blended_volume_ratio(geo, b0, b1, s1, jb - dj, je, jm, dummy)
+        dbar = (jp - jm)/(2*dj)
+        call blended_volume_ratio(geo, b0, b1, s1, jb, je + dj, jp, dummy)
+        call blended_volume_ratio(geo, b0, b1, s1, jb, je - dj, jm, dummy)
+        down = (jp - jm)/(2*dj)
+        err = max(err, abs(blended_pressures(geo, .false., sh, p, js, jb, je)/(p*dbar) - 1), &
+                       abs(blended_pressures(geo, .true., sh, p, js, jb, je)/(p*down) - 1))
+      end do
     end do
     call check('blend_conjugate_pressures', err < 1e-8_rk, 'max relative error '//r2s(err)// &
-               ' of p dJ*/dJbar and p dJ*/dJe (geometric and linear)')
-    call check('blend_geometric_barrier', blended_volume_ratio(.true., 0.1_rk, 1.0_rk, 1.0e-6_rk) < 0.26_rk .and. &
-               blended_volume_ratio(.false., 0.1_rk, 1.0_rk, 1.0e-6_rk) > 0.89_rk, &
-               'Je -> 0: geometric J* -> 0 (0.25 at 1e-6), linear stays near 0.9')
+               ' of p dJ*/dJbar and p dJ*/dJe (geometric and linear, Je/Jbar 0.62 .. 1.29)')
+    ! the share: beta0 at the nodes' ratio, beta1 from the onset on, J* and share continuous there
+    call blended_volume_ratio(.true., b0, b1, s1, jb, jb, js, sh)
+    call blended_volume_ratio(.true., b0, b1, s1, jb, jb*exp(-s1*(1 - 1e-12_rk)), j_lo, sh_lo)
+    call blended_volume_ratio(.true., b0, b1, s1, jb, jb*exp(-s1*(1 + 1e-12_rk)), j_hi, sh_hi)
+    call check('blend_share_grows', sh == b0 .and. abs(sh_lo - b1) < 1e-10_rk .and. sh_hi == b1 .and. &
+               abs(j_lo/j_hi - 1) < 1e-12_rk, 'share '//r2s(sh)//' at Je = Jbar, '//r2s(sh_lo)//' and '// &
+               r2s(sh_hi)//' either side of the onset')
+    call blended_volume_ratio(.true., b0, b1, s1, 1.0_rk, 1.0e-6_rk, x(1), dummy)
+    call blended_volume_ratio(.false., b0, b1, s1, 1.0_rk, 1.0e-6_rk, x(2), dummy)
+    call check('blend_geometric_barrier', x(1) < 0.26_rk .and. x(2) > 0.96_rk, &
+               'Je -> 0: geometric J* -> 0 ('//r2s(x(1))//' at 1e-6), linear stays near 1 - beta0')
     call test_blend_power()
   end subroutine
 
-  !> The geometric blend's power from series near 1 (hydro near_one_power):
-  !> within 2 ulp of jbar (je/jbar)**beta over |je/jbar - 1| <= 0.1, the
-  !> power itself beyond; the block kernel gives the elemental's values.
+  !> The geometric blend from series near 1 (hydro near_one_log,
+  !> near_zero_exp): within 2 ulp of jbar exp(phi(ln(je/jbar))) with the
+  !> library's log and exp over |je/jbar - 1| <= 0.1 (of jbar (je/jbar)**beta
+  !> for a constant share), the library itself beyond; the block kernel gives
+  !> the elemental's values bitwise.
   subroutine test_blend_power()
     integer, parameter :: n = 4001
-    real(rk), parameter :: betas(3) = [0.1_rk, 0.5_rk, 0.99_rk]
-    real(rk) :: jb(n), je(n), jblk(n), jel(n), ref, worst, beta
+    real(rk), parameter :: b0s(4) = [0.1_rk, 0.5_rk, 0.99_rk, 0.03_rk], b1s(4) = [0.1_rk, 0.5_rk, 0.99_rk, 0.1_rk]
+    real(rk), parameter :: s1 = 0.05_rk
+    real(rk) :: jb(n), je(n), jblk(n), jel(n), shb(n), she(n), ref, worst, phi, sl
     integer :: i, k
     worst = 0.0_rk
-    do k = 1, 3
-      beta = betas(k)
+    do k = 1, size(b0s)
       do i = 1, n
         jb(i) = 0.6_rk + 0.8_rk*real(i, rk)/n
         je(i) = jb(i)*(0.85_rk + 0.3_rk*real(mod(7*i, n), rk)/n)   ! ratios 0.85 .. 1.15
-        ref = jb(i)*(je(i)/jb(i))**beta
-        jel(i) = blended_volume_ratio(.true., beta, jb(i), je(i))
+        if (b0s(k) == b1s(k)) then
+          ref = jb(i)*(je(i)/jb(i))**b0s(k)
+        else
+          call blend_exponent(b0s(k), b1s(k), s1, log(je(i)/jb(i)), phi, sl)
+          ref = jb(i)*exp(phi)
+        end if
+        call blended_volume_ratio(.true., b0s(k), b1s(k), s1, jb(i), je(i), jel(i), she(i))
         worst = max(worst, abs(jel(i) - ref)/spacing(ref))
       end do
-      call blended_volume_ratios(.true., beta, n, jb, je, jblk)
-      call check('blend_block_is_elemental_'//r2s(beta), all(jblk == jel), &
+      call blended_volume_ratios(.true., b0s(k), b1s(k), s1, n, jb, je, jblk, shb)
+      call check('blend_block_is_elemental_'//r2s(b0s(k))//'_'//r2s(b1s(k)), all(jblk == jel) .and. all(shb == she), &
                  'blended_volume_ratios equals blended_volume_ratio bitwise')
     end do
-    call check('blend_power_ulp', worst <= 2.0_rk, 'largest difference from the power '//r2s(worst)//' ulp')
+    call check('blend_power_ulp', worst <= 2.0_rk, 'largest difference from the library '//r2s(worst)//' ulp')
   end subroutine
 
   subroutine test_eos()
