@@ -28,6 +28,8 @@ expect misspelled_variable 1 'yield_stres.*yield_stress' misspelled.nml
 printf '%s\n&boundary kind = "symmetry", surface = "nowhere" /\n' "$good" > "$W/bad_surface.nml"
 expect unknown_surface 1 "bad_surface.nml:6: &boundary #1 'nowhere': surface = 'nowhere'.*impact_face" bad_surface.nml
 expect missing_deck 1 'missing.nml' missing.nml
+printf '%s\n&numerics stabilisation = 0.2 /\n' "$good" > "$W/bad_share.nml"
+expect share_above_the_large_share 1 "bad_share.nml:6: &numerics.*stabilisation = 0.2 : must be at most stabilisation_large = 0.1" bad_share.nml
 
 (cd "$W" && "$EXE" --check good.nml) > "$W/check.txt" 2>&1; rc=$?
 if [ $rc -eq 0 ] && grep -q 'rho0' "$W/check.txt" && grep -q 'default' "$W/check.txt" && [ ! -e "$W/out/good.h5" ]
