@@ -21,6 +21,7 @@ program udar
   use udar_checkpoint, only: checkpoint_model_hash, checkpoint_mesh_hash, checkpoint_latest
   use udar_contact_model, only: contact_t
   use udar_contact_setup, only: build_contact
+  use udar_contact_erosion, only: contact_eroding_surfaces
   use udar_contact, only: contact_distribute
   use udar_partition, only: partition_elements, partition_stats_t
   use udar_decomposition, only: rank_counts_t, decomposition_counts
@@ -107,6 +108,8 @@ program udar
     else
       call build_domain(cfg, mesh, dom, errs)
       if (errs%count() == 0) call build_contact(cfg, mesh, dom, contacts, errs)
+      ! the eroding surfaces with each face's element (its fourth corner)
+      if (errs%count() == 0) call contact_eroding_surfaces(contacts)
     end if
   end if
   if (errs%count() > 0) then

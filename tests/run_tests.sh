@@ -99,6 +99,7 @@ run_test "regression/rod_3kms" regression rod_3kms bin/udar
 run_test "regression/spall" regression spall bin/udar-debug
 run_test "regression/spall_averaged" regression spall bin/udar-debug spall_averaged
 run_test "regression/penetration" regression penetration bin/udar
+run_test "regression/deep_node" regression deep_node bin/udar-debug
 run_test "regression/self_contact" regression self_contact bin/udar-debug
 run_test "cli/self_contact_off" tests/cli/self_contact_off.sh bin/udar
 run_test "regression/taylor_wg" regression taylor_wg bin/udar

@@ -11,7 +11,7 @@ module udar_contact
   use udar_domain, only: domain_t
   use udar_contact_model, only: contact_t, interface_t
   use udar_contact_search, only: grid_build, grid_cell, ensure
-  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities
+  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real
   implicit none
   private
@@ -152,9 +152,7 @@ contains
     real(rk) :: room
     nt = size(it%tri, 2)
     do t = 1, nt
-      xa = ct%x(:, it%tri(:,t))
-      it%box_lo(:,t) = minval(xa, dim=2) - depth_limit
-      it%box_hi(:,t) = maxval(xa, dim=2) + depth_limit
+      call triangle_box(t, depth_limit, it%box_lo(:,t), it%box_hi(:,t))
     end do
     n_found = 0
     deepest = 0
@@ -167,6 +165,7 @@ contains
     if (.not. lists_hold()) call full_search()
     it%dn_sum = 0
     it%t_sum = 0
+    it%n_deep = 0
     ! ---- search: each slave node's master triangle, in ascending global id
     do k = 1, size(it%slave)
       ps = it%slave(k)
@@ -175,6 +174,10 @@ contains
       if (it%self) it%near(it%ring(it%ring_start(k):it%ring_start(k+1)-1)) = .false.
       if (it%self) it%touched(k) = best /= 0 .and. .not. separating
       if (best == 0) cycle
+      if (-best_dist > depth_limit) then
+        it%n_deep = it%n_deep + 1
+        it%deep_max = max(it%deep_max, -best_dist)
+      end if
       if (separating) then
         ! the paper releases it (no velocity change); it only goes back on the surface
         if (move) then
@@ -198,6 +201,10 @@ contains
     end do
     it%n_active = n_found
     it%max_depth = deepest
+    if (it%n_deep > 0) then
+      it%deep_total = it%deep_total + it%n_deep
+      it%deep_passes = it%deep_passes + 1
+    end if
     it%normal_impulse = 0
     it%friction_impulse = 0
     if (.not. move) return
@@ -277,6 +284,24 @@ contains
 
   contains
 
+    !> The box a slave node must be in to be behind triangle t: its corners
+    !> widened by reach, and the element under it (in a cycle, where known).
+    subroutine triangle_box(t, reach, lo, hi)
+      integer, intent(in) :: t
+      real(rk), intent(in) :: reach
+      real(rk), intent(out) :: lo(3), hi(3)
+      real(rk) :: xt(3,3)
+      xt = ct%x(:, it%tri(:,t))
+      lo = minval(xt, dim=2)
+      hi = maxval(xt, dim=2)
+      if (it%apex(t) > 0 .and. dt > 0.0_rk) then
+        lo = min(lo, ct%x(:,it%apex(t)))
+        hi = max(hi, ct%x(:,it%apex(t)))
+      end if
+      lo = lo - reach
+      hi = hi + reach
+    end subroutine
+
     !> How far slave node ps may be returned in this pass.
     real(rk) function allowance(ps)
       integer, intent(in) :: ps
@@ -329,9 +354,7 @@ contains
       reach = depth_limit
       if (it%tracking .and. dt > 0.0_rk) reach = depth_limit + it%skin
       do t = 1, nt
-        xa = ct%x(:, it%tri(:,t))
-        it%wide_lo(:,t) = minval(xa, dim=2) - reach
-        it%wide_hi(:,t) = maxval(xa, dim=2) + reach
+        call triangle_box(t, reach, it%wide_lo(:,t), it%wide_hi(:,t))
       end do
       call grid_build(it%grid, it%wide_lo(:,1:nt), it%wide_hi(:,1:nt))
       n_cand = 0
@@ -373,7 +396,7 @@ contains
       real(rk), intent(out) :: best_dist, best_n(3), best_g(3)
       logical, intent(out) :: separating
       real(rk) :: closing, best_closing, gc(3), other_closing, other_dist, other_n(3), other_g(3), &
-                  sep_dist, sep_n(3)
+                  sep_dist, sep_n(3), lam(4)
       integer :: other, sep
       integer :: t, c, s, first, last
       real(rk) :: xa(3,3), n(3), dist, g(3)
@@ -404,7 +427,14 @@ contains
         end if
         xa = ct%x(:, it%tri(:,t))
         call triangle_projection(xa, ct%x(:,ps), n, dist, g)
-        if (dist >= 0.0_rk .or. dist < -depth_limit .or. any(g < -edge_tolerance)) cycle
+        if (dist >= 0.0_rk .or. any(g < -edge_tolerance)) cycle
+        if (dist < -depth_limit) then
+          ! deeper than any approach in a step: only inside the element under
+          ! the face (a face erosion exposed under a node already inside)
+          if (geometric .or. dt <= 0.0_rk .or. it%apex(t) == 0) cycle
+          call tetrahedron_coordinates(xa, ct%x(:,it%apex(t)), ct%x(:,ps), lam)
+          if (any(lam <= edge_tolerance)) cycle     ! strictly inside: not on another of its faces
+        end if
         if (present(n_ref)) then
           if (dot_product(n, n_ref) < 0.5_rk) cycle
         end if

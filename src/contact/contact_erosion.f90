@@ -9,7 +9,7 @@ module udar_contact_erosion
   use udar_contact_setup, only: tet_face
   implicit none
   private
-  public :: contact_erode
+  public :: contact_erode, contact_eroding_surfaces
 
 contains
 
@@ -20,8 +20,7 @@ contains
     type(contact_t), intent(inout) :: ct
     integer, intent(in) :: eroded(:)
     logical, allocatable :: part_changed(:)
-    integer, allocatable :: faces(:,:), face_part(:)
-    integer :: i, t, k, f, n, n_fixed
+    integer :: i, t
     if (ct%n_tets == 0 .or. size(eroded) == 0) return
     allocate(part_changed(maxval(ct%tet_part)), source=.false.)
     do i = 1, size(eroded)
@@ -31,62 +30,9 @@ contains
       ct%tet_alive(t) = .false.
       part_changed(ct%tet_part(t)) = .true.
     end do
-    if (.not. any(part_changed)) return
-    ! alive tetrahedra at each node: 0 = a free node (debris)
-    ct%alive_count = 0
-    do t = 1, ct%n_tets
-      if (ct%tet_alive(t)) ct%alive_count(ct%tet(:,t)) = ct%alive_count(ct%tet(:,t)) + 1
-    end do
-    ! the current boundary of every eroding part, in one sweep: exposed faces
-    ! of alive tetrahedra in ascending element and face order (the order of
-    ! the initial surface), counter-clockwise seen from outside
-    n = 0
-    do t = 1, ct%n_tets
-      do f = 1, 4
-        if (exposed(t, f)) n = n + 1
-      end do
-    end do
-    allocate(faces(3, n), face_part(n))
-    n = 0
-    do t = 1, ct%n_tets
-      do f = 1, 4
-        if (.not. exposed(t, f)) cycle
-        n = n + 1
-        faces(:,n) = ct%tet(tet_face(:,f), t)
-        face_part(n) = ct%tet_part(t)
-      end do
-    end do
-    do k = 1, ct%n_interfaces
-      associate (it => ct%ifc(k))
-        if (.not. (changed(it%master_part) .or. changed(it%slave_part))) cycle
-        if (it%self) then
-          ! the part's boundary without its faces on symmetry planes; its nodes and free nodes
-          it%tri = faces(:, pack([(i, i = 1, n)], face_part == it%master_part .and. &
-                                 [(.not. on_symmetry_plane(ct%sym_planes, faces(:,i)), i = 1, n)]))
-          it%slave = slave_nodes(it%slave_part, it%tri)
-          call self_neighbourhoods(it, ct%n_nodes)
-        else
-          if (it%master_part > 0) it%tri = faces(:, pack([(i, i = 1, n)], face_part == it%master_part))
-          if (it%slave_part > 0) it%slave = slave_nodes(it%slave_part)
-        end if
-        call size_interface_work(it)
-        it%reach_built = -1.0       ! a full search on the new surfaces
-      end associate
-    end do
-    ! faces for the contact pressure: the fixed ones and the eroding parts' current ones
-    n_fixed = size(ct%fixed_faces, 2)
-    deallocate(ct%faces)
-    allocate(ct%faces(3, n_fixed + n))
-    ct%faces(:,1:n_fixed) = ct%fixed_faces
-    ct%faces(:,n_fixed+1:) = faces
+    if (any(part_changed)) call rebuild_surfaces(ct, part_changed)
 
   contains
-
-    logical function changed(ip)
-      integer, intent(in) :: ip
-      changed = .false.
-      if (ip > 0) changed = part_changed(ip)
-    end function
 
     !> Index in ct%tet of global element g (ascending tet_gidx), 0 if none.
     integer function tet_index(g)
@@ -106,6 +52,89 @@ contains
           hi = mid - 1
         end if
       end do
+    end function
+  end subroutine
+
+  !> The surfaces of the eroding parts from their tetrahedra (at start-up:
+  !> the same triangles in the same order as the mesh's boundary, now with
+  !> the fourth corner of each).
+  subroutine contact_eroding_surfaces(ct)
+    type(contact_t), intent(inout) :: ct
+    logical, allocatable :: part_changed(:)
+    if (ct%n_tets == 0) return
+    allocate(part_changed(maxval(ct%tet_part)), source=.true.)
+    call rebuild_surfaces(ct, part_changed)
+  end subroutine
+
+  !> The current boundary of the parts that changed, into the interfaces
+  !> and the pressure's face list.
+  subroutine rebuild_surfaces(ct, part_changed)
+    type(contact_t), intent(inout) :: ct
+    logical, intent(in) :: part_changed(:)
+    integer, allocatable :: faces(:,:), face_part(:), face_apex(:), sel(:)
+    integer :: i, t, k, f, n, n_fixed
+    ! alive tetrahedra at each node: 0 = a free node (debris)
+    ct%alive_count = 0
+    do t = 1, ct%n_tets
+      if (ct%tet_alive(t)) ct%alive_count(ct%tet(:,t)) = ct%alive_count(ct%tet(:,t)) + 1
+    end do
+    ! the current boundary of every eroding part, in one sweep: exposed faces
+    ! of alive tetrahedra in ascending element and face order (the order of
+    ! the initial surface), counter-clockwise seen from outside
+    n = 0
+    do t = 1, ct%n_tets
+      do f = 1, 4
+        if (exposed(t, f)) n = n + 1
+      end do
+    end do
+    allocate(faces(3, n), face_part(n), face_apex(n))
+    n = 0
+    do t = 1, ct%n_tets
+      do f = 1, 4
+        if (.not. exposed(t, f)) cycle
+        n = n + 1
+        faces(:,n) = ct%tet(tet_face(:,f), t)
+        face_part(n) = ct%tet_part(t)
+        face_apex(n) = ct%tet(f, t)
+      end do
+    end do
+    do k = 1, ct%n_interfaces
+      associate (it => ct%ifc(k))
+        if (.not. (changed(it%master_part) .or. changed(it%slave_part))) cycle
+        if (it%self) then
+          ! the part's boundary without its faces on symmetry planes; its nodes and free nodes
+          it%tri = faces(:, pack([(i, i = 1, n)], face_part == it%master_part .and. &
+                                 [(.not. on_symmetry_plane(ct%sym_planes, faces(:,i)), i = 1, n)]))
+          if (allocated(it%apex)) deallocate(it%apex)
+          allocate(it%apex(size(it%tri, 2)), source=0)    ! self-contact: only what crosses in a cycle
+          it%slave = slave_nodes(it%slave_part, it%tri)
+          call self_neighbourhoods(it, ct%n_nodes)
+        else
+          if (it%master_part > 0) then
+            sel = pack([(i, i = 1, n)], face_part == it%master_part)
+            it%tri = faces(:, sel)
+            it%apex = face_apex(sel)
+          end if
+          if (it%slave_part > 0) it%slave = slave_nodes(it%slave_part)
+        end if
+        call size_interface_work(it)
+        it%reach_built = -1.0       ! a full search on the new surfaces
+      end associate
+    end do
+    ! faces for the contact pressure: the fixed ones and the eroding parts' current ones
+    n_fixed = size(ct%fixed_faces, 2)
+    deallocate(ct%faces)
+    allocate(ct%faces(3, n_fixed + n))
+    ct%faces(:,1:n_fixed) = ct%fixed_faces
+    ct%faces(:,n_fixed+1:) = faces
+
+
+  contains
+
+    logical function changed(ip)
+      integer, intent(in) :: ip
+      changed = .false.
+      if (ip > 0) changed = part_changed(ip)
     end function
 
     !> Whether face f of tetrahedron t is on the current boundary.

@@ -6,7 +6,7 @@ module udar_contact_kernels
   use udar_config, only: contact_weights_distance
   implicit none
   private
-  public :: triangle_projection, master_shares, match_velocities, cross
+  public :: triangle_projection, master_shares, match_velocities, cross, tetrahedron_coordinates
 
 contains
 
@@ -31,6 +31,26 @@ contains
     g(2) = dot_product(n, cross(xa(:,3) - p, xa(:,1) - p))/area2
     g(3) = 1.0_rk - g(1) - g(2)
   end subroutine
+
+  !> Barycentric coordinates lam of point p in the tetrahedron of master
+  !> triangle xa and its fourth corner xd (the element under the face):
+  !> p is inside when every lam >= 0; lam(4) is its depth behind the face
+  !> over the corner's.
+  pure subroutine tetrahedron_coordinates(xa, xd, p, lam)
+    real(rk), intent(in) :: xa(3,3), xd(3), p(3)
+    real(rk), intent(out) :: lam(4)
+    real(rk) :: v
+    v = six_volume(xa(:,1), xa(:,2), xa(:,3), xd)
+    lam(1) = six_volume(p, xa(:,2), xa(:,3), xd)/v
+    lam(2) = six_volume(xa(:,1), p, xa(:,3), xd)/v
+    lam(3) = six_volume(xa(:,1), xa(:,2), p, xd)/v
+    lam(4) = 1.0_rk - lam(1) - lam(2) - lam(3)
+  end subroutine
+
+  pure real(rk) function six_volume(a, b, c, d)
+    real(rk), intent(in) :: a(3), b(3), c(3), d(3)
+    six_volume = dot_product(b - a, cross(c - a, d - a))
+  end function
 
   !> Shares R of the slave node's momentum for the three master nodes:
   !> inversely proportional to the distances r_a = |xs - x_a| (eqs. 6-12:

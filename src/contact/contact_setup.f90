@@ -204,6 +204,7 @@ contains
       real(rk) :: s
       it%name = label
       it%tri = tri
+      allocate(it%apex(size(tri, 2)), source=0)
       it%slave = slave_nodes
       it%friction = cfg%contacts(k)%friction
       it%iterations = cfg%contacts(k)%iterations

@@ -15,6 +15,10 @@ module udar_contact_model
   type, public :: interface_t
     character(len=2*max_name_len+8) :: name = ''  !< 'slave_on_master', for the log and the history
     integer, allocatable :: tri(:,:)       !< (3, n_tri) contact-node indices; counter-clockwise seen from outside
+    !> (n_tri) the fourth corner of each triangle's tetrahedron (eroding
+    !> master parts; 0 for a fixed surface): a slave node inside that
+    !> element is found however deep (exposed by erosion under it)
+    integer, allocatable :: apex(:)
     integer, allocatable :: slave(:)       !< contact-node indices, ascending (= ascending global id)
     integer :: master_part = 0, slave_part = 0   !< eroding parts whose current boundary is the surface (0: fixed surface)
     !> self-contact: master and slave are one part's boundary (without its
@@ -53,6 +57,11 @@ module udar_contact_model
     integer :: n_active = 0                !< slave nodes corrected
     real(rk) :: max_depth = 0              !< m, deepest penetration found (before the correction)
     real(rk) :: max_slip = 0               !< m/s, largest relative tangential velocity left at a contact point
+    integer :: n_deep = 0                  !< slave nodes found deeper than the search margin (inside a master element)
+    ! the whole run (log)
+    integer(i8) :: deep_total = 0          !< deep slave nodes found, summed over the passes
+    integer :: deep_passes = 0             !< passes that found any
+    real(rk) :: deep_max = 0               !< m, the deepest of them
   end type
 
   type, public :: contact_t

@@ -43,6 +43,10 @@ module udar_run
   private
   public :: run_simulation, run_result_t
 
+  !> history columns of each contact interface: normal and friction force,
+  !> largest slip, deep slave nodes found
+  integer, parameter :: per_interface = 4
+
   !> What a finished run reports back (for the summary and the caller).
   type :: run_result_t
     integer :: cycles = 0
@@ -61,6 +65,7 @@ module udar_run
     integer :: n_fractured = 0, n_eroded = 0 !< elements fractured (eroded ones included), eroded
     real(rk), allocatable :: contact_normal(:), contact_friction(:)   !< N, per interface
     real(rk), allocatable :: contact_slip(:)                          !< m/s, per interface
+    real(rk), allocatable :: contact_deep(:)                          !< slave nodes found inside a master element, per interface
     real(rk), allocatable :: part_ke(:), part_com(:,:), part_mass(:)
     integer(i8), allocatable :: acc(:,:)   !< exact accumulators, one column per summed quantity
   end type
@@ -448,6 +453,13 @@ contains
           real(ct%ifc(k)%sweeps, rk)/max(ct%ifc(k)%passes, 1), ' sweeps a pass on average; ', &
           ct%ifc(k)%sweep_limit_hits, ' passes ended at iterations = ', ct%ifc(k)%iterations, ' unconverged'
         call log_info(line)
+        if (ct%ifc(k)%deep_passes > 0) then
+          write(line, '(a,i0,a,i0,a,es10.3,a,f0.3,a)') '         contact '//trim(ct%ifc(k)%name)//': ', &
+            ct%ifc(k)%deep_total, ' slave nodes found inside a master element (deeper than the search margin) in ', &
+            ct%ifc(k)%deep_passes, ' passes, the deepest ', ct%ifc(k)%deep_max, ' m (', &
+            ct%ifc(k)%deep_max/ct%ifc(k)%h_mean, ' of the mean master edge)'
+          call log_info(line)
+        end if
         if (ct%ifc(k)%sweep_limit_hits > 0) call log_warn('contact '//trim(ct%ifc(k)%name)// &
           ': the velocity matching did not converge in '//itoa(ct%ifc(k)%sweep_limit_hits)// &
           ' passes (raise &contact iterations): their result depends on the order of the nodes')
@@ -825,7 +837,7 @@ contains
     integer :: ip, nc
     character(len=80) :: base(13) = [character(len=80) :: 'time', 'cycle', 'dt', 'kinetic', 'internal', &
       'plastic_work', 'wall_work', 'total', 'energy_error', 'momentum_x', 'momentum_y', 'momentum_z', 'wall_force']
-    nc = 3*ct%n_interfaces + merge(1, 0, ct%n_interfaces > 0)
+    nc = per_interface*ct%n_interfaces + merge(1, 0, ct%n_interfaces > 0)
     allocate(cols(13 + 4*dom%n_parts + nc + merge(4, 0, any_fracture(dom))))
     if (any_fracture(dom)) cols(size(cols)-3:) = [character(len=80) :: 'fractured', 'eroded', 'eroded_energy', 'mass']
     cols(1:13) = base
@@ -838,11 +850,12 @@ contains
     if (nc == 0) return
     ip = 13 + 4*dom%n_parts
     do nc = 1, ct%n_interfaces
-      cols(ip + 3*nc - 2) = 'contact_normal_'//trim(ct%ifc(nc)%name)
-      cols(ip + 3*nc - 1) = 'contact_friction_'//trim(ct%ifc(nc)%name)
-      cols(ip + 3*nc) = 'contact_slip_'//trim(ct%ifc(nc)%name)
+      cols(ip + per_interface*nc - 3) = 'contact_normal_'//trim(ct%ifc(nc)%name)
+      cols(ip + per_interface*nc - 2) = 'contact_friction_'//trim(ct%ifc(nc)%name)
+      cols(ip + per_interface*nc - 1) = 'contact_slip_'//trim(ct%ifc(nc)%name)
+      cols(ip + per_interface*nc) = 'contact_deep_'//trim(ct%ifc(nc)%name)
     end do
-    cols(ip + 3*ct%n_interfaces + 1) = 'contact_work'
+    cols(ip + per_interface*ct%n_interfaces + 1) = 'contact_work'
   end function
 
   subroutine write_history_row(hist, t, cycle, dt, bal, row, ok, errmsg)
@@ -861,14 +874,15 @@ contains
       row(13 + 4*ip - 3) = bal%part_ke(ip)
       row(13 + 4*ip - 2:13 + 4*ip) = bal%part_com(ip,:)
     end do
-    if (size(row) > 13 + 4*np + 3*size(bal%contact_normal) + merge(1, 0, size(bal%contact_normal) > 0)) &
+    if (size(row) > 13 + 4*np + per_interface*size(bal%contact_normal) + merge(1, 0, size(bal%contact_normal) > 0)) &
       row(size(row)-3:) = [real(bal%n_fractured, rk), real(bal%n_eroded, rk), bal%eroded_energy, sum(bal%part_mass)]
     do ip = 1, size(bal%contact_normal)
-      row(11 + 4*np + 3*ip) = bal%contact_normal(ip)
-      row(12 + 4*np + 3*ip) = bal%contact_friction(ip)
-      row(13 + 4*np + 3*ip) = bal%contact_slip(ip)
+      row(10 + 4*np + per_interface*ip) = bal%contact_normal(ip)
+      row(11 + 4*np + per_interface*ip) = bal%contact_friction(ip)
+      row(12 + 4*np + per_interface*ip) = bal%contact_slip(ip)
+      row(13 + 4*np + per_interface*ip) = bal%contact_deep(ip)
     end do
-    if (size(bal%contact_normal) > 0) row(14 + 4*np + 3*size(bal%contact_normal)) = bal%contact_work
+    if (size(bal%contact_normal) > 0) row(14 + 4*np + per_interface*size(bal%contact_normal)) = bal%contact_work
     call history_write(hist, row, ok, errmsg)
   end subroutine
 
@@ -947,11 +961,13 @@ contains
     bal%total = bal%kinetic + bal%internal + bal%eroded_energy
     ! the contact pass is replicated: its sums are already the same on every rank
     if (.not. allocated(bal%contact_normal)) allocate(bal%contact_normal(ct%n_interfaces), &
-                                                      bal%contact_friction(ct%n_interfaces), bal%contact_slip(ct%n_interfaces))
+                                                      bal%contact_friction(ct%n_interfaces), bal%contact_slip(ct%n_interfaces), &
+                                                      bal%contact_deep(ct%n_interfaces))
     do i = 1, ct%n_interfaces
       bal%contact_normal(i) = ct%ifc(i)%normal_impulse/walls%dt_v
       bal%contact_friction(i) = ct%ifc(i)%friction_impulse/walls%dt_v
       bal%contact_slip(i) = ct%ifc(i)%max_slip
+      bal%contact_deep(i) = real(ct%ifc(i)%n_deep, rk)
     end do
   end subroutine
 end module udar_run
