@@ -165,7 +165,14 @@ contains
     if (.not. lists_hold()) call full_search()
     it%dn_sum = 0
     it%t_sum = 0
-    it%n_deep = 0
+    ! the cycle's figures (history, log) are the cycle pass's: a pass with
+    ! dt = 0 (initial overlaps, settling after erosion) leaves them alone
+    if (dt > 0.0_rk) then
+      it%n_deep = 0
+      it%normal_impulse = 0
+      it%friction_impulse = 0
+      it%master_impulse = 0
+    end if
     ! ---- search: each slave node's master triangle, in ascending global id
     do k = 1, size(it%slave)
       ps = it%slave(k)
@@ -174,7 +181,7 @@ contains
       if (it%self) it%near(it%ring(it%ring_start(k):it%ring_start(k+1)-1)) = .false.
       if (it%self) it%touched(k) = best /= 0 .and. .not. separating
       if (best == 0) cycle
-      if (-best_dist > depth_limit) then
+      if (-best_dist > depth_limit .and. dt > 0.0_rk) then
         it%n_deep = it%n_deep + 1
         it%deep_max = max(it%deep_max, -best_dist)
       end if
@@ -199,14 +206,14 @@ contains
       xa = ct%x(:, it%tri(:,best))
       call master_shares(it%weights, xa, ct%x(:,ps), best_g, it%share(:,n_found))
     end do
-    it%n_active = n_found
-    it%max_depth = deepest
-    if (it%n_deep > 0) then
-      it%deep_total = it%deep_total + it%n_deep
-      it%deep_passes = it%deep_passes + 1
+    if (dt > 0.0_rk) then
+      it%n_active = n_found
+      it%max_depth = deepest
+      if (it%n_deep > 0) then
+        it%deep_total = it%deep_total + it%n_deep
+        it%deep_passes = it%deep_passes + 1
+      end if
     end if
-    it%normal_impulse = 0
-    it%friction_impulse = 0
     if (.not. move) return
     ! ---- velocity matching with friction, repeated: a correction moves master
     ! nodes that earlier slave nodes were matched to
@@ -229,6 +236,7 @@ contains
           ! whatever energy the matching dissipates shows in the energy error
           ct%v(:,ps) = ct%v(:,ps) + dvs
           ct%x(:,ps) = ct%x(:,ps) + dt*dvs
+          it%master_impulse = it%master_impulse - ct%m(ps)*dvs
           do a = 1, 3
             pa = it%tri(a,t)
             ct%v(:,pa) = vm(:,a) + dvm(:,a)
@@ -255,7 +263,7 @@ contains
     end if
     ! ---- what is left behind the surface goes back along the normal (eq. 5);
     ! the largest relative tangential velocity left at a contact point (slip)
-    it%max_slip = 0
+    if (dt > 0.0_rk) it%max_slip = 0
     do k = 1, n_found
       ps = it%active(k)
       t = it%on_tri(k)

@@ -54,6 +54,7 @@ module udar_contact_model
     real(rk), allocatable :: dn_sum(:), t_sum(:,:)                 !< m/s, normal and tangential velocity changes so far in the cycle
     ! the last cycle
     real(rk) :: normal_impulse = 0, friction_impulse = 0   !< N s
+    real(rk) :: master_impulse(3) = 0      !< N s, momentum the slave nodes gave the master side
     integer :: n_active = 0                !< slave nodes corrected
     real(rk) :: max_depth = 0              !< m, deepest penetration found (before the correction)
     real(rk) :: max_slip = 0               !< m/s, largest relative tangential velocity left at a contact point

@@ -44,8 +44,8 @@ module udar_run
   public :: run_simulation, run_result_t
 
   !> history columns of each contact interface: normal and friction force,
-  !> largest slip, deep slave nodes found
-  integer, parameter :: per_interface = 4
+  !> largest slip, deep slave nodes found, the force on the master side
+  integer, parameter :: per_interface = 7
 
   !> What a finished run reports back (for the summary and the caller).
   type :: run_result_t
@@ -66,6 +66,7 @@ module udar_run
     real(rk), allocatable :: contact_normal(:), contact_friction(:)   !< N, per interface
     real(rk), allocatable :: contact_slip(:)                          !< m/s, per interface
     real(rk), allocatable :: contact_deep(:)                          !< slave nodes found inside a master element, per interface
+    real(rk), allocatable :: contact_force(:,:)                       !< N, (3, interfaces) on the master side
     real(rk), allocatable :: part_ke(:), part_com(:,:), part_mass(:)
     integer(i8), allocatable :: acc(:,:)   !< exact accumulators, one column per summed quantity
   end type
@@ -850,10 +851,11 @@ contains
     if (nc == 0) return
     ip = 13 + 4*dom%n_parts
     do nc = 1, ct%n_interfaces
-      cols(ip + per_interface*nc - 3) = 'contact_normal_'//trim(ct%ifc(nc)%name)
-      cols(ip + per_interface*nc - 2) = 'contact_friction_'//trim(ct%ifc(nc)%name)
-      cols(ip + per_interface*nc - 1) = 'contact_slip_'//trim(ct%ifc(nc)%name)
-      cols(ip + per_interface*nc) = 'contact_deep_'//trim(ct%ifc(nc)%name)
+      cols(ip + per_interface*(nc-1) + 1:ip + per_interface*nc) = [character(len=80) :: &
+        'contact_normal_'//trim(ct%ifc(nc)%name), 'contact_friction_'//trim(ct%ifc(nc)%name), &
+        'contact_slip_'//trim(ct%ifc(nc)%name), 'contact_deep_'//trim(ct%ifc(nc)%name), &
+        'contact_force_x_'//trim(ct%ifc(nc)%name), 'contact_force_y_'//trim(ct%ifc(nc)%name), &
+        'contact_force_z_'//trim(ct%ifc(nc)%name)]
     end do
     cols(ip + per_interface*ct%n_interfaces + 1) = 'contact_work'
   end function
@@ -877,10 +879,9 @@ contains
     if (size(row) > 13 + 4*np + per_interface*size(bal%contact_normal) + merge(1, 0, size(bal%contact_normal) > 0)) &
       row(size(row)-3:) = [real(bal%n_fractured, rk), real(bal%n_eroded, rk), bal%eroded_energy, sum(bal%part_mass)]
     do ip = 1, size(bal%contact_normal)
-      row(10 + 4*np + per_interface*ip) = bal%contact_normal(ip)
-      row(11 + 4*np + per_interface*ip) = bal%contact_friction(ip)
-      row(12 + 4*np + per_interface*ip) = bal%contact_slip(ip)
-      row(13 + 4*np + per_interface*ip) = bal%contact_deep(ip)
+      row(13 + 4*np + per_interface*(ip-1) + 1:13 + 4*np + per_interface*ip) = &
+        [bal%contact_normal(ip), bal%contact_friction(ip), bal%contact_slip(ip), bal%contact_deep(ip), &
+         bal%contact_force(:,ip)]
     end do
     if (size(bal%contact_normal) > 0) row(14 + 4*np + per_interface*size(bal%contact_normal)) = bal%contact_work
     call history_write(hist, row, ok, errmsg)
@@ -962,12 +963,13 @@ contains
     ! the contact pass is replicated: its sums are already the same on every rank
     if (.not. allocated(bal%contact_normal)) allocate(bal%contact_normal(ct%n_interfaces), &
                                                       bal%contact_friction(ct%n_interfaces), bal%contact_slip(ct%n_interfaces), &
-                                                      bal%contact_deep(ct%n_interfaces))
+                                                      bal%contact_deep(ct%n_interfaces), bal%contact_force(3, ct%n_interfaces))
     do i = 1, ct%n_interfaces
       bal%contact_normal(i) = ct%ifc(i)%normal_impulse/walls%dt_v
       bal%contact_friction(i) = ct%ifc(i)%friction_impulse/walls%dt_v
       bal%contact_slip(i) = ct%ifc(i)%max_slip
       bal%contact_deep(i) = real(ct%ifc(i)%n_deep, rk)
+      bal%contact_force(:,i) = ct%ifc(i)%master_impulse/walls%dt_v
     end do
   end subroutine
 end module udar_run
