@@ -93,6 +93,7 @@ run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
 run_test "regression/plate_impact" regression plate_impact bin/udar-debug
 run_test "regression/coulomb_wall" regression coulomb_wall bin/udar-debug
 run_test "regression/blocks_head_on" regression blocks_head_on bin/udar-debug
+run_test "regression/blocks_head_on_symmetric" regression blocks_head_on bin/udar-debug blocks_head_on_symmetric
 run_test "regression/oblique_friction" regression oblique_friction bin/udar-debug
 run_test "regression/oblique_stick" regression oblique_friction bin/udar-debug oblique_stick
 run_test "regression/rod_3kms" regression rod_3kms bin/udar

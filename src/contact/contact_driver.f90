@@ -33,6 +33,9 @@ module udar_contact
   !> share of its volume to a jump that no velocity (and no work) goes with;
   !> what is left is taken in the next cycles
   real(rk), parameter :: return_fraction = 0.02_rk
+  !> the parts of a pass (detect): finding the slave nodes, and after the
+  !> velocity matching (match_passes) the impulses and the returns
+  integer, parameter :: stage_search = 1, stage_finish = 2, stage_both = 3
 
 contains
 
@@ -76,7 +79,7 @@ contains
     call gather_state(ct, dom)
     do i = 1, ct%n_interfaces
       ! anything behind the surface by up to one master element counts
-      call detect(ct, ct%ifc(i), ct%ifc(i)%h_mean, ct%ifc(i)%move_overlaps, 0.0_rk, n_found, depth, worst)
+      call detect(ct, ct%ifc(i), ct%ifc(i)%h_mean, ct%ifc(i)%move_overlaps, 0.0_rk, stage_both, n_found, depth, worst)
       if (n_found == 0) then
         write(lines(i), '(a)') 'contact '//trim(ct%ifc(i)%name)//': no initial overlap'
       else
@@ -100,7 +103,7 @@ contains
     if (ct%n_interfaces == 0) return
     call gather_state(ct, dom)
     do i = 1, ct%n_interfaces
-      call detect(ct, ct%ifc(i), 0.01_rk*ct%ifc(i)%h_mean, .true., 0.0_rk, n_found, depth, worst)
+      call detect(ct, ct%ifc(i), 0.01_rk*ct%ifc(i)%h_mean, .true., 0.0_rk, stage_both, n_found, depth, worst)
     end do
     call scatter_state(ct, dom)
   end subroutine
@@ -110,8 +113,8 @@ contains
     type(contact_t), intent(inout) :: ct
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
-    integer :: i, n_found, worst
-    real(rk) :: vmax, margin, depth
+    integer :: i, k, last, n_found, worst
+    real(rk) :: vmax, margin(2), depth
     if (ct%n_interfaces == 0) return
     call gather_state(ct, dom)
     ct%impulse = 0
@@ -122,42 +125,113 @@ contains
     do i = 1, ct%n_nodes
       vmax = max(vmax, norm2(ct%v(:,i)))
     end do
-    do i = 1, ct%n_interfaces
-      margin = 2.0_rk*vmax*dt + 0.05_rk*ct%ifc(i)%h_mean
-      call detect(ct, ct%ifc(i), margin, .true., dt, n_found, depth, worst)
+    ! each interface, or a symmetric contact's two directions together:
+    ! find, match the velocities, then impulses and returns
+    i = 1
+    do while (i <= ct%n_interfaces)
+      last = i
+      if (ct%ifc(i)%partner == i + 1) last = i + 1
+      do k = i, last
+        margin(k-i+1) = 2.0_rk*vmax*dt + 0.05_rk*ct%ifc(k)%h_mean
+        call detect(ct, ct%ifc(k), margin(k-i+1), .true., dt, stage_search, n_found, depth, worst)
+      end do
+      call match_passes(ct, i, last, dt)
+      do k = i, last
+        call detect(ct, ct%ifc(k), margin(k-i+1), .true., dt, stage_finish, n_found, depth, worst)
+      end do
+      i = last + 1
     end do
     call scatter_state(ct, dom)
   end subroutine
 
+  !> Velocity matching with friction of the slave nodes interfaces first..last
+  !> found (projected Gauss-Seidel), repeated until a pass changes nothing
+  !> (to round-off) or `iterations`: a correction moves master nodes that
+  !> earlier slave nodes were matched to. Every velocity change dv also moves
+  !> its node by dt dv, as if the corrected velocity had been used for the
+  !> step.
+  subroutine match_passes(ct, first, last, dt)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: first, last
+    real(rk), intent(in) :: dt
+    real(rk) :: dvs(3), dvm(3,3), dn, dtan(3), mismatch, first_change, vm(3,3), limit
+    integer :: i, k, ps, t, a, pa, iter
+    logical :: closing
+    if (dt <= 0.0_rk) return
+    first_change = 0
+    do iter = 1, ct%ifc(first)%iterations
+      mismatch = 0
+      do i = first, last
+        associate (it => ct%ifc(i))
+          do k = 1, it%n_pass
+            ps = it%active(k)
+            t = it%on_tri(k)
+            vm = ct%v(:, it%tri(:,t))
+            call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), ct%m(it%tri(:,t)), vm, it%area(:,k), &
+                                  it%share(:,k), it%friction, it%dn_sum(k), it%t_sum(:,k), dvs, dvm, closing, dn, dtan)
+            if (.not. closing) cycle
+            it%dn_sum(k) = it%dn_sum(k) + dn
+            it%t_sum(:,k) = it%t_sum(:,k) + dtan
+            ! what this pass still changed, pushes and take-backs alike
+            mismatch = max(mismatch, abs(dn), norm2(dtan))
+            ! contact forces are internal: momentum is exchanged exactly, and
+            ! whatever energy the matching dissipates shows in the energy error
+            ct%v(:,ps) = ct%v(:,ps) + dvs
+            ct%x(:,ps) = ct%x(:,ps) + dt*dvs
+            do a = 1, 3
+              pa = it%tri(a,t)
+              ct%v(:,pa) = vm(:,a) + dvm(:,a)
+              ct%x(:,pa) = ct%x(:,pa) + dt*dvm(:,a)
+            end do
+          end do
+          it%sweeps = it%sweeps + 1
+        end associate
+      end do
+      if (iter == 1) first_change = mismatch
+      ! converged: every node matched or released, its changes admissible
+      limit = merge(ct%ifc(first)%tolerance, contact_relative_tolerance*first_change, ct%ifc(first)%tolerance > 0.0_rk)
+      if (mismatch <= limit) exit
+      if (iter == ct%ifc(first)%iterations) then
+        do i = first, last
+          ct%ifc(i)%sweep_limit_hits = ct%ifc(i)%sweep_limit_hits + 1
+        end do
+      end if
+    end do
+  end subroutine
+
   !> Finds the slave nodes of interface it behind a master triangle by at
-  !> most depth_limit and corrects them (if move). With dt > 0 (a cycle) the
-  !> velocities are matched and every velocity change dv also moves its node
-  !> by dt dv, as if the corrected velocity had been used for the step: the
-  !> positions stay consistent with the central-difference update, and most
-  !> of the penetration is undone by momentum rather than by a jump. What
-  !> then remains behind the surface is projected out along the normal
-  !> (eq. 5). With dt = 0 (before the first cycle) the slave nodes are only
-  !> projected.
-  subroutine detect(ct, it, depth_limit, move, dt, n_found, deepest, worst)
+  !> most depth_limit (stage_search) and corrects them (if move;
+  !> stage_finish). In a cycle (dt > 0) match_passes matches the velocities
+  !> in between, which undoes most of the penetration by momentum rather
+  !> than by a jump; what then remains behind the surface is projected out
+  !> along the normal (eq. 5), in bounded steps. With dt = 0 (before the
+  !> first cycle, settling after erosion; stage_both) the slave nodes are
+  !> only projected.
+  subroutine detect(ct, it, depth_limit, move, dt, stage, n_found, deepest, worst)
     type(contact_t), intent(inout) :: ct
     type(interface_t), intent(inout) :: it
     real(rk), intent(in) :: depth_limit, dt
     logical, intent(in) :: move
+    integer, intent(in) :: stage             !< stage_search, stage_finish or stage_both
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
-    real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), dvs(3), dvm(3,3), dn, dtan(3), &
-                mismatch, first_change, vm(3,3)
+    real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), vm(3,3)
     integer :: nt, t, k, ps, best, iter, a, pa
-    logical :: closing, separating
+    logical :: separating
     real(rk) :: room
     nt = size(it%tri, 2)
+    n_found = it%n_pass
+    deepest = 0
+    worst = 0
+    if (stage == stage_finish) then
+      if (move) call finish()
+      return
+    end if
     do t = 1, nt
       call triangle_box(t, depth_limit, it%box_lo(:,t), it%box_hi(:,t))
     end do
     n_found = 0
-    deepest = 0
-    worst = 0
-    it%n_active = 0
+    it%n_pass = 0
     ! self-contact acts only on what crosses in a cycle (at rest a part's
     ! surface is behind the planes of many of its own faces)
     if (it%self .and. dt <= 0.0_rk) return
@@ -214,83 +288,56 @@ contains
         it%deep_passes = it%deep_passes + 1
       end if
     end if
-    if (.not. move) return
-    ! ---- velocity matching with friction, repeated: a correction moves master
-    ! nodes that earlier slave nodes were matched to
-    if (dt > 0.0_rk) then
-      first_change = 0
-      do iter = 1, it%iterations
-        mismatch = 0
-        do k = 1, n_found
-          ps = it%active(k)
-          t = it%on_tri(k)
-          vm = ct%v(:, it%tri(:,t))
-          call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), ct%m(it%tri(:,t)), vm, it%area(:,k), &
-                                it%share(:,k), it%friction, it%dn_sum(k), it%t_sum(:,k), dvs, dvm, closing, dn, dtan)
-          if (.not. closing) cycle
-          it%dn_sum(k) = it%dn_sum(k) + dn
-          it%t_sum(:,k) = it%t_sum(:,k) + dtan
-          ! what this pass still changed, pushes and take-backs alike
-          mismatch = max(mismatch, abs(dn), norm2(dtan))
-          ! contact forces are internal: momentum is exchanged exactly, and
-          ! whatever energy the matching dissipates shows in the energy error
-          ct%v(:,ps) = ct%v(:,ps) + dvs
-          ct%x(:,ps) = ct%x(:,ps) + dt*dvs
-          it%master_impulse = it%master_impulse - ct%m(ps)*dvs
-          do a = 1, 3
-            pa = it%tri(a,t)
-            ct%v(:,pa) = vm(:,a) + dvm(:,a)
-            ct%x(:,pa) = ct%x(:,pa) + dt*dvm(:,a)
-          end do
-        end do
-        it%sweeps = it%sweeps + 1
-        if (iter == 1) first_change = mismatch
-        ! converged: every node matched or released, its changes admissible
-        if (mismatch <= merge(it%tolerance, contact_relative_tolerance*first_change, it%tolerance > 0.0_rk)) exit
-        if (iter == it%iterations) it%sweep_limit_hits = it%sweep_limit_hits + 1
-      end do
-      ! the cycle's impulses: what each node has received in all the passes
-      do k = 1, n_found
-        ps = it%active(k)
-        it%normal_impulse = it%normal_impulse + ct%m(ps)*it%dn_sum(k)
-        it%friction_impulse = it%friction_impulse + ct%m(ps)*norm2(it%t_sum(:,k))
-        ct%impulse(ps) = ct%impulse(ps) + ct%m(ps)*it%dn_sum(k)
-        do a = 1, 3
-          pa = it%tri(a,it%on_tri(k))
-          ct%impulse(pa) = ct%impulse(pa) + it%share(a,k)*ct%m(ps)*it%dn_sum(k)
-        end do
-      end do
-    end if
-    ! ---- what is left behind the surface goes back along the normal (eq. 5);
-    ! the largest relative tangential velocity left at a contact point (slip)
-    if (dt > 0.0_rk) it%max_slip = 0
-    do k = 1, n_found
-      ps = it%active(k)
-      t = it%on_tri(k)
-      xa = ct%x(:, it%tri(:,t))
-      call triangle_projection(xa, ct%x(:,ps), n, dist, g)
-      room = allowance(ps)
-      if (dist < 0.0_rk) call put_back(ps, -dist*n, room)
-      ! back on one triangle's plane it may still be just behind a neighbour
-      ! facing about the same way (a concave edge, e.g. a crater wall): twice
-      ! more onto the shallowest such (not onto the side faces of a convex edge)
-      do iter = 1, 2
-        if (it%self) exit
-        call nearest_behind(ps, .true., best, best_dist, best_n, best_g, separating, it%normal(:,k))
-        if (best == 0 .or. room <= 0.0_rk) exit
-        call put_back(ps, -best_dist*best_n, room)
-      end do
-      ! slip at the contact points that carry a normal impulse (a node whose
-      ! push was all taken back by the later passes is not in contact)
-      if (dt > 0.0_rk .and. it%dn_sum(k) > 0.0_rk) then
-        g = max(it%area(:,k), 0.0_rk)/sum(max(it%area(:,k), 0.0_rk))
-        vm(:,1) = g(1)*ct%v(:,it%tri(1,t)) + g(2)*ct%v(:,it%tri(2,t)) + g(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps)
-        vm(:,1) = vm(:,1) - dot_product(vm(:,1), it%normal(:,k))*it%normal(:,k)
-        it%max_slip = max(it%max_slip, norm2(vm(:,1)))
-      end if
-    end do
+    it%n_pass = n_found
+    if (stage == stage_both .and. move) call finish()
 
   contains
+
+    !> The cycle's impulses (what each node has received in all the
+    !> passes), then what is left behind the surface goes back along the
+    !> normal (eq. 5); the largest relative tangential velocity left at a
+    !> contact point (slip).
+    subroutine finish()
+      if (dt > 0.0_rk) then
+        do k = 1, it%n_pass
+          ps = it%active(k)
+          it%normal_impulse = it%normal_impulse + ct%m(ps)*it%dn_sum(k)
+          it%friction_impulse = it%friction_impulse + ct%m(ps)*norm2(it%t_sum(:,k))
+          it%master_impulse = it%master_impulse - ct%m(ps)*(it%dn_sum(k)*it%normal(:,k) + it%t_sum(:,k))
+          ct%impulse(ps) = ct%impulse(ps) + ct%m(ps)*it%dn_sum(k)
+          do a = 1, 3
+            pa = it%tri(a,it%on_tri(k))
+            ct%impulse(pa) = ct%impulse(pa) + it%share(a,k)*ct%m(ps)*it%dn_sum(k)
+          end do
+        end do
+        it%max_slip = 0
+      end if
+      do k = 1, it%n_pass
+        ps = it%active(k)
+        t = it%on_tri(k)
+        xa = ct%x(:, it%tri(:,t))
+        call triangle_projection(xa, ct%x(:,ps), n, dist, g)
+        room = allowance(ps)
+        if (dist < 0.0_rk) call put_back(ps, -dist*n, room)
+        ! back on one triangle's plane it may still be just behind a neighbour
+        ! facing about the same way (a concave edge, e.g. a crater wall): twice
+        ! more onto the shallowest such (not onto the side faces of a convex edge)
+        do iter = 1, 2
+          if (it%self) exit
+          call nearest_behind(ps, .true., best, best_dist, best_n, best_g, separating, it%normal(:,k))
+          if (best == 0 .or. room <= 0.0_rk) exit
+          call put_back(ps, -best_dist*best_n, room)
+        end do
+        ! slip at the contact points that carry a normal impulse (a node whose
+        ! push was all taken back by the later passes is not in contact)
+        if (dt > 0.0_rk .and. it%dn_sum(k) > 0.0_rk) then
+          g = max(it%area(:,k), 0.0_rk)/sum(max(it%area(:,k), 0.0_rk))
+          vm(:,1) = g(1)*ct%v(:,it%tri(1,t)) + g(2)*ct%v(:,it%tri(2,t)) + g(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps)
+          vm(:,1) = vm(:,1) - dot_product(vm(:,1), it%normal(:,k))*it%normal(:,k)
+          it%max_slip = max(it%max_slip, norm2(vm(:,1)))
+        end if
+      end do
+    end subroutine
 
     !> The box a slave node must be in to be behind triangle t: its corners
     !> widened by reach, and the element under it (in a cycle, where known).

@@ -69,6 +69,9 @@ contains
           i = i + 1
           call make_interface(ifc(i), tri_all, unique_nodes(master), mname//'_on_'//sname)
           ifc(i)%master_part = eroding_part(s_part)
+          ! the two directions are matched together, in one set of passes
+          ifc(i)%partner = i - 1
+          ifc(i-1)%partner = i
           ifc(i)%slave_part = eroding_part(m_part)
         end if
       end associate

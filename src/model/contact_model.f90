@@ -26,6 +26,9 @@ module udar_contact_model
     !> within two surface edges of it, and only when it crossed them in
     !> this step
     logical :: self = .false.
+    !> a symmetric contact's other direction (0: none): both directions'
+    !> slave nodes are found first and matched in one set of passes
+    integer :: partner = 0
     integer, allocatable :: ring_start(:), ring(:)   !< CSR over slave nodes: the nodes within two surface edges
     logical, allocatable :: near(:)        !< (contact nodes) work: the current slave node's ring
     logical, allocatable :: touched(:)     !< (slave nodes) in contact in the last pass (self-contact)
@@ -49,6 +52,7 @@ module udar_contact_model
     integer :: sweep_limit_hits = 0        !< cycles that ended their passes at `iterations` unconverged (log)
     ! work arrays of the pass, sized once (no allocation in the cycle)
     real(rk), allocatable :: box_lo(:,:), box_hi(:,:)            !< (3, n_tri) widened bounding boxes
+    integer :: n_pass = 0                  !< slave nodes found by the current pass (active(1:n_pass))
     integer, allocatable :: active(:), on_tri(:), slot(:)          !< slave nodes found, their triangles, slave index
     real(rk), allocatable :: normal(:,:), area(:,:), share(:,:)    !< (3, n_slave)
     real(rk), allocatable :: dn_sum(:), t_sum(:,:)                 !< m/s, normal and tangential velocity changes so far in the cycle
