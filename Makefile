@@ -111,6 +111,10 @@ MSH := $(GEO:.geo=.msh)
 %.msh: %.geo
 	gmsh -3 -format msh41 -v 2 $< -o $@ > $@.log 2>&1 || (cat $@.log; exit 1)
 	@rm -f $@.log
+# meshes made by a script (numpy: Debian's python)
+MSH += tests/regression/deep_node/deep_node.msh
+tests/regression/deep_node/deep_node.msh: tests/tools/deep_node_mesh.py
+	$(PYTHON) $< $@
 # normal_cylinder.geo includes the oblique one: remesh when that changes
 input/normal_cylinder/normal_cylinder.msh: input/oblique_cylinder/oblique_cylinder.geo
 meshes: deps-quiet $(MSH)

@@ -31,6 +31,20 @@ regression() {   # case, binary [deck name, when the case has several]
   ( cd "$dir" && "$ROOT/$exe" $deck.nml ) && $PYTHON tests/regression/$case/check.py "$dir" $deck
 }
 
+# a deck that must fail its case's check at the named assertion (the same
+# check without the option under test)
+regression_fails() {   # case, binary, deck, assertion
+  local case=$1 exe=$2 deck=$3 dir=$WORK/$3
+  mkdir -p "$dir"
+  cp tests/regression/$case/*.nml tests/regression/$case/*.msh "$dir"/
+  ( cd "$dir" && "$ROOT/$exe" $deck.nml ) || return 1
+  if $PYTHON tests/regression/$case/check.py "$dir" $deck | tee "$dir/check.out" | grep -q "^FAIL $4"; then
+    echo "PASS $4 fails without the option, as it must"
+  else
+    echo "FAIL $4 did not fail without the option"; return 1
+  fi
+}
+
 # two decks of one case in one folder (the second usually the reference run);
 # the case's file 'meshes' names meshes of other cases it uses
 regression_pair() {   # case, binary, deck, deck
@@ -101,6 +115,9 @@ run_test "regression/spall" regression spall bin/udar-debug
 run_test "regression/spall_averaged" regression spall bin/udar-debug spall_averaged
 run_test "regression/penetration" regression penetration bin/udar
 run_test "regression/deep_node" regression deep_node bin/udar-debug
+run_test "regression/crossed_edges" regression crossed_edges bin/udar-debug
+run_test "regression/crossed_edges_off_fails" regression_fails crossed_edges bin/udar crossed_edges_off \
+  edges_through_each_other_over_h
 run_test "regression/self_contact" regression self_contact bin/udar-debug
 run_test "cli/self_contact_off" tests/cli/self_contact_off.sh bin/udar
 run_test "regression/taylor_wg" regression taylor_wg bin/udar

@@ -11,7 +11,8 @@ module udar_contact
   use udar_domain, only: domain_t
   use udar_contact_model, only: contact_t, interface_t
   use udar_contact_search, only: grid_build, grid_cell, ensure
-  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates
+  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, &
+                                  edge_crossing
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real
   implicit none
   private
@@ -139,9 +140,85 @@ contains
       do k = i, last
         call detect(ct, ct%ifc(k), margin(k-i+1), .true., dt, stage_finish, n_found, depth, worst)
       end do
+      ! edge against edge (a symmetric pair's edges once)
+      if (ct%ifc(i)%edges) call edge_pass(ct, ct%ifc(i), dt, margin(1))
       i = last + 1
     end do
     call scatter_state(ct, dom)
+  end subroutine
+
+  !> Edge-to-edge contact (&contact edges): every slave feature edge that
+  !> crossed a master feature edge during the step (edge_crossing) gets the
+  !> frictionless impulse along their common normal, at their closest
+  !> points, that stops their approach: the four nodes' velocities change
+  !> in proportion to their linear weights over their masses (momentum
+  !> exact; the impulse acts along the line joining the closest points, so
+  !> no moment either), their positions as if the corrected velocities had
+  !> been used; what is still crossed goes back with the slave edge, in
+  !> bounded steps as a node's return does.
+  subroutine edge_pass(ct, it, dt, margin)
+    type(contact_t), intent(inout) :: ct
+    type(interface_t), intent(inout) :: it
+    real(rk), intent(in) :: dt, margin
+    real(rk) :: reach, mid(3), alpha, beta, n(3), g0, g1, w(4), wm, u, j, room, dv(3)
+    integer :: nm, e, f, s, c, nodes(4), a
+    logical :: crossed
+    it%n_edge_contacts = 0
+    nm = size(it%edge_m, 2)
+    if (nm == 0 .or. size(it%edge_s, 2) == 0 .or. dt <= 0.0_rk) return
+    ! a crossing lies within half the slave edge of its midpoint
+    reach = 0
+    do e = 1, size(it%edge_s, 2)
+      reach = max(reach, 0.5_rk*norm2(ct%x(:,it%edge_s(2,e)) - ct%x(:,it%edge_s(1,e))))
+    end do
+    reach = reach + margin
+    do f = 1, nm
+      associate (xa => ct%x(:,it%edge_m(1,f)), xb => ct%x(:,it%edge_m(2,f)), &
+                 va => ct%v(:,it%edge_m(1,f)), vb => ct%v(:,it%edge_m(2,f)))
+        it%edge_lo(:,f) = min(xa, xb, xa - dt*va, xb - dt*vb) - reach
+        it%edge_hi(:,f) = max(xa, xb, xa - dt*va, xb - dt*vb) + reach
+      end associate
+    end do
+    call grid_build(it%edge_grid, it%edge_lo(:,1:nm), it%edge_hi(:,1:nm))
+    do e = 1, size(it%edge_s, 2)
+      mid = 0.5_rk*(ct%x(:,it%edge_s(1,e)) + ct%x(:,it%edge_s(2,e)))
+      c = grid_cell(it%edge_grid, mid)
+      if (c == 0) cycle
+      do s = it%edge_grid%start(c), it%edge_grid%start(c+1) - 1
+        f = it%edge_grid%items(s)
+        if (any(mid < it%edge_lo(:,f)) .or. any(mid > it%edge_hi(:,f))) cycle
+        nodes = [it%edge_s(:,e), it%edge_m(:,f)]
+        if (any(nodes(1:2) == nodes(3)) .or. any(nodes(1:2) == nodes(4))) cycle
+        call edge_crossing(ct%x(:,nodes(1)), ct%x(:,nodes(2)), ct%x(:,nodes(3)), ct%x(:,nodes(4)), &
+                           ct%v(:,nodes(1)), ct%v(:,nodes(2)), ct%v(:,nodes(3)), ct%v(:,nodes(4)), dt, &
+                           alpha, beta, n, g0, g1, crossed)
+        if (.not. crossed) cycle
+        it%n_edge_contacts = it%n_edge_contacts + 1
+        it%edge_max_depth = max(it%edge_max_depth, -g1)
+        ! signed weights: the slave edge's closest point moves along +n, the master's along -n
+        w = [1.0_rk - alpha, alpha, -(1.0_rk - beta), -beta]
+        u = dot_product(n, w(1)*ct%v(:,nodes(1)) + w(2)*ct%v(:,nodes(2)) + w(3)*ct%v(:,nodes(3)) &
+                           + w(4)*ct%v(:,nodes(4)))
+        if (u < 0.0_rk) then
+          wm = sum(w**2/ct%m(nodes))
+          j = -u/wm
+          do a = 1, 4
+            dv = (w(a)*j/ct%m(nodes(a)))*n
+            ct%v(:,nodes(a)) = ct%v(:,nodes(a)) + dv
+            ct%x(:,nodes(a)) = ct%x(:,nodes(a)) + dt*dv
+          end do
+          it%normal_impulse = it%normal_impulse + j
+          it%master_impulse = it%master_impulse - (w(1) + w(2))*j*n
+          g1 = g1 - dt*u
+        end if
+        if (g1 < 0.0_rk) then
+          room = return_fraction*min(ct%h(nodes(1)), ct%h(nodes(2)))
+          ct%x(:,nodes(1)) = ct%x(:,nodes(1)) + min(-g1, room)*n
+          ct%x(:,nodes(2)) = ct%x(:,nodes(2)) + min(-g1, room)*n
+        end if
+      end do
+    end do
+    it%edge_contacts_total = it%edge_contacts_total + it%n_edge_contacts
   end subroutine
 
   !> Velocity matching with friction of the slave nodes interfaces first..last

@@ -6,7 +6,7 @@
 !> (and the contact pass) stay the same on any number of ranks.
 module udar_contact_erosion
   use udar_contact_model, only: contact_t, interface_t, size_interface_work, on_symmetry_plane, self_neighbourhoods
-  use udar_contact_setup, only: tet_face
+  use udar_contact_setup, only: tet_face, contact_edges
   implicit none
   private
   public :: contact_erode, contact_eroding_surfaces
@@ -116,6 +116,11 @@ contains
             it%apex = face_apex(sel)
           end if
           if (it%slave_part > 0) it%slave = slave_nodes(it%slave_part)
+          if (it%edges) then
+            ! new edges appear as elements erode
+            if (it%slave_part > 0) it%slave_tri = faces(:, pack([(i, i = 1, n)], face_part == it%slave_part))
+            call contact_edges(it, ct%x)
+          end if
         end if
         call size_interface_work(it)
         it%reach_built = -1.0       ! a full search on the new surfaces

@@ -6,7 +6,7 @@ module udar_contact_kernels
   use udar_config, only: contact_weights_distance
   implicit none
   private
-  public :: triangle_projection, master_shares, match_velocities, cross, tetrahedron_coordinates
+  public :: triangle_projection, master_shares, match_velocities, cross, tetrahedron_coordinates, edge_crossing
 
 contains
 
@@ -137,6 +137,44 @@ contains
       dvm(:,a) = -(r_share(a)*ms/mm(a))*dvs
     end do
     acted = dn /= 0.0_rk .or. any(dtv /= 0.0_rk)
+  end subroutine
+
+  !> Whether slave edge (p, q) crossed master edge (a, b) during the step dt
+  !> (positions x at its end, velocities v over it): the closest points of
+  !> the two lines at the end, at alpha along p-q and beta along a-b, both
+  !> inside their segments, and the gap g along n = (q-p) x (b-a) (turned to
+  !> point from the master edge to where the slave edge was at the start)
+  !> positive at the start (g0) and negative at the end (g1). Nearly
+  !> parallel edges (the node-on-face contact's case) are left out.
+  pure subroutine edge_crossing(xp, xq, xa, xb, vp, vq, va, vb, dt, alpha, beta, n, g0, g1, crossed)
+    real(rk), intent(in) :: xp(3), xq(3), xa(3), xb(3), vp(3), vq(3), va(3), vb(3), dt
+    real(rk), intent(out) :: alpha, beta, n(3), g0, g1
+    logical, intent(out) :: crossed
+    real(rk) :: d1(3), d2(3), r(3), aa, bb, cc, dd, ee, den, nn
+    crossed = .false.
+    alpha = 0; beta = 0; n = 0; g0 = 0; g1 = 0
+    d1 = xq - xp
+    d2 = xb - xa
+    r = xp - xa
+    aa = dot_product(d1, d1)
+    bb = dot_product(d1, d2)
+    cc = dot_product(d2, d2)
+    dd = dot_product(d1, r)
+    ee = dot_product(d2, r)
+    den = aa*cc - bb*bb
+    if (den <= 1.0e-6_rk*aa*cc) return          ! within 0.06 degrees of parallel
+    alpha = (bb*ee - cc*dd)/den
+    beta = (aa*ee - bb*dd)/den
+    if (alpha < 0.0_rk .or. alpha > 1.0_rk .or. beta < 0.0_rk .or. beta > 1.0_rk) return
+    n = cross(d1, d2)
+    nn = norm2(n)
+    n = n/nn
+    g1 = dot_product(n, xp + alpha*d1 - xa - beta*d2)
+    g0 = g1 - dt*dot_product(n, (1.0_rk - alpha)*vp + alpha*vq - (1.0_rk - beta)*va - beta*vb)
+    if (g0 < 0.0_rk) then
+      n = -n; g0 = -g0; g1 = -g1
+    end if
+    crossed = g1 < 0.0_rk
   end subroutine
 
   !> a x b.

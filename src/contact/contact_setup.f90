@@ -10,10 +10,10 @@ module udar_contact_setup
   use udar_deck, only: deck_where
   use udar_setup, only: find_group, group_list
   use udar_strings, only: itoa, to_lower
-  use udar_contact_model, only: contact_t, interface_t, size_interface_work, self_neighbourhoods, on_symmetry_plane
+  use udar_contact_model, only: feature_edges, contact_t, interface_t, size_interface_work, self_neighbourhoods, on_symmetry_plane
   implicit none
   private
-  public :: build_contact, tet_face
+  public :: build_contact, tet_face, contact_edges
 
   !> local nodes of the face opposite each tet corner
   integer, parameter :: tet_face(3,4) = reshape([2,3,4, 1,4,3, 1,2,4, 1,3,2], [3,4])
@@ -54,7 +54,7 @@ contains
           master = master(:, pack([(e, e = 1, size(master, 2))], &
                                   [(.not. on_symmetry_plane(sym_planes, master(:,e)), e = 1, size(master, 2))]))
           i = i + 1
-          call make_interface(ifc(i), master, unique_nodes(master), sname//'_on_itself')
+          call make_interface(ifc(i), master, unique_nodes(master), master, sname//'_on_itself')
           ifc(i)%self = .true.
           ifc(i)%master_part = eroding_part(m_part)
           ifc(i)%slave_part = eroding_part(s_part)
@@ -62,12 +62,12 @@ contains
         end if
         slave = unique_nodes(tri_all)
         i = i + 1
-        call make_interface(ifc(i), master, slave, sname//'_on_'//mname)
+        call make_interface(ifc(i), master, slave, tri_all, sname//'_on_'//mname)
         ifc(i)%master_part = eroding_part(m_part)
         ifc(i)%slave_part = eroding_part(s_part)
         if (c%symmetric) then
           i = i + 1
-          call make_interface(ifc(i), tri_all, unique_nodes(master), mname//'_on_'//sname)
+          call make_interface(ifc(i), tri_all, unique_nodes(master), master, mname//'_on_'//sname)
           ifc(i)%master_part = eroding_part(s_part)
           ! the two directions are matched together, in one set of passes
           ifc(i)%partner = i - 1
@@ -99,6 +99,7 @@ contains
     cn_of(ct%gidx) = [(k, k = 1, mark_count)]
     do i = 1, n_ifc
       ifc(i)%tri = reshape(cn_of(reshape(ifc(i)%tri, [size(ifc(i)%tri)])), shape(ifc(i)%tri))
+      ifc(i)%slave_tri = reshape(cn_of(reshape(ifc(i)%slave_tri, [size(ifc(i)%slave_tri)])), shape(ifc(i)%slave_tri))
       ifc(i)%slave = cn_of(ifc(i)%slave)
     end do
     ct%n_nodes = mark_count
@@ -128,6 +129,9 @@ contains
     ct%x = glob%nd_x0(:, ct%gidx)
     ct%v = glob%nd_v(:, ct%gidx)
     ct%sym_planes = sym_planes(ct%gidx)
+    do i = 1, n_ifc
+      if (ct%ifc(i)%edges) call contact_edges(ct%ifc(i), ct%x)
+    end do
 
   contains
 
@@ -199,14 +203,16 @@ contains
       face_used = face_used .or. selected
     end subroutine
 
-    subroutine make_interface(it, tri, slave_nodes, label)
+    subroutine make_interface(it, tri, slave_nodes, slave_tri, label)
       type(interface_t), intent(inout) :: it
-      integer, intent(in) :: tri(:,:), slave_nodes(:)
+      integer, intent(in) :: tri(:,:), slave_nodes(:), slave_tri(:,:)
       character(len=*), intent(in) :: label
       integer :: t
       real(rk) :: s
       it%name = label
       it%tri = tri
+      it%slave_tri = slave_tri
+      it%edges = cfg%contacts(k)%edges .and. .not. (to_lower(cfg%contacts(k)%master) == to_lower(cfg%contacts(k)%slave))
       allocate(it%apex(size(tri, 2)), source=0)
       it%slave = slave_nodes
       it%friction = cfg%contacts(k)%friction
@@ -227,6 +233,17 @@ contains
       if (it%tracking) it%skin = 0.5_rk*it%h_mean
       call size_interface_work(it)
     end subroutine
+  end subroutine
+
+  !> The feature edges of an interface's two surfaces at the current
+  !> positions (edge-to-edge contact), and their work arrays.
+  subroutine contact_edges(it, x)
+    type(interface_t), intent(inout) :: it
+    real(rk), intent(in) :: x(:,:)          !< positions of the contact nodes
+    it%edge_m = feature_edges(it%tri, x)
+    it%edge_s = feature_edges(it%slave_tri, x)
+    if (allocated(it%edge_lo)) deallocate(it%edge_lo, it%edge_hi)
+    allocate(it%edge_lo(3, size(it%edge_m, 2)), it%edge_hi(3, size(it%edge_m, 2)))
   end subroutine
 
   !> The tetrahedra of the parts that erode (contact-node indices, ascending

@@ -166,6 +166,7 @@ module udar_deck
        var_t('contact', 'tolerance', 'r', 1, 0, 'm/s', '>= 0'), &
        var_t('contact', 'symmetric', 'l', 1, 0, '', ''), &
        var_t('contact', 'tracking', 'l', 1, 0, '', ''), &
+       var_t('contact', 'edges', 'l', 1, 0, '', ''), &
        var_t('contact', 'weights', 'c', 1, code_len, '', ''), &
        var_t('contact', 'initial_overlap', 'c', 1, code_len, '', ''), &
        var_t('numerics', 'anti_locking', 'l', 1, 0, '', ''), &
@@ -625,7 +626,7 @@ contains
     case ('contact')
       associate(c => v%con)
         call contact_nml(c%master, c%slave, c%friction, c%iterations, c%tolerance, c%symmetric, &
-                         c%tracking, v%weights, v%initial_overlap)
+                         c%tracking, c%edges, v%weights, v%initial_overlap)
       end associate
     case ('numerics')
       call numerics_nml(v%num%anti_locking, v%tet_formulation, v%num%stabilisation, v%num%stabilisation_large, &
@@ -691,13 +692,13 @@ contains
       read(text, nml=boundary, iostat=ios, iomsg=msg)
     end subroutine boundary_nml
 
-    subroutine contact_nml(master, slave, friction, iterations, tolerance, symmetric, tracking, weights, &
+    subroutine contact_nml(master, slave, friction, iterations, tolerance, symmetric, tracking, edges, weights, &
                            initial_overlap)
       character(len=*), intent(inout) :: master, slave, weights, initial_overlap
       real(rk), intent(inout) :: friction, tolerance
       integer, intent(inout) :: iterations
-      logical, intent(inout) :: symmetric, tracking
-      namelist /contact/ master, slave, friction, iterations, tolerance, symmetric, tracking, weights, &
+      logical, intent(inout) :: symmetric, tracking, edges
+      namelist /contact/ master, slave, friction, iterations, tolerance, symmetric, tracking, edges, weights, &
                          initial_overlap
       read(text, nml=contact, iostat=ios, iomsg=msg)
     end subroutine contact_nml
@@ -1111,6 +1112,8 @@ contains
       if (len_trim(c%slave) == 0) call need(ctx, inst, 'slave', .false., what)
       if (len_trim(c%master) > 0 .and. to_lower(c%slave) == to_lower(c%master) .and. c%symmetric) &
            call complain(ctx, inst, 'symmetric', 'has no meaning for self-contact (slave = master): leave it out')
+      if (len_trim(c%master) > 0 .and. to_lower(c%slave) == to_lower(c%master) .and. c%edges) &
+           call complain(ctx, inst, 'edges', 'is not available for self-contact (slave = master) yet: leave it out')
       ok = choice(ctx, inst, 'weights', weights_txt, weights_words, weights_codes, c%weights)
       ok = choice(ctx, inst, 'initial_overlap', overlap_txt, overlap_words, overlap_codes, c%initial_overlap)
       call check_ranges(ctx, inst, cfg_vals(cfg, g_contact, k))
@@ -1509,7 +1512,7 @@ contains
     case (g_contact)
       associate(c => cfg%contacts(k))
         vals = [val_t(c=c%master), val_t(c=c%slave), val(c%friction), val_t(i=c%iterations), &
-                val(c%tolerance), val_t(l=c%symmetric), val_t(l=c%tracking), &
+                val(c%tolerance), val_t(l=c%symmetric), val_t(l=c%tracking), val_t(l=c%edges), &
                 choice_val(c%weights, weights_words, weights_codes), &
                 choice_val(c%initial_overlap, overlap_words, overlap_codes)]
       end associate

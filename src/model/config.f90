@@ -122,6 +122,7 @@ module udar_config
                                                  !< (1e-10 of the first pass's largest change)
     logical  :: symmetric = .false.              !< also a pass with master and slave swapped
     logical  :: tracking = .true.                !< candidate lists kept between full searches (else a full search every cycle)
+    logical  :: edges = .false.                  !< also edge-to-edge contact between the surfaces' feature edges
     integer  :: weights = contact_weights_area       !< shares of the master nodes: area (a moment balance) | distance (paper eq. 12)
     integer  :: initial_overlap = overlap_report     !< slave nodes behind the master at t = 0: report | move
   end type

@@ -9,7 +9,7 @@ module udar_contact_model
   use udar_config, only: contact_weights_area
   implicit none
   private
-  public :: size_interface_work, on_symmetry_plane, self_neighbourhoods
+  public :: size_interface_work, on_symmetry_plane, self_neighbourhoods, feature_edges
 
   !> One direction of an interface: slave nodes against master triangles.
   type, public :: interface_t
@@ -52,6 +52,16 @@ module udar_contact_model
     integer :: sweep_limit_hits = 0        !< cycles that ended their passes at `iterations` unconverged (log)
     ! work arrays of the pass, sized once (no allocation in the cycle)
     real(rk), allocatable :: box_lo(:,:), box_hi(:,:)            !< (3, n_tri) widened bounding boxes
+    ! edge-to-edge contact (&contact edges): the feature edges of the two
+    ! surfaces (contact-node pairs), a grid over the master edges' boxes
+    logical :: edges = .false.
+    integer, allocatable :: slave_tri(:,:)            !< (3, n) the slave surface (its edges)
+    integer, allocatable :: edge_m(:,:), edge_s(:,:)  !< (2, n) master and slave feature edges
+    real(rk), allocatable :: edge_lo(:,:), edge_hi(:,:)   !< (3, master edges) widened boxes
+    type(bucket_grid_t) :: edge_grid
+    integer :: n_edge_contacts = 0         !< edge pairs corrected in the last cycle
+    integer(i8) :: edge_contacts_total = 0 !< the same, summed over the run (log)
+    real(rk) :: edge_max_depth = 0         !< m, deepest edge crossing found in the run (log)
     integer :: n_pass = 0                  !< slave nodes found by the current pass (active(1:n_pass))
     integer, allocatable :: active(:), on_tri(:), slot(:)          !< slave nodes found, their triangles, slave index
     real(rk), allocatable :: normal(:,:), area(:,:), share(:,:)    !< (3, n_slave)
@@ -134,6 +144,106 @@ contains
     end if
     if (.not. allocated(it%cand)) allocate(it%cand(4*size(it%slave) + 1))
   end subroutine
+
+  !> The feature edges of a surface (triangles tri, contact nodes at x):
+  !> every edge of one triangle only (a rim), and every edge of two whose
+  !> faces meet convexly at more than 30 degrees (a body's edge, where a
+  !> crossing edge can pass between the nodes). Each once, as (lower node,
+  !> higher node), ascending.
+  function feature_edges(tri, x) result(edges)
+    integer, intent(in) :: tri(:,:)
+    real(rk), intent(in) :: x(:,:)
+    integer, allocatable :: edges(:,:)
+    integer, allocatable :: key(:,:), order(:)
+    real(rk), allocatable :: nrm(:,:)
+    real(rk), parameter :: cos_limit = 0.866_rk   ! 30 degrees
+    integer :: t, a, m, i, j, n_e, t1, t2, opp
+    logical :: keep
+    m = size(tri, 2)
+    allocate(key(4, 3*m), nrm(3, m))
+    do t = 1, m
+      nrm(:,t) = cross3(x(:,tri(2,t)) - x(:,tri(1,t)), x(:,tri(3,t)) - x(:,tri(1,t)))
+      nrm(:,t) = nrm(:,t)/max(norm2(nrm(:,t)), tiny(1.0_rk))
+      do a = 1, 3
+        i = tri(a,t)
+        j = tri(mod(a,3)+1,t)
+        key(:, 3*(t-1)+a) = [min(i,j), max(i,j), t, tri(mod(a+1,3)+1,t)]   ! edge, its face, the third node
+      end do
+    end do
+    ! sort by (lower, higher) node: insertion sort on an index (surfaces are small)
+    allocate(order(3*m))
+    order = [(i, i = 1, 3*m)]
+    call sort_pairs(key, order)
+    allocate(edges(2, 3*m))
+    n_e = 0
+    i = 1
+    do while (i <= 3*m)
+      j = i
+      do while (j < 3*m)
+        if (any(key(1:2,order(j+1)) /= key(1:2,order(i)))) exit
+        j = j + 1
+      end do
+      keep = j == i                           ! a rim
+      if (j == i + 1) then
+        t1 = key(3,order(i))
+        t2 = key(3,order(j))
+        opp = key(4,order(j))                 ! the other face's third node: behind the first face at a convex edge
+        keep = dot_product(nrm(:,t1), nrm(:,t2)) < cos_limit .and. &
+               dot_product(nrm(:,t1), x(:,opp) - x(:,key(1,order(i)))) < 0.0_rk
+      end if
+      if (keep) then
+        n_e = n_e + 1
+        edges(:,n_e) = key(1:2,order(i))
+      end if
+      i = j + 1
+    end do
+    edges = edges(:, 1:n_e)
+  contains
+    pure function cross3(a, b) result(c)
+      real(rk), intent(in) :: a(3), b(3)
+      real(rk) :: c(3)
+      c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
+    end function
+    !> order sorted by (key(1,:), key(2,:)): a merge sort (n log n).
+    subroutine sort_pairs(key, order)
+      integer, intent(in) :: key(:,:)
+      integer, intent(inout) :: order(:)
+      integer, allocatable :: tmp(:)
+      integer :: width, lo, mid, hi, p, q, r, n
+      n = size(order)
+      allocate(tmp(n))
+      width = 1
+      do while (width < n)
+        lo = 1
+        do while (lo <= n)
+          mid = min(lo + width - 1, n)
+          hi = min(lo + 2*width - 1, n)
+          p = lo; q = mid + 1; r = lo
+          do while (p <= mid .and. q <= hi)
+            if (less(order(q), order(p))) then
+              tmp(r) = order(q); q = q + 1
+            else
+              tmp(r) = order(p); p = p + 1
+            end if
+            r = r + 1
+          end do
+          do while (p <= mid)
+            tmp(r) = order(p); p = p + 1; r = r + 1
+          end do
+          do while (q <= hi)
+            tmp(r) = order(q); q = q + 1; r = r + 1
+          end do
+          lo = hi + 1
+        end do
+        order = tmp
+        width = 2*width
+      end do
+    end subroutine
+    logical function less(u, w)
+      integer, intent(in) :: u, w
+      less = key(1,u) < key(1,w) .or. (key(1,u) == key(1,w) .and. key(2,u) < key(2,w))
+    end function
+  end function
 
   !> Self-contact: for every slave node the contact nodes within two edges
   !> of it along the current surface (it%tri), ascending: the

@@ -454,6 +454,12 @@ contains
           real(ct%ifc(k)%sweeps, rk)/max(ct%ifc(k)%passes, 1), ' sweeps a pass on average; ', &
           ct%ifc(k)%sweep_limit_hits, ' passes ended at iterations = ', ct%ifc(k)%iterations, ' unconverged'
         call log_info(line)
+        if (ct%ifc(k)%edges) then
+          write(line, '(a,i0,a,es10.3,a)') '         contact '//trim(ct%ifc(k)%name)//': ', &
+            ct%ifc(k)%edge_contacts_total, ' edge-to-edge corrections, the deepest crossing ', &
+            ct%ifc(k)%edge_max_depth, ' m'
+          call log_info(line)
+        end if
         if (ct%ifc(k)%deep_passes > 0) then
           write(line, '(a,i0,a,i0,a,es10.3,a,f0.3,a)') '         contact '//trim(ct%ifc(k)%name)//': ', &
             ct%ifc(k)%deep_total, ' slave nodes found inside a master element (deeper than the search margin) in ', &

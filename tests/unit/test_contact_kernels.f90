@@ -7,7 +7,8 @@
 program test_contact_kernels
   use udar_kinds, only: rk
   use udar_config, only: contact_weights_area, contact_weights_distance
-  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, cross
+  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, cross, edge_crossing, &
+                                  tetrahedron_coordinates
   use unit_checks, only: check, check_summary
   implicit none
   integer, parameter :: ns = 4
@@ -47,8 +48,40 @@ program test_contact_kernels
   write(detail, '(a,es9.2,a)') 'friction 0.3: largest velocity difference between the orders ', worst, ' m/s (bound 1e-9)'
   call check('contact_friction_order_independent', worst < 1.0e-9_rk, trim(detail))
   call test_single_correction()
+  call test_edges_and_elements()
   call check_summary()
 contains
+
+  !> Edge against edge and a point in the element under a face, by hand:
+  !> slave edge (-1,0,0.2)-(1,0,0.2) moving at (0,0,-2) for 0.2 s over the
+  !> resting master edge (0,-1,0)-(0,1,0): its end position
+  !> (-1,0,-0.2)-(1,0,-0.2) crosses the master edge at alpha = beta = 1/2
+  !> (g1 = -0.2 along n = +z), where it was 0.2 above it (g0 = 0.2).
+  !> The parallel pair and a pair that closes but does not cross are not
+  !> crossings. The point (0.2, 0.2, -0.3) under the face z = 0 of the
+  !> tetrahedron with fourth corner (0,0,-1): coordinates (0.3, 0.2, 0.2,
+  !> 0.3).
+  subroutine test_edges_and_elements()
+    real(rk) :: alpha, beta, n(3), g0, g1, lam(4), xa(3,3)
+    real(rk), parameter :: z3(3) = 0.0_rk, vdown(3) = [0.0_rk, 0.0_rk, -2.0_rk]
+    logical :: crossed, parallel, missed
+    call edge_crossing([-1.0_rk, 0.0_rk, -0.2_rk], [1.0_rk, 0.0_rk, -0.2_rk], [0.0_rk, -1.0_rk, 0.0_rk], &
+                       [0.0_rk, 1.0_rk, 0.0_rk], vdown, vdown, z3, z3, 0.2_rk, alpha, beta, n, g0, g1, crossed)
+    call check('edge_crossing_by_hand', crossed .and. abs(alpha - 0.5_rk) < 1e-15_rk .and. &
+               abs(beta - 0.5_rk) < 1e-15_rk .and. abs(n(3) - 1.0_rk) < 1e-15_rk .and. &
+               abs(g1 + 0.2_rk) < 1e-15_rk .and. abs(g0 - 0.2_rk) < 1e-15_rk .and. abs(n(1)) + abs(n(2)) == 0.0_rk, &
+               'alpha '//s(alpha)//', beta '//s(beta)//', g0 '//s(g0)//', g1 '//s(g1)//', n_z '//s(n(3)))
+    call edge_crossing([0.0_rk, -1.0_rk, -0.1_rk], [0.0_rk, 1.0_rk, -0.1_rk], [0.0_rk, -1.0_rk, 0.0_rk], &
+                       [0.0_rk, 1.0_rk, 0.0_rk], vdown, vdown, z3, z3, 0.2_rk, alpha, beta, n, g0, g1, parallel)
+    call edge_crossing([-1.0_rk, 0.0_rk, 0.1_rk], [1.0_rk, 0.0_rk, 0.3_rk], [0.0_rk, -1.0_rk, 0.0_rk], &
+                       [0.0_rk, 1.0_rk, 0.0_rk], vdown/10, vdown/10, z3, z3, 0.2_rk, alpha, beta, n, g0, g1, missed)
+    call check('edge_crossing_parallel_and_short_of_it', .not. parallel .and. .not. missed, &
+               'parallel edges and edges 0.04 apart after the step are no crossing')
+    xa = reshape([0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk], [3, 3])
+    call tetrahedron_coordinates(xa, [0.0_rk, 0.0_rk, -1.0_rk], [0.2_rk, 0.2_rk, -0.3_rk], lam)
+    call check('tetrahedron_coordinates_by_hand', maxval(abs(lam - [0.3_rk, 0.2_rk, 0.2_rk, 0.3_rk])) < 1e-15_rk, &
+               'lambda '//s(lam(1))//' '//s(lam(2))//' '//s(lam(3))//' '//s(lam(4)))
+  end subroutine
   !> One slave node against one master triangle, a frictionless push:
   !> momentum is exact with either shares; the angular momentum about the
   !> origin changes by (x_s - sum R_a x_a) x J, which is zero with area
