@@ -6,6 +6,8 @@
 module udar_contact_model
   use udar_kinds, only: rk, i8, max_name_len
   use udar_contact_search, only: bucket_grid_t
+  use udar_ordering, only: stable_sort_permutation
+  use udar_contact_kernels, only: cross
   use udar_config, only: contact_weights_area
   implicit none
   private
@@ -162,7 +164,7 @@ contains
     m = size(tri, 2)
     allocate(key(4, 3*m), nrm(3, m))
     do t = 1, m
-      nrm(:,t) = cross3(x(:,tri(2,t)) - x(:,tri(1,t)), x(:,tri(3,t)) - x(:,tri(1,t)))
+      nrm(:,t) = cross(x(:,tri(2,t)) - x(:,tri(1,t)), x(:,tri(3,t)) - x(:,tri(1,t)))
       nrm(:,t) = nrm(:,t)/max(norm2(nrm(:,t)), tiny(1.0_rk))
       do a = 1, 3
         i = tri(a,t)
@@ -170,10 +172,9 @@ contains
         key(:, 3*(t-1)+a) = [min(i,j), max(i,j), t, tri(mod(a+1,3)+1,t)]   ! edge, its face, the third node
       end do
     end do
-    ! sort by (lower, higher) node: insertion sort on an index (surfaces are small)
+    ! sorted by (lower, higher) node
     allocate(order(3*m))
-    order = [(i, i = 1, 3*m)]
-    call sort_pairs(key, order)
+    call stable_sort_permutation(int(key(1,:), i8)*(maxval(key(2,:)) + 1_i8) + key(2,:), order)
     allocate(edges(2, 3*m))
     n_e = 0
     i = 1
@@ -198,51 +199,6 @@ contains
       i = j + 1
     end do
     edges = edges(:, 1:n_e)
-  contains
-    pure function cross3(a, b) result(c)
-      real(rk), intent(in) :: a(3), b(3)
-      real(rk) :: c(3)
-      c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-    end function
-    !> order sorted by (key(1,:), key(2,:)): a merge sort (n log n).
-    subroutine sort_pairs(key, order)
-      integer, intent(in) :: key(:,:)
-      integer, intent(inout) :: order(:)
-      integer, allocatable :: tmp(:)
-      integer :: width, lo, mid, hi, p, q, r, n
-      n = size(order)
-      allocate(tmp(n))
-      width = 1
-      do while (width < n)
-        lo = 1
-        do while (lo <= n)
-          mid = min(lo + width - 1, n)
-          hi = min(lo + 2*width - 1, n)
-          p = lo; q = mid + 1; r = lo
-          do while (p <= mid .and. q <= hi)
-            if (less(order(q), order(p))) then
-              tmp(r) = order(q); q = q + 1
-            else
-              tmp(r) = order(p); p = p + 1
-            end if
-            r = r + 1
-          end do
-          do while (p <= mid)
-            tmp(r) = order(p); p = p + 1; r = r + 1
-          end do
-          do while (q <= hi)
-            tmp(r) = order(q); q = q + 1; r = r + 1
-          end do
-          lo = hi + 1
-        end do
-        order = tmp
-        width = 2*width
-      end do
-    end subroutine
-    logical function less(u, w)
-      integer, intent(in) :: u, w
-      less = key(1,u) < key(1,w) .or. (key(1,u) == key(1,w) .and. key(2,u) < key(2,w))
-    end function
   end function
 
   !> Self-contact: for every slave node the contact nodes within two edges

@@ -15,16 +15,11 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', 'tools'))
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'rod_3kms'))
 import checks  # noqa: E402
 import udar_results  # noqa: E402
-from check_geometry import deepest_inside  # noqa: E402
+from check_geometry import deepest_inside, slave_and_master  # noqa: E402
 
 out = os.path.join(sys.argv[1], 'out')
 with h5py.File(os.path.join(out, 'deep_node.h5'), 'r') as f:
-    part = f['mesh/part_id'][...]
-    conn = f['mesh/connectivity'][...]
-    rod = np.unique(conn[part == 2])
-    plate = part == 1
-    x0 = f['mesh/x0'][...]
-    h = np.median(np.linalg.norm(x0[conn[plate, 1]] - x0[conn[plate, 0]], axis=1))
+    conn, x0, rod, plate, h = slave_and_master(f, 2, 1)
     depth = []
     for k in sorted(f['steps'].keys()):
         g = f['steps'][k]

@@ -20,16 +20,11 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', 'tools'))
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'rod_3kms'))
 import checks  # noqa: E402
 import udar_results  # noqa: E402
-from check_geometry import deepest_inside  # noqa: E402
+from check_geometry import deepest_inside, slave_and_master  # noqa: E402
 
 out = os.path.join(sys.argv[1], 'out')
 with h5py.File(os.path.join(out, 'penetration.h5'), 'r') as f:
-    part = f['mesh/part_id'][...]
-    conn = f['mesh/connectivity'][...]
-    rod_nodes = np.unique(conn[part == 1])
-    x0 = f['mesh/x0'][...]
-    plate = part == 2
-    h_plate = np.median(np.linalg.norm(x0[conn[plate, 1]] - x0[conn[plate, 0]], axis=1))
+    conn, x0, rod_nodes, plate, h_plate = slave_and_master(f, 1, 2)
     # lumped masses as udar forms them: a quarter of rho0 V0 of each element at each node
     a, b, c, d = (x0[conn[:, k]] for k in range(4))
     vol0 = np.abs(np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a))) / 6.0

@@ -23,3 +23,14 @@ def deepest_inside(points, x, tets):
         depth = bary.min(axis=1) * h_min[near]
         worst = max(worst, depth.max())
     return worst
+
+
+def slave_and_master(f, slave_part, master_part):
+    """From an open field file: connectivity, x0, the slave part's nodes,
+    the master part's element mask and its median edge length (h)."""
+    part = f['mesh/part_id'][...]
+    conn = f['mesh/connectivity'][...]
+    x0 = f['mesh/x0'][...]
+    master = part == master_part
+    h = np.median(np.linalg.norm(x0[conn[master, 1]] - x0[conn[master, 0]], axis=1))
+    return conn, x0, np.unique(conn[part == slave_part]), master, h
