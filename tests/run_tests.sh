@@ -85,6 +85,7 @@ run_test "cli/ranks_blocks_head_on" tests/cli/rank_invariance.sh bin/udar blocks
 run_test "cli/ranks_spall" tests/cli/rank_invariance.sh bin/udar spall
 run_test "cli/ranks_penetration" tests/cli/rank_invariance.sh bin/udar penetration 2.5e-6
 run_test "cli/ranks_self_contact" tests/cli/rank_invariance.sh bin/udar self_contact
+run_test "cli/ranks_crossed_edges" tests/cli/rank_invariance.sh bin/udar crossed_edges 8.0e-6
 run_test "cli/restart_erosion" tests/cli/restart_erosion.sh bin/udar
 run_test "cli/restart_erosion_anti_locking" tests/cli/restart_erosion.sh bin/udar anti_locking
 run_test "cli/restart_erosion_stabilised" tests/cli/restart_erosion.sh bin/udar stabilised
