@@ -103,7 +103,7 @@ $(BDIR)/tests/unit_domains.o: tests/unit/support/unit_domains.f90 $(OBJ)
 
 $(BDIR)/tests/%: tests/unit/%.f90 $(OBJ) $(TEST_SUPPORT)
 	@mkdir -p $(dir $@)
-	$(FC) $(FFLAGS) -I$(BDIR)/mod -I$(BDIR)/tests $< $(OBJ) $(TEST_SUPPORT) $(LIBS) -o $@
+	$(FC) $(FFLAGS) -I$(BDIR)/mod -I$(BDIR)/tests -J$(BDIR)/tests $< $(OBJ) $(TEST_SUPPORT) $(LIBS) -o $@
 
 # ---- meshes: gmsh .geo -> .msh beside it
 GEO := $(wildcard input/*/*.geo tests/regression/*/*.geo)
