@@ -89,6 +89,7 @@ run_test "cli/ranks_crossed_edges" tests/cli/rank_invariance.sh bin/udar crossed
 run_test "cli/restart_erosion" tests/cli/restart_erosion.sh bin/udar
 run_test "cli/restart_erosion_anti_locking" tests/cli/restart_erosion.sh bin/udar anti_locking
 run_test "cli/restart_erosion_stabilised" tests/cli/restart_erosion.sh bin/udar stabilised
+run_test "cli/restart_erosion_edges" tests/cli/restart_erosion.sh bin/udar edges
 run_test "cli/tracking_rod_3kms" tests/cli/tracking.sh bin/udar rod_3kms 0.6e-6
 run_test "cli/tracking_oblique_friction" tests/cli/tracking.sh bin/udar oblique_friction
 run_test "cli/contact_mirrored" tests/cli/contact_mirrored.sh bin/udar

@@ -119,7 +119,7 @@ contains
           if (it%edges) then
             ! new edges appear as elements erode
             if (it%slave_part > 0) it%slave_tri = faces(:, pack([(i, i = 1, n)], face_part == it%slave_part))
-            call contact_edges(it, ct%x)
+            call contact_edges(it, ct%x0)
           end if
         end if
         call size_interface_work(it)

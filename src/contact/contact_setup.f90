@@ -127,10 +127,11 @@ contains
     allocate(ct%x(3, ct%n_nodes), ct%v(3, ct%n_nodes))
     allocate(ct%h(ct%n_nodes), source=huge(1.0_rk))
     ct%x = glob%nd_x0(:, ct%gidx)
+    ct%x0 = ct%x
     ct%v = glob%nd_v(:, ct%gidx)
     ct%sym_planes = sym_planes(ct%gidx)
     do i = 1, n_ifc
-      if (ct%ifc(i)%edges) call contact_edges(ct%ifc(i), ct%x)
+      if (ct%ifc(i)%edges) call contact_edges(ct%ifc(i), ct%x0)
     end do
 
   contains
@@ -235,11 +236,12 @@ contains
     end subroutine
   end subroutine
 
-  !> The feature edges of an interface's two surfaces at the current
-  !> positions (edge-to-edge contact), and their work arrays.
+  !> The feature edges of an interface's two surfaces, judged on the
+  !> initial positions x (so a restart finds the same ones as the straight
+  !> run), and their work arrays (edge-to-edge contact).
   subroutine contact_edges(it, x)
     type(interface_t), intent(inout) :: it
-    real(rk), intent(in) :: x(:,:)          !< positions of the contact nodes
+    real(rk), intent(in) :: x(:,:)          !< initial positions of the contact nodes
     it%edge_m = feature_edges(it%tri, x)
     it%edge_s = feature_edges(it%slave_tri, x)
     if (allocated(it%edge_lo)) deallocate(it%edge_lo, it%edge_hi)

@@ -87,6 +87,7 @@ module udar_contact_model
     integer :: n_nodes = 0                 !< contact nodes: every master-triangle node and slave node
     integer, allocatable :: gidx(:)        !< their global node indices, ascending
     real(rk), allocatable :: x(:,:), v(:,:), m(:)   !< (3,n), (3,n), (n): gathered state, masses
+    real(rk), allocatable :: x0(:,:)       !< (3,n) m, initial positions (the feature edges are judged on them)
     real(rk), allocatable :: h(:)     !< m, smallest altitude of each contact node's elements (bounds its returns)
     integer, allocatable :: sym_planes(:)   !< bit p set: the node lies on symmetry plane p
     integer, allocatable :: faces(:,:)     !< (3, n_faces) every face of a contact surface once

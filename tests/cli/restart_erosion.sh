@@ -2,11 +2,12 @@
 # Restart with fracture, erosion and eroding contact: the penetration deck
 # run to 2.5 us with a checkpoint at 1.5 us, then restarted from it on 2
 # ranks, gives bitwise the history and fields of the straight run.
-#   restart_erosion.sh EXE [anti_locking | stabilised]
+#   restart_erosion.sh EXE [anti_locking | stabilised | edges]
 # With anti_locking the deck runs with the nodal-averaged pressure, whose
 # reference volumes are rebased at erosion and carried by the checkpoint;
 # stabilised: the stabilised nodal element (theory.md 8.1), whose element
-# share of the nodal pressure is recomputed every cycle, not checkpointed.
+# share of the nodal pressure is recomputed every cycle, not checkpointed;
+# edges: edge-to-edge contact, whose feature edges erosion changes.
 source "$(dirname "$0")/common.sh" "$1"
 case=penetration
 cp "$ROOT/tests/regression/$case/$case.msh" "$ROOT/tests/regression/$case/$case.nml" "$W/"
@@ -19,6 +20,10 @@ if [ "${2:-}" = anti_locking ]; then
 elif [ "${2:-}" = stabilised ]; then
   sed -i "s/anti_locking = .false./tet_formulation = 'stabilised', stabilisation = 0.1/" "$W/$case.nml"
   grep -q "tet_formulation = 'stabilised'" "$W/$case.nml" || { bad "deck_has_stabilised"; exit 1; }
+elif [ "${2:-}" = edges ]; then
+  # edge-to-edge contact: the new edges that erosion exposes are the same after a restart
+  sed -i "s|&contact master = 'plate', slave = 'rod' /|\&contact master = 'plate', slave = 'rod', edges = .true. /|" "$W/$case.nml"
+  grep -q "edges = .true." "$W/$case.nml" || { bad "deck_has_edges"; exit 1; }
 fi
 (cd "$W" && timeout 600 "$EXE" $case.nml > straight.log 2>&1) || { cat "$W/straight.log"; bad "straight run"; exit 1; }
 mkdir -p "$W/straight" && cp "$W/out/${case}_history.csv" "$W/out/$case.h5" "$W/straight/"
