@@ -208,11 +208,11 @@ contains
             ct%x(:,nodes(a)) = ct%x(:,nodes(a)) + dt*dv
           end do
           it%normal_impulse = it%normal_impulse + j
-          it%master_impulse = it%master_impulse - (w(1) + w(2))*j*n
+          it%master_impulse = it%master_impulse - j*n      ! the master side's weights sum to -1
           g1 = g1 - dt*u
         end if
         if (g1 < 0.0_rk) then
-          room = return_fraction*min(ct%h(nodes(1)), ct%h(nodes(2)))
+          room = return_room(min(ct%h(nodes(1)), ct%h(nodes(2))))
           ct%x(:,nodes(1)) = ct%x(:,nodes(1)) + min(-g1, room)*n
           ct%x(:,nodes(2)) = ct%x(:,nodes(2)) + min(-g1, room)*n
         end if
@@ -220,6 +220,15 @@ contains
     end do
     it%edge_contacts_total = it%edge_contacts_total + it%n_edge_contacts
   end subroutine
+
+  !> How far a node whose elements' smallest altitude is h may be returned
+  !> to the surface in one pass (unbounded before the first cycle, h huge:
+  !> initial overlaps).
+  pure real(rk) function return_room(h)
+    real(rk), intent(in) :: h
+    return_room = huge(1.0_rk)
+    if (h < huge(1.0_rk)) return_room = return_fraction*h
+  end function
 
   !> Velocity matching with friction of the slave nodes interfaces first..last
   !> found (projected Gauss-Seidel), repeated until a pass changes nothing
@@ -437,11 +446,7 @@ contains
     !> How far slave node ps may be returned in this pass.
     real(rk) function allowance(ps)
       integer, intent(in) :: ps
-      if (ct%h(ps) >= huge(1.0_rk)) then
-        allowance = huge(1.0_rk)           ! before the first cycle: initial overlaps
-      else
-        allowance = return_fraction*ct%h(ps)
-      end if
+      allowance = return_room(ct%h(ps))
     end function
 
     !> Moves slave node ps by u, or as far along u as room allows; room
