@@ -110,6 +110,8 @@ run_test "regression/plate_impact" regression plate_impact bin/udar-debug
 run_test "regression/coulomb_wall" regression coulomb_wall bin/udar-debug
 run_test "regression/blocks_head_on" regression blocks_head_on bin/udar-debug
 run_test "regression/blocks_head_on_symmetric" regression blocks_head_on bin/udar-debug blocks_head_on_symmetric
+run_test "regression/oblique_free" regression oblique_free bin/udar-debug
+run_test "regression/oblique_free_distance_fails" regression_fails oblique_free bin/udar-debug oblique_free_distance angular_momentum_relative
 run_test "regression/oblique_friction" regression oblique_friction bin/udar-debug
 run_test "regression/oblique_stick" regression oblique_friction bin/udar-debug oblique_stick
 run_test "regression/rod_3kms" regression rod_3kms bin/udar

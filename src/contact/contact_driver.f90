@@ -11,7 +11,7 @@ module udar_contact
   use udar_domain, only: domain_t
   use udar_contact_model, only: contact_t, interface_t
   use udar_contact_search, only: grid_build, grid_cell, ensure
-  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, &
+  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_shares, &
                                   edge_crossing
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real
   implicit none
@@ -160,7 +160,7 @@ contains
     type(contact_t), intent(inout) :: ct
     type(interface_t), intent(inout) :: it
     real(rk), intent(in) :: dt, margin
-    real(rk) :: reach, mid(3), alpha, beta, n(3), g0, g1, w(4), wm, u, j, room, dv(3)
+    real(rk) :: reach, mid(3), alpha, beta, n(3), g0, g1, w(4), w0(4), wm, u, j, room, dv(3)
     integer :: nm, e, f, s, c, nodes(4), a
     logical :: crossed
     it%n_edge_contacts = 0
@@ -195,15 +195,20 @@ contains
         if (.not. crossed) cycle
         it%n_edge_contacts = it%n_edge_contacts + 1
         it%edge_max_depth = max(it%edge_max_depth, -g1)
-        ! signed weights: the slave edge's closest point moves along +n, the master's along -n
+        ! signed weights: the slave edge's closest point moves along +n, the
+        ! master's along -n; the approach u measured at the end's closest
+        ! points, the impulse shared by the start's (edge_shares)
         w = [1.0_rk - alpha, alpha, -(1.0_rk - beta), -beta]
         u = dot_product(n, w(1)*ct%v(:,nodes(1)) + w(2)*ct%v(:,nodes(2)) + w(3)*ct%v(:,nodes(3)) &
                            + w(4)*ct%v(:,nodes(4)))
         if (u < 0.0_rk) then
-          wm = sum(w**2/ct%m(nodes))
+          call edge_shares(ct%x(:,nodes(1)) - dt*ct%v(:,nodes(1)), ct%x(:,nodes(2)) - dt*ct%v(:,nodes(2)), &
+                           ct%x(:,nodes(3)) - dt*ct%v(:,nodes(3)), ct%x(:,nodes(4)) - dt*ct%v(:,nodes(4)), &
+                           n, alpha, beta, w0)
+          wm = sum(w*w0/ct%m(nodes))
           j = -u/wm
           do a = 1, 4
-            dv = (w(a)*j/ct%m(nodes(a)))*n
+            dv = (w0(a)*j/ct%m(nodes(a)))*n
             ct%v(:,nodes(a)) = ct%v(:,nodes(a)) + dv
             ct%x(:,nodes(a)) = ct%x(:,nodes(a)) + dt*dv
           end do
@@ -301,7 +306,7 @@ contains
     integer, intent(in) :: stage             !< stage_search, stage_finish or stage_both
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
-    real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), vm(3,3)
+    real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), vm(3,3), xa0(3,3)
     integer :: nt, t, k, ps, best, iter, a, pa
     logical :: separating
     real(rk) :: room
@@ -364,7 +369,12 @@ contains
       it%normal(:,n_found) = best_n
       it%area(:,n_found) = best_g
       xa = ct%x(:, it%tri(:,best))
-      call master_shares(it%weights, xa, ct%x(:,ps), best_g, it%share(:,n_found))
+      ! where the nodes were at the start of the step (dt = 0: where they are)
+      do a = 1, 3
+        xa0(:,a) = xa(:,a) - dt*ct%v(:,it%tri(a,best))
+      end do
+      call master_shares(it%weights, xa, ct%x(:,ps), best_g, best_n, xa0, ct%x(:,ps) - dt*ct%v(:,ps), &
+                         it%share(:,n_found))
     end do
     if (dt > 0.0_rk) then
       it%n_active = n_found

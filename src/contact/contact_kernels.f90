@@ -4,9 +4,10 @@
 module udar_contact_kernels
   use udar_kinds, only: rk
   use udar_config, only: contact_weights_distance
+  use udar_vectors, only: cross
   implicit none
   private
-  public :: triangle_projection, master_shares, match_velocities, cross, tetrahedron_coordinates, edge_crossing
+  public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_crossing, edge_shares
 
 contains
 
@@ -52,15 +53,23 @@ contains
     six_volume = dot_product(b - a, cross(c - a, d - a))
   end function
 
-  !> Shares R of the slave node's momentum for the three master nodes:
-  !> inversely proportional to the distances r_a = |xs - x_a| (eqs. 6-12:
-  !> R_i = 1/(1 + r_i/r_j + r_i/r_k), a node at r = 0 takes all), or the
-  !> area coordinates g (weights = area). Sum R = 1.
-  pure subroutine master_shares(weights, xa, xs, g, r_share)
+  !> Shares R of the slave node's momentum for the three master nodes
+  !> (sum R = 1): inversely proportional to the distances r_a = |xs - x_a|
+  !> (weights = distance: eqs. 6-12, R_i = 1/(1 + r_i/r_j + r_i/r_k), a node
+  !> at r = 0 takes all), or (weights = area) the area coordinates of the
+  !> slave node's position at the start of the step, xs0, projected along
+  !> the contact normal n onto the triangle's plane at the start, xa0. The
+  !> correction then exerts no moment about the start positions, which is
+  !> what keeps the leapfrog's angular momentum sum m x(n) x v(n+1/2)
+  !> exact (theory.md 11); with xs0 = xs, xa0 = xa (no motion) they are the
+  !> area coordinates g of the projection. Where the triangle turned so far
+  !> over the step that its start plane is within 60 degrees of containing n,
+  !> g.
+  pure subroutine master_shares(weights, xa, xs, g, n, xa0, xs0, r_share)
     integer, intent(in) :: weights
-    real(rk), intent(in) :: xa(3,3), xs(3), g(3)
+    real(rk), intent(in) :: xa(3,3), xs(3), g(3), n(3), xa0(3,3), xs0(3)
     real(rk), intent(out) :: r_share(3)
-    real(rk) :: r(3)
+    real(rk) :: r(3), e1(3), e2(3), c(3), det
     integer :: a
     if (weights == contact_weights_distance) then
       do a = 1, 3
@@ -75,8 +84,19 @@ contains
         r_share = r_share/sum(r_share)
       end if
     else
-      r_share = max(g, 0.0_rk)
-      r_share = r_share/sum(r_share)
+      ! xs0 - sum_a R_a xa0 = alpha n with R_3 = 1 - R_1 - R_2 (Cramer's rule)
+      e1 = xa0(:,1) - xa0(:,3)
+      e2 = xa0(:,2) - xa0(:,3)
+      r = xs0 - xa0(:,3)
+      c = cross(e2, n)
+      det = dot_product(e1, c)
+      if (abs(det) < 0.5_rk*norm2(cross(e1, e2))) then
+        r_share = g
+      else
+        r_share(1) = dot_product(r, c)/det
+        r_share(2) = dot_product(e1, cross(r, n))/det
+        r_share(3) = 1.0_rk - r_share(1) - r_share(2)
+      end if
     end if
   end subroutine
 
@@ -177,10 +197,30 @@ contains
     crossed = g1 < 0.0_rk
   end subroutine
 
-  !> a x b.
-  pure function cross(a, b) result(c)
-    real(rk), intent(in) :: a(3), b(3)
-    real(rk) :: c(3)
-    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-  end function
+  !> Shares w of an edge-to-edge impulse J n among the slave edge's nodes
+  !> p, q (w(1:2), sum 1) and the master edge's a, b (w(3:4), sum -1): the
+  !> points at alpha' along p-q and beta' along a-b whose join at the start
+  !> of the step (positions x0) is parallel to n, so that the impulse exerts
+  !> no moment about the start positions (as master_shares for a node);
+  !> alpha, beta (the closest points at the end) where the edges turned so
+  !> far that the start edges are within 60 degrees of a plane holding n.
+  pure subroutine edge_shares(xp0, xq0, xa0, xb0, n, alpha, beta, w)
+    real(rk), intent(in) :: xp0(3), xq0(3), xa0(3), xb0(3), n(3), alpha, beta
+    real(rk), intent(out) :: w(4)
+    real(rk) :: d1(3), d2(3), r(3), c(3), det, a0, b0
+    ! p0 + a0 d1 - (a0 + b0 d2) = gamma n  <=>  a0 d1 - b0 d2 - gamma n = a0 - p0
+    d1 = xq0 - xp0
+    d2 = xb0 - xa0
+    r = xa0 - xp0
+    c = cross(d2, n)
+    det = dot_product(d1, c)
+    a0 = alpha
+    b0 = beta
+    if (abs(det) >= 0.5_rk*norm2(cross(d1, d2))) then
+      a0 = dot_product(r, c)/det
+      b0 = -dot_product(d1, cross(r, n))/det
+    end if
+    w = [1.0_rk - a0, a0, -(1.0_rk - b0), -b0]
+  end subroutine
+
 end module udar_contact_kernels

@@ -7,7 +7,7 @@ module udar_contact_model
   use udar_kinds, only: rk, i8, max_name_len
   use udar_contact_search, only: bucket_grid_t
   use udar_ordering, only: stable_sort_permutation
-  use udar_contact_kernels, only: cross
+  use udar_vectors, only: cross
   use udar_config, only: contact_weights_area
   implicit none
   private

@@ -11,6 +11,7 @@ module udar_run
   use udar_config, only: config_t
   use udar_domain, only: domain_t
   use udar_kinds, only: i8
+  use udar_vectors, only: cross
   use udar_comms, only: comms_barrier, comms_wtime, comms_size, comms_min, comms_max, comms_min_int, comms_max_int, comms_is_root, &
       comms_sum_int, comms_allgather_count, comms_allgatherv_int, &
       comms_sum_exact, halo_t, comms_halo_exchange, comms_halo_exchange_scalar
@@ -46,6 +47,7 @@ module udar_run
   !> history columns of each contact interface: normal and friction force,
   !> largest slip, deep slave nodes found, the force on the master side
   integer, parameter :: per_interface = 7
+  integer, parameter :: n_base = 16          !< history columns before the parts'
 
   !> What a finished run reports back (for the summary and the caller).
   type :: run_result_t
@@ -61,6 +63,7 @@ module udar_run
     real(rk) :: kinetic = 0, internal = 0, plastic = 0, wall_work = 0, total = 0, error = 0
     real(rk) :: contact_work = 0             !< J, work of the contact impulses (dissipation: negative)
     real(rk) :: momentum(3) = 0, wall_force = 0
+    real(rk) :: angular_momentum(3) = 0      !< kg m2/s, sum m x x v about the centre of mass
     real(rk) :: eroded_energy = 0            !< J, internal energy of the eroded elements (in total)
     integer :: n_fractured = 0, n_eroded = 0 !< elements fractured (eroded ones included), eroded
     real(rk), allocatable :: contact_normal(:), contact_friction(:)   !< N, per interface
@@ -842,20 +845,21 @@ contains
     type(contact_t), intent(in) :: ct
     character(len=80), allocatable :: cols(:)
     integer :: ip, nc
-    character(len=80) :: base(13) = [character(len=80) :: 'time', 'cycle', 'dt', 'kinetic', 'internal', &
-      'plastic_work', 'wall_work', 'total', 'energy_error', 'momentum_x', 'momentum_y', 'momentum_z', 'wall_force']
+    character(len=80) :: base(n_base) = [character(len=80) :: 'time', 'cycle', 'dt', 'kinetic', 'internal', &
+      'plastic_work', 'wall_work', 'total', 'energy_error', 'momentum_x', 'momentum_y', 'momentum_z', 'wall_force', &
+      'angular_momentum_x', 'angular_momentum_y', 'angular_momentum_z']
     nc = per_interface*ct%n_interfaces + merge(1, 0, ct%n_interfaces > 0)
-    allocate(cols(13 + 4*dom%n_parts + nc + merge(4, 0, any_fracture(dom))))
+    allocate(cols(n_base + 4*dom%n_parts + nc + merge(4, 0, any_fracture(dom))))
     if (any_fracture(dom)) cols(size(cols)-3:) = [character(len=80) :: 'fractured', 'eroded', 'eroded_energy', 'mass']
-    cols(1:13) = base
+    cols(1:n_base) = base
     do ip = 1, dom%n_parts
-      cols(13 + 4*ip - 3) = 'ke_'//trim(dom%part_name(ip))
-      cols(13 + 4*ip - 2) = 'com_x_'//trim(dom%part_name(ip))
-      cols(13 + 4*ip - 1) = 'com_y_'//trim(dom%part_name(ip))
-      cols(13 + 4*ip) = 'com_z_'//trim(dom%part_name(ip))
+      cols(n_base + 4*ip - 3) = 'ke_'//trim(dom%part_name(ip))
+      cols(n_base + 4*ip - 2) = 'com_x_'//trim(dom%part_name(ip))
+      cols(n_base + 4*ip - 1) = 'com_y_'//trim(dom%part_name(ip))
+      cols(n_base + 4*ip) = 'com_z_'//trim(dom%part_name(ip))
     end do
     if (nc == 0) return
-    ip = 13 + 4*dom%n_parts
+    ip = n_base + 4*dom%n_parts
     do nc = 1, ct%n_interfaces
       cols(ip + per_interface*(nc-1) + 1:ip + per_interface*nc) = [character(len=80) :: &
         'contact_normal_'//trim(ct%ifc(nc)%name), 'contact_friction_'//trim(ct%ifc(nc)%name), &
@@ -876,20 +880,20 @@ contains
     character(len=:), allocatable, intent(out) :: errmsg
     integer :: ip, np
     np = size(bal%part_ke)
-    row(1:13) = [t, real(cycle, rk), dt, bal%kinetic, bal%internal, bal%plastic, bal%wall_work, bal%total, &
-                 bal%error, bal%momentum, bal%wall_force]
+    row(1:n_base) = [t, real(cycle, rk), dt, bal%kinetic, bal%internal, bal%plastic, bal%wall_work, bal%total, &
+                     bal%error, bal%momentum, bal%wall_force, bal%angular_momentum]
     do ip = 1, np
-      row(13 + 4*ip - 3) = bal%part_ke(ip)
-      row(13 + 4*ip - 2:13 + 4*ip) = bal%part_com(ip,:)
+      row(n_base + 4*ip - 3) = bal%part_ke(ip)
+      row(n_base + 4*ip - 2:n_base + 4*ip) = bal%part_com(ip,:)
     end do
-    if (size(row) > 13 + 4*np + per_interface*size(bal%contact_normal) + merge(1, 0, size(bal%contact_normal) > 0)) &
+    if (size(row) > n_base + 4*np + per_interface*size(bal%contact_normal) + merge(1, 0, size(bal%contact_normal) > 0)) &
       row(size(row)-3:) = [real(bal%n_fractured, rk), real(bal%n_eroded, rk), bal%eroded_energy, sum(bal%part_mass)]
     do ip = 1, size(bal%contact_normal)
-      row(13 + 4*np + per_interface*(ip-1) + 1:13 + 4*np + per_interface*ip) = &
+      row(n_base + 4*np + per_interface*(ip-1) + 1:n_base + 4*np + per_interface*ip) = &
         [bal%contact_normal(ip), bal%contact_friction(ip), bal%contact_slip(ip), bal%contact_deep(ip), &
          bal%contact_force(:,ip)]
     end do
-    if (size(bal%contact_normal) > 0) row(14 + 4*np + per_interface*size(bal%contact_normal)) = bal%contact_work
+    if (size(bal%contact_normal) > 0) row(n_base + 1 + 4*np + per_interface*size(bal%contact_normal)) = bal%contact_work
     call history_write(hist, row, ok, errmsg)
   end subroutine
 
@@ -901,9 +905,9 @@ contains
     type(contact_t), intent(in) :: ct
     type(balance_t), intent(inout) :: bal
     integer, parameter :: c_kin = 1, c_int = 2, c_pla = 3, c_mom = 4, c_work = 7, c_ero = 8, c_cwork = 9, &
-                          c_wall = 10
+                          c_ang = 10, c_mx = 13, c_m = 16, c_wall = 17
     integer :: n, e, ip, i, np, nw, c_part, n_frac, n_ero
-    real(rk) :: ke
+    real(rk) :: ke, mx(3), p(3), lo(3)
     np = dom%n_parts
     nw = size(dom%walls)
     c_part = c_wall + nw            ! per part: ke, com x/y/z (mass moments), mass
@@ -915,11 +919,15 @@ contains
       ip = c_part + 5*(dom%nd_part(n) - 1)
       call exact_add(bal%acc(:,c_kin), ke)
       call exact_add(bal%acc(:,ip), ke)
+      lo = dom%nd_mass(n)*cross(dom%nd_x(:,n), dom%nd_v(:,n))
       do i = 1, 3
         call exact_add(bal%acc(:,c_mom+i-1), dom%nd_mass(n)*dom%nd_v(i,n))
         call exact_add(bal%acc(:,ip+i), dom%nd_mass(n)*dom%nd_x(i,n))
+        call exact_add(bal%acc(:,c_mx+i-1), dom%nd_mass(n)*dom%nd_x(i,n))
+        call exact_add(bal%acc(:,c_ang+i-1), lo(i))
       end do
       call exact_add(bal%acc(:,ip+4), dom%nd_mass(n))
+      call exact_add(bal%acc(:,c_m), dom%nd_mass(n))
     end do
     n_frac = 0
     n_ero = 0
@@ -947,7 +955,13 @@ contains
     bal%plastic = exact_value(bal%acc(:,c_pla))
     do i = 1, 3
       bal%momentum(i) = exact_value(bal%acc(:,c_mom+i-1))
+      lo(i) = exact_value(bal%acc(:,c_ang+i-1))
+      mx(i) = exact_value(bal%acc(:,c_mx+i-1))
     end do
+    ! about the centre of mass X = sum m x / M: sum m (x - X) x v = sum m x x v - X x P
+    p = bal%momentum
+    bal%angular_momentum = lo
+    if (exact_value(bal%acc(:,c_m)) > 0.0_rk) bal%angular_momentum = lo - cross(mx, p)/exact_value(bal%acc(:,c_m))
     bal%wall_work = exact_value(bal%acc(:,c_work))
     bal%eroded_energy = exact_value(bal%acc(:,c_ero))
     bal%contact_work = exact_value(bal%acc(:,c_cwork))

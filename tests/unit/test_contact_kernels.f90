@@ -7,7 +7,8 @@
 program test_contact_kernels
   use udar_kinds, only: rk
   use udar_config, only: contact_weights_area, contact_weights_distance
-  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, cross, edge_crossing, &
+  use udar_vectors, only: cross
+  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, edge_crossing, edge_shares, &
                                   tetrahedron_coordinates
   use unit_checks, only: check, check_summary
   implicit none
@@ -48,6 +49,8 @@ program test_contact_kernels
   write(detail, '(a,es9.2,a)') 'friction 0.3: largest velocity difference between the orders ', worst, ' m/s (bound 1e-9)'
   call check('contact_friction_order_independent', worst < 1.0e-9_rk, trim(detail))
   call test_single_correction()
+  call test_moving_correction()
+  call test_moving_edges()
   call test_edges_and_elements()
   call check_summary()
 contains
@@ -103,7 +106,7 @@ contains
     call triangle_projection(xa, xs, n, dist, g)
     vm = 0.0_rk
     do w = 1, 2
-      call master_shares(merge(contact_weights_area, contact_weights_distance, w == 1), xa, xs, g, share)
+      call master_shares(merge(contact_weights_area, contact_weights_distance, w == 1), xa, xs, g, n, xa, xs, share)
       call match_velocities(n, ms, -2.0_rk*n, mm, vm, g, share, 0.0_rk, 0.0_rk, [0.0_rk, 0.0_rk, 0.0_rk], &
                             dvs, dvm, acted, dn, dtv)
       dl = ms*cross(xs, dvs)
@@ -124,12 +127,85 @@ contains
     ! a contact at the midpoint of edge 1-2: area shares 1/2, 1/2, 0
     xs = 0.5_rk*(xa(:,1) + xa(:,2)) - 1.0e-3_rk*n
     call triangle_projection(xa, xs, n, dist, g)
-    call master_shares(contact_weights_area, xa, xs, g, share)
+    call master_shares(contact_weights_area, xa, xs, g, n, xa, xs, share)
     call check('edge_midpoint_area_shares', abs(share(3)) < 1.0e-12_rk .and. abs(share(1) - 0.5_rk) < 1.0e-12_rk, &
                'opposite node '//s(share(3))//', edge nodes '//s(share(1))//' '//s(share(2)))
-    call master_shares(contact_weights_distance, xa, xs, g, share)
+    call master_shares(contact_weights_distance, xa, xs, g, n, xa, xs, share)
     call check('edge_midpoint_distance_shares', share(3) > 0.1_rk, &
                'the paper''s shares give the opposite node '//s(share(3)))
+  end subroutine
+
+  !> The same push over a step dt in which the nodes move (the slave node
+  !> sliding 40 m/s across a turning triangle): the leapfrog conserves
+  !> sum m x(n) x v(n+1/2), so a correction must exert no moment about
+  !> the positions at the start of the step, x - dt v. The area shares of
+  !> the start position projected along n do; the area coordinates at the
+  !> end of the step (0.5.3) do not.
+  subroutine test_moving_correction()
+    real(rk) :: xa(3,3), xs(3), va(3,3), vs(3), xa0(3,3), xs0(3), n(3), dist, g(3), share(3), dvs(3), dvm(3,3)
+    real(rk) :: dn, dtv(3), dl(3), moment(2), sum_w
+    real(rk), parameter :: ms = 0.7_rk, mm(3) = [1.3_rk, 0.6_rk, 2.1_rk], dt = 2.0e-4_rk
+    logical :: acted
+    integer :: w, a
+    xa = reshape([0.1_rk, -0.2_rk, 0.05_rk, 1.4_rk, 0.1_rk, -0.1_rk, 0.3_rk, 1.1_rk, 0.2_rk], [3, 3])
+    va = reshape([3.0_rk, -1.0_rk, 2.0_rk, -2.0_rk, 4.0_rk, 1.0_rk, 1.0_rk, 2.0_rk, -5.0_rk], [3, 3])
+    xs = 0.2_rk*xa(:,1) + 0.5_rk*xa(:,2) + 0.3_rk*xa(:,3)
+    call triangle_projection(xa, xs, n, dist, g)
+    xs = xs - 1.0e-3_rk*n
+    vs = 40.0_rk*(xa(:,2) - xa(:,1))/norm2(xa(:,2) - xa(:,1)) - 5.0_rk*n
+    call triangle_projection(xa, xs, n, dist, g)
+    xs0 = xs - dt*vs
+    do a = 1, 3
+      xa0(:,a) = xa(:,a) - dt*va(:,a)
+    end do
+    do w = 1, 2
+      if (w == 1) then
+        call master_shares(contact_weights_area, xa, xs, g, n, xa0, xs0, share)
+        sum_w = sum(share)
+      else
+        share = g
+      end if
+      call match_velocities(n, ms, vs, mm, va, g, share, 0.0_rk, 0.0_rk, [0.0_rk, 0.0_rk, 0.0_rk], &
+                            dvs, dvm, acted, dn, dtv)
+      dl = ms*cross(xs0, dvs)
+      do a = 1, 3
+        dl = dl + mm(a)*cross(xa0(:,a), dvm(:,a))
+      end do
+      moment(w) = norm2(dl)/(ms*dn*maxval(abs(xa)))
+    end do
+    call check('moving_correction_angular_momentum_start_shares', moment(1) < 1.0e-14_rk .and. &
+               abs(sum_w - 1.0_rk) < 1.0e-15_rk, 'moment about the start positions '//s(moment(1))// &
+               ' of ms dv_N |x| with the start-of-step area shares (sum '//s(sum_w)//')')
+    call check('moving_correction_angular_momentum_end_shares', moment(2) > 1.0e-5_rk, &
+               'moment '//s(moment(2))//' of ms dv_N |x| with the end-of-step area coordinates')
+  end subroutine
+
+  !> An edge-to-edge impulse between edges that slide and turn over the
+  !> step: shared by edge_shares, no moment about the start positions;
+  !> shared by the end's closest points, a moment.
+  subroutine test_moving_edges()
+    real(rk) :: x(3,4), v(3,4), x0(3,4), alpha, beta, n(3), g0, g1, w(4), w0(4), dl(3), moment(2), j
+    real(rk), parameter :: m(4) = [0.7_rk, 1.1_rk, 1.3_rk, 0.9_rk], dt = 1.0e-3_rk
+    logical :: crossed
+    integer :: k, a
+    x = reshape([-1.0_rk, 0.1_rk, -0.02_rk, 1.0_rk, -0.1_rk, -0.01_rk, 0.05_rk, -1.0_rk, 0.0_rk, -0.05_rk, 1.0_rk, 0.01_rk], [3, 4])
+    v = reshape([30.0_rk, 5.0_rk, -20.0_rk, 25.0_rk, -5.0_rk, -22.0_rk, -3.0_rk, 8.0_rk, 1.0_rk, 2.0_rk, 6.0_rk, -1.0_rk], [3, 4])
+    x0 = x - dt*v
+    call edge_crossing(x(:,1), x(:,2), x(:,3), x(:,4), v(:,1), v(:,2), v(:,3), v(:,4), dt, alpha, beta, n, g0, g1, crossed)
+    call edge_shares(x0(:,1), x0(:,2), x0(:,3), x0(:,4), n, alpha, beta, w0)
+    w = [1.0_rk - alpha, alpha, -(1.0_rk - beta), -beta]
+    j = 1.0_rk
+    do k = 1, 2
+      if (k == 2) w0 = w
+      dl = 0.0_rk
+      do a = 1, 4
+        dl = dl + cross(x0(:,a), w0(a)*j*n)
+      end do
+      moment(k) = norm2(dl)/(j*maxval(abs(x)))
+    end do
+    call check('moving_edges_angular_momentum', crossed .and. moment(1) < 1.0e-14_rk .and. moment(2) > 1.0e-4_rk &
+               .and. abs(sum(w0(1:2)) - 1.0_rk) < 1e-15_rk, 'moment about the start positions '//s(moment(1))// &
+               ' of J |x| with edge_shares, '//s(moment(2))//' with the end''s closest points')
   end subroutine
 
   !> Passes of match_velocities over the slave nodes in the given order;
@@ -146,7 +222,7 @@ contains
     do k = 1, ns
       xs = matmul(xm, gs(:,k)) + [0.0_rk, 0.0_rk, -1.0e-6_rk]      ! just behind the face
       call triangle_projection(xm, xs, n, dist, gg(:,k))
-      call master_shares(contact_weights_area, xm, xs, gg(:,k), share(:,k))
+      call master_shares(contact_weights_area, xm, xs, gg(:,k), n, xm, xs, share(:,k))
       v(:,k) = [0.2_rk*(k - 2), 0.1_rk, -1.0_rk]
       if (friction <= 0.0_rk) v(1:2,k) = 0.0_rk
     end do
