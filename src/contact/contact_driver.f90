@@ -34,6 +34,11 @@ module udar_contact
   !> share of its volume to a jump that no velocity (and no work) goes with;
   !> what is left is taken in the next cycles
   real(rk), parameter :: return_fraction = 0.02_rk
+  ! the records the ranks exchange: a found slave node (slave index, triangle,
+  ! kind, depth, normal, area coordinates, shares, position) and a node
+  ! moved by its owner (contact node, position)
+  integer, parameter :: rec_found = 16, rec_moved = 4
+  integer, parameter :: kind_found = 1, kind_separating = 2
   !> the parts of a pass (detect): finding the slave nodes, and after the
   !> velocity matching (match_passes) the impulses and the returns
   integer, parameter :: stage_search = 1, stage_finish = 2, stage_both = 3
@@ -62,6 +67,9 @@ contains
     call comms_allgather_count(size(ct%owned_pos), owned_counts)
     call comms_allgatherv_int(ct%owned_pos, owned_counts, ct%gather_pos)
     ct%counts = 7*owned_counts
+    allocate(ct%mine(ct%n_nodes), source=.false.)
+    ct%mine(ct%owned_pos) = .true.
+    allocate(ct%rec_counts(0:np-1), ct%rec_next(0:np-1))
     allocate(ct%send(7*size(ct%owned_pos) + 1), ct%recv(7*ct%n_nodes))
     allocate(ct%v_prev(3, size(ct%owned_pos)), ct%v_pre(3, size(ct%owned_pos)))
   end subroutine
@@ -226,6 +234,110 @@ contains
     it%edge_contacts_total = it%edge_contacts_total + it%n_edge_contacts
   end subroutine
 
+  !> The found slave nodes of every rank's search (records of rec_found
+  !> reals in ct%rec_send(1:n_rec)) on every rank, in ascending slave
+  !> index: the separating ones put back where their owner moved them (if
+  !> move), the others the pass's active list; the deep ones counted
+  !> (collective).
+  subroutine share_found(ct, it, n_rec, depth_limit, dt, move, n_found, deepest, worst)
+    type(contact_t), intent(inout) :: ct
+    type(interface_t), intent(inout) :: it
+    integer, intent(in) :: n_rec
+    real(rk), intent(in) :: depth_limit, dt
+    logical, intent(in) :: move
+    integer, intent(out) :: n_found, worst
+    real(rk), intent(out) :: deepest
+    integer :: q, r, k, ps, best_q, end_q, np
+    real(rk) :: dist
+    np = comms_size()
+    call gather_records(ct, n_rec)
+    ! merge the ranks' ascending runs
+    ct%rec_next(0) = 0
+    do q = 1, np - 1
+      ct%rec_next(q) = ct%rec_next(q-1) + ct%rec_counts(q-1)
+    end do
+    n_found = 0
+    deepest = 0
+    worst = 0
+    do
+      best_q = -1
+      k = huge(1)
+      do q = 0, np - 1
+        end_q = sum(ct%rec_counts(0:q))
+        if (ct%rec_next(q) >= end_q) cycle
+        if (nint(ct%rec_recv(ct%rec_next(q) + 1)) < k) then
+          k = nint(ct%rec_recv(ct%rec_next(q) + 1))
+          best_q = q
+        end if
+      end do
+      if (best_q < 0) exit
+      r = ct%rec_next(best_q)
+      ct%rec_next(best_q) = r + rec_found
+      associate (rec => ct%rec_recv(r+1:r+rec_found))
+        ps = it%slave(k)
+        dist = rec(4)
+        if (-dist > depth_limit .and. dt > 0.0_rk) then
+          it%n_deep = it%n_deep + 1
+          it%deep_max = max(it%deep_max, -dist)
+        end if
+        if (nint(rec(3)) == kind_separating) then
+          if (move) ct%x(:,ps) = rec(14:16)
+          cycle
+        end if
+        n_found = n_found + 1
+        if (-dist > deepest) then
+          deepest = -dist
+          worst = ps
+        end if
+        it%active(n_found) = ps
+        it%slot(n_found) = k
+        it%on_tri(n_found) = nint(rec(2))
+        it%normal(:,n_found) = rec(5:7)
+        it%area(:,n_found) = rec(8:10)
+        it%share(:,n_found) = rec(11:13)
+      end associate
+    end do
+  end subroutine
+
+  !> The nodes every rank's owner moved (records of rec_moved reals in
+  !> ct%rec_send(1:n_rec): contact node, position) put there on every rank
+  !> (collective).
+  subroutine share_positions(ct, n_rec)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: n_rec
+    integer :: r
+    call gather_records(ct, n_rec)
+    do r = 0, sum(ct%rec_counts) - rec_moved, rec_moved
+      ct%x(:,nint(ct%rec_recv(r+1))) = ct%rec_recv(r+2:r+4)
+    end do
+  end subroutine
+
+  !> ct%rec_send(1:n_rec) of every rank, concatenated in rank order, into
+  !> ct%rec_recv; ct%rec_counts: how many reals came from each (collective).
+  subroutine gather_records(ct, n_rec)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: n_rec
+    if (comms_size() == 1) then
+      ct%rec_counts(0) = n_rec
+      call ensure(ct%rec_recv, n_rec)
+      ct%rec_recv(1:n_rec) = ct%rec_send(1:n_rec)
+      return
+    end if
+    call comms_allgather_count(n_rec, ct%rec_counts)
+    call ensure(ct%rec_recv, sum(ct%rec_counts))
+    call comms_allgatherv_real(ct%rec_send(1:n_rec), ct%rec_counts, ct%rec_recv)
+  end subroutine
+
+  !> The move u of a node back onto a surface, shortened to room.
+  pure function returned(u, room) result(d)
+    real(rk), intent(in) :: u(3), room
+    real(rk) :: d(3)
+    real(rk) :: length
+    length = norm2(u)
+    d = u
+    if (length > room) d = (room/length)*u
+  end function
+
   !> How far a node whose elements' smallest altitude is h may be returned
   !> to the surface in one pass (unbounded before the first cycle, h huge:
   !> initial overlaps).
@@ -306,8 +418,8 @@ contains
     integer, intent(in) :: stage             !< stage_search, stage_finish or stage_both
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
-    real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), vm(3,3), xa0(3,3)
-    integer :: nt, t, k, ps, best, iter, a, pa
+    real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), vm(3,3), xa0(3,3), share(3), x_new(3)
+    integer :: nt, t, k, ps, best, iter, a, pa, kc, n_rec
     logical :: separating
     real(rk) :: room
     nt = size(it%tri, 2)
@@ -318,16 +430,22 @@ contains
       if (move) call finish()
       return
     end if
-    do t = 1, nt
-      call triangle_box(t, depth_limit, it%box_lo(:,t), it%box_hi(:,t))
-    end do
     n_found = 0
     it%n_pass = 0
     ! self-contact acts only on what crosses in a cycle (at rest a part's
     ! surface is behind the planes of many of its own faces)
     if (it%self .and. dt <= 0.0_rk) return
     it%passes = it%passes + 1
-    if (.not. lists_hold()) call full_search()
+    ! the pass's boxes: of the triangles in the candidate lists (a slave
+    ! node is only ever tested against its own), all of them after a full search
+    if (lists_hold()) then
+      do kc = 1, it%n_cand_tri
+        t = it%cand_tri(kc)
+        call triangle_box(t, depth_limit, it%box_lo(:,t), it%box_hi(:,t))
+      end do
+    else
+      call full_search()
+    end if
     it%dn_sum = 0
     it%t_sum = 0
     ! the cycle's figures (history, log) are the cycle pass's: a pass with
@@ -338,44 +456,34 @@ contains
       it%friction_impulse = 0
       it%master_impulse = 0
     end if
-    ! ---- search: each slave node's master triangle, in ascending global id
+    ! ---- search: each of this rank's own slave nodes' master triangle, in
+    ! ascending global id; what it found goes to every rank (share_found)
+    call ensure(ct%rec_send, rec_found*size(it%slave))
+    n_rec = 0
     do k = 1, size(it%slave)
       ps = it%slave(k)
+      if (.not. ct%mine(ps)) cycle
       if (it%self) it%near(it%ring(it%ring_start(k):it%ring_start(k+1)-1)) = .true.
       call nearest_behind(ps, .false., best, best_dist, best_n, best_g, separating, slot=k)
       if (it%self) it%near(it%ring(it%ring_start(k):it%ring_start(k+1)-1)) = .false.
       if (it%self) it%touched(k) = best /= 0 .and. .not. separating
       if (best == 0) cycle
-      if (-best_dist > depth_limit .and. dt > 0.0_rk) then
-        it%n_deep = it%n_deep + 1
-        it%deep_max = max(it%deep_max, -best_dist)
-      end if
       if (separating) then
         ! the paper releases it (no velocity change); it only goes back on the surface
-        if (move) then
-          room = allowance(ps)
-          call put_back(ps, -best_dist*best_n, room)
-        end if
+        x_new = ct%x(:,ps)
+        if (move) x_new = x_new + returned(-best_dist*best_n, allowance(ps))
+        call add_record(k, best, kind_separating, best_dist, best_n, best_g, [0.0_rk, 0.0_rk, 0.0_rk], x_new)
         cycle
       end if
-      n_found = n_found + 1
-      if (-best_dist > deepest) then
-        deepest = -best_dist
-        worst = ps
-      end if
-      it%active(n_found) = ps
-      it%slot(n_found) = k
-      it%on_tri(n_found) = best
-      it%normal(:,n_found) = best_n
-      it%area(:,n_found) = best_g
       xa = ct%x(:, it%tri(:,best))
       ! where the nodes were at the start of the step (dt = 0: where they are)
       do a = 1, 3
         xa0(:,a) = xa(:,a) - dt*ct%v(:,it%tri(a,best))
       end do
-      call master_shares(it%weights, xa, ct%x(:,ps), best_g, best_n, xa0, ct%x(:,ps) - dt*ct%v(:,ps), &
-                         it%share(:,n_found))
+      call master_shares(it%weights, xa, ct%x(:,ps), best_g, best_n, xa0, ct%x(:,ps) - dt*ct%v(:,ps), share)
+      call add_record(k, best, kind_found, best_dist, best_n, best_g, share, ct%x(:,ps))
     end do
+    call share_found(ct, it, n_rec, depth_limit, dt, move, n_found, deepest, worst)
     if (dt > 0.0_rk) then
       it%n_active = n_found
       it%max_depth = deepest
@@ -408,6 +516,7 @@ contains
         end do
         it%max_slip = 0
       end if
+      ! onto the node's own triangle (every rank knows it)
       do k = 1, it%n_pass
         ps = it%active(k)
         t = it%on_tri(k)
@@ -415,15 +524,7 @@ contains
         call triangle_projection(xa, ct%x(:,ps), n, dist, g)
         room = allowance(ps)
         if (dist < 0.0_rk) call put_back(ps, -dist*n, room)
-        ! back on one triangle's plane it may still be just behind a neighbour
-        ! facing about the same way (a concave edge, e.g. a crater wall): twice
-        ! more onto the shallowest such (not onto the side faces of a convex edge)
-        do iter = 1, 2
-          if (it%self) exit
-          call nearest_behind(ps, .true., best, best_dist, best_n, best_g, separating, it%normal(:,k))
-          if (best == 0 .or. room <= 0.0_rk) exit
-          call put_back(ps, -best_dist*best_n, room)
-        end do
+        it%room(k) = room
         ! slip at the contact points that carry a normal impulse (a node whose
         ! push was all taken back by the later passes is not in contact)
         if (dt > 0.0_rk .and. it%dn_sum(k) > 0.0_rk) then
@@ -433,6 +534,38 @@ contains
           it%max_slip = max(it%max_slip, norm2(vm(:,1)))
         end if
       end do
+      ! back on one triangle's plane it may still be just behind a neighbour
+      ! facing about the same way (a concave edge, e.g. a crater wall): twice
+      ! more onto the shallowest such (not onto the side faces of a convex
+      ! edge), by the node's owner, which has its candidates; a slave node is
+      ! no master node here (self-contact has no such step), so the nodes'
+      ! returns do not depend on each other
+      if (it%self) return
+      call ensure(ct%rec_send, rec_moved*it%n_pass)
+      n_rec = 0
+      do k = 1, it%n_pass
+        ps = it%active(k)
+        if (.not. ct%mine(ps)) cycle
+        room = it%room(k)
+        x_new = ct%x(:,ps)
+        do iter = 1, 2
+          call nearest_behind(ps, .true., best, best_dist, best_n, best_g, separating, it%normal(:,k), it%slot(k))
+          if (best == 0 .or. room <= 0.0_rk) exit
+          call put_back(ps, -best_dist*best_n, room)
+        end do
+        if (all(ct%x(:,ps) == x_new)) cycle
+        ct%rec_send(n_rec+1:n_rec+rec_moved) = [real(ps, rk), ct%x(:,ps)]
+        n_rec = n_rec + rec_moved
+      end do
+      call share_positions(ct, n_rec)
+    end subroutine
+
+    !> Appends a found slave node's record for share_found.
+    subroutine add_record(k, t, kind, dist, n, g, share, x)
+      integer, intent(in) :: k, t, kind
+      real(rk), intent(in) :: dist, n(3), g(3), share(3), x(3)
+      ct%rec_send(n_rec+1:n_rec+rec_found) = [real(k, rk), real(t, rk), real(kind, rk), dist, n, g, share, x]
+      n_rec = n_rec + rec_found
     end subroutine
 
     !> The box a slave node must be in to be behind triangle t: its corners
@@ -465,14 +598,8 @@ contains
       integer, intent(in) :: ps
       real(rk), intent(in) :: u(3)
       real(rk), intent(inout) :: room
-      real(rk) :: length
-      length = norm2(u)
-      if (length <= room) then
-        ct%x(:,ps) = ct%x(:,ps) + u
-      else
-        ct%x(:,ps) = ct%x(:,ps) + (room/length)*u
-      end if
-      room = max(room - length, 0.0_rk)
+      ct%x(:,ps) = ct%x(:,ps) + returned(u, room)
+      room = max(room - norm2(u), 0.0_rk)
     end subroutine
 
     !> Whether the candidate lists still hold every triangle a slave node
@@ -498,19 +625,37 @@ contains
     subroutine full_search()
       real(rk) :: reach
       integer :: k, s, t, c, n_cand
+      real(rk) :: own_lo(3), own_hi(3)
       reach = depth_limit
       if (it%tracking .and. dt > 0.0_rk) reach = depth_limit + it%skin
+      ! the region of this rank's own slave nodes: only the triangles that
+      ! reach into it go into the grid
+      own_lo = huge(1.0_rk)
+      own_hi = -huge(1.0_rk)
+      do k = 1, size(it%slave)
+        if (.not. ct%mine(it%slave(k))) cycle
+        own_lo = min(own_lo, ct%x(:,it%slave(k)))
+        own_hi = max(own_hi, ct%x(:,it%slave(k)))
+      end do
+      it%n_sub = 0
       do t = 1, nt
         call triangle_box(t, reach, it%wide_lo(:,t), it%wide_hi(:,t))
+        if (any(it%wide_hi(:,t) < own_lo) .or. any(it%wide_lo(:,t) > own_hi)) cycle
+        call triangle_box(t, depth_limit, it%box_lo(:,t), it%box_hi(:,t))
+        it%n_sub = it%n_sub + 1
+        it%sub_tri(it%n_sub) = t
+        it%sub_lo(:,it%n_sub) = it%wide_lo(:,t)
+        it%sub_hi(:,it%n_sub) = it%wide_hi(:,t)
       end do
-      call grid_build(it%grid, it%wide_lo(:,1:nt), it%wide_hi(:,1:nt))
+      call grid_build(it%grid, it%sub_lo(:,1:it%n_sub), it%sub_hi(:,1:it%n_sub))
       n_cand = 0
       it%cand_start(1) = 1
       do k = 1, size(it%slave)
-        c = grid_cell(it%grid, ct%x(:,it%slave(k)))
+        c = 0
+        if (ct%mine(it%slave(k))) c = grid_cell(it%grid, ct%x(:,it%slave(k)))
         if (c > 0) then
           do s = it%grid%start(c), it%grid%start(c+1) - 1
-            t = it%grid%items(s)
+            t = it%sub_tri(it%grid%items(s))
             if (any(ct%x(:,it%slave(k)) < it%wide_lo(:,t)) .or. any(ct%x(:,it%slave(k)) > it%wide_hi(:,t))) cycle
             n_cand = n_cand + 1
             if (n_cand > size(it%cand)) call ensure(it%cand, n_cand, keep=.true.)
@@ -518,6 +663,14 @@ contains
           end do
         end if
         it%cand_start(k+1) = n_cand + 1
+      end do
+      it%tri_mark(it%cand(1:n_cand)) = .true.
+      it%n_cand_tri = 0
+      do t = 1, nt
+        if (.not. it%tri_mark(t)) cycle
+        it%n_cand_tri = it%n_cand_tri + 1
+        it%cand_tri(it%n_cand_tri) = t
+        it%tri_mark(t) = .false.
       end do
       it%x_built = ct%x
       it%reach_built = merge(reach, -1.0_rk, it%tracking .and. dt > 0.0_rk)
@@ -538,35 +691,24 @@ contains
       integer, intent(in) :: ps
       logical, intent(in) :: geometric     !< the shallowest, whatever the velocities
       real(rk), intent(in), optional :: n_ref(3)   !< only triangles facing within 60 degrees of it
-      integer, intent(in), optional :: slot        !< its slave index: look through its candidates (else the grid)
+      integer, intent(in) :: slot                  !< its slave index: look through its candidates
       integer, intent(out) :: best
       real(rk), intent(out) :: best_dist, best_n(3), best_g(3)
       logical, intent(out) :: separating
       real(rk) :: closing, best_closing, gc(3), other_closing, other_dist, other_n(3), other_g(3), &
                   sep_dist, sep_n(3), lam(4)
       integer :: other, sep
-      integer :: t, c, s, first, last
+      integer :: t, s, first, last
       real(rk) :: xa(3,3), n(3), dist, g(3)
       best = 0; other = 0; sep = 0
       sep_dist = -huge(1.0_rk)
       separating = .false.
       best_dist = -huge(1.0_rk); other_dist = -huge(1.0_rk)
       best_closing = 0; other_closing = 0
-      if (present(slot)) then
-        first = it%cand_start(slot)
-        last = it%cand_start(slot+1) - 1
-      else
-        c = grid_cell(it%grid, ct%x(:,ps))
-        if (c == 0) return
-        first = it%grid%start(c)
-        last = it%grid%start(c+1) - 1
-      end if
+      first = it%cand_start(slot)
+      last = it%cand_start(slot+1) - 1
       do s = first, last
-        if (present(slot)) then
-          t = it%cand(s)
-        else
-          t = it%grid%items(s)
-        end if
+        t = it%cand(s)
         if (any(it%tri(:,t) == ps)) cycle
         if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
         if (it%self) then
@@ -593,7 +735,6 @@ contains
             ! self-contact: only a node in contact in the last pass (no
             ! false contact with the part's own far side)
             if (it%self) then
-              if (.not. present(slot)) cycle
               if (.not. it%touched(slot)) cycle
             end if
             ! behind but already moving out: remembered, to be put back on the surface

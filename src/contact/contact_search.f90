@@ -9,6 +9,12 @@ module udar_contact_search
   private
   public :: bucket_grid_t, grid_build, grid_cell, ensure
 
+  !> Grows an allocatable array to hold at least n (by half again: few
+  !> reallocations), keeping its contents if asked.
+  interface ensure
+    module procedure ensure_int, ensure_real
+  end interface
+
   type, public :: bucket_grid_t
     real(rk) :: lo(3) = 0, cell = 1       !< m: grid origin, cell edge
     integer :: n(3) = 1                    !< cells per direction
@@ -84,11 +90,29 @@ contains
 
   !> a has at least n entries (grown by half again when too small); with
   !> keep, its entries so far are kept.
-  pure subroutine ensure(a, n, keep)
+  pure subroutine ensure_int(a, n, keep)
     integer, allocatable, intent(inout) :: a(:)
     integer, intent(in) :: n
     logical, intent(in), optional :: keep
     integer, allocatable :: b(:)
+    if (.not. allocated(a)) then
+      allocate(a(max(n, 3*n/2, 1)))
+      return
+    end if
+    if (size(a) >= n) return
+    allocate(b(max(n, 3*n/2, 1)))
+    if (present(keep)) then
+      if (keep) b(1:size(a)) = a
+    end if
+    call move_alloc(b, a)
+  end subroutine
+
+  !> As ensure_int, for reals.
+  pure subroutine ensure_real(a, n, keep)
+    real(rk), allocatable, intent(inout) :: a(:)
+    integer, intent(in) :: n
+    logical, intent(in), optional :: keep
+    real(rk), allocatable :: b(:)
     if (.not. allocated(a)) then
       allocate(a(max(n, 3*n/2, 1)))
       return

@@ -49,6 +49,14 @@ module udar_contact_model
     real(rk), allocatable :: x_built(:,:)  !< (3, contact nodes) positions at the last full search
     real(rk), allocatable :: wide_lo(:,:), wide_hi(:,:)           !< (3, n_tri) boxes of the last full search
     integer, allocatable :: cand_start(:), cand(:)                 !< CSR over slave nodes: candidate triangles
+    integer, allocatable :: cand_tri(:)    !< every triangle in some candidate list, ascending (their boxes are the pass's)
+    integer :: n_cand_tri = 0
+    logical, allocatable :: tri_mark(:)    !< (n_tri) work of the full search
+    ! the full search's grid holds only the triangles near this rank's own
+    ! slave nodes (sub_tri, ascending; their widened boxes)
+    integer :: n_sub = 0
+    integer, allocatable :: sub_tri(:)
+    real(rk), allocatable :: sub_lo(:,:), sub_hi(:,:)
     integer :: full_searches = 0, passes = 0   !< counters for the log
     integer(i8) :: sweeps = 0              !< velocity-matching passes over the slave nodes, all cycles (log)
     integer :: sweep_limit_hits = 0        !< cycles that ended their passes at `iterations` unconverged (log)
@@ -68,6 +76,7 @@ module udar_contact_model
     integer, allocatable :: active(:), on_tri(:), slot(:)          !< slave nodes found, their triangles, slave index
     real(rk), allocatable :: normal(:,:), area(:,:), share(:,:)    !< (3, n_slave)
     real(rk), allocatable :: dn_sum(:), t_sum(:,:)                 !< m/s, normal and tangential velocity changes so far in the cycle
+    real(rk), allocatable :: room(:)       !< m, how far each found node may still be returned in this pass
     ! the last cycle
     real(rk) :: normal_impulse = 0, friction_impulse = 0   !< N s
     real(rk) :: master_impulse(3) = 0      !< N s, momentum the slave nodes gave the master side
@@ -110,6 +119,11 @@ module udar_contact_model
     integer, allocatable :: gather_pos(:)  !< position in gidx of each entry of the gathered buffer
     integer, allocatable :: counts(:)      !< reals each rank sends (7 per owned contact node)
     real(rk), allocatable :: send(:), recv(:)
+    ! the search and the returns are shared out: each rank searches for its
+    ! own slave nodes (mine) and the found ones go to every rank as records
+    logical, allocatable :: mine(:)        !< (n_nodes) this rank owns the contact node
+    real(rk), allocatable :: rec_send(:), rec_recv(:)
+    integer, allocatable :: rec_counts(:), rec_next(:)   !< (0:ranks-1) reals from each rank, merge positions
     real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3, owned contact nodes) m/s: v(n-1/2), v(n+1/2) before the pass
   end type
 contains
@@ -130,20 +144,23 @@ contains
     nt = size(it%tri, 2)
     ns = size(it%slave)
     if (allocated(it%box_lo)) then
-      if (size(it%box_lo, 2) < nt) deallocate(it%box_lo, it%box_hi, it%wide_lo, it%wide_hi)
+      if (size(it%box_lo, 2) < nt) deallocate(it%box_lo, it%box_hi, it%wide_lo, it%wide_hi, it%cand_tri, it%tri_mark, &
+                                              it%sub_tri, it%sub_lo, it%sub_hi)
     end if
     if (.not. allocated(it%box_lo)) then
       nt = max(nt, 3*size(it%tri, 2)/2)
-      allocate(it%box_lo(3,nt), it%box_hi(3,nt), it%wide_lo(3,nt), it%wide_hi(3,nt))
+      allocate(it%box_lo(3,nt), it%box_hi(3,nt), it%wide_lo(3,nt), it%wide_hi(3,nt), it%cand_tri(nt), &
+               it%sub_tri(nt), it%sub_lo(3,nt), it%sub_hi(3,nt))
+      allocate(it%tri_mark(nt), source=.false.)
     end if
     if (allocated(it%active)) then
       if (size(it%active) < ns) deallocate(it%active, it%on_tri, it%slot, it%cand_start, it%normal, it%area, &
-                                           it%share, it%dn_sum, it%t_sum)
+                                           it%share, it%dn_sum, it%t_sum, it%room)
     end if
     if (.not. allocated(it%active)) then
       ns = max(ns, 3*size(it%slave)/2)
       allocate(it%active(ns), it%on_tri(ns), it%slot(ns), it%cand_start(ns + 1), it%normal(3,ns), it%area(3,ns), &
-               it%share(3,ns), it%dn_sum(ns), it%t_sum(3,ns))
+               it%share(3,ns), it%dn_sum(ns), it%t_sum(3,ns), it%room(ns))
     end if
     if (.not. allocated(it%cand)) allocate(it%cand(4*size(it%slave) + 1))
   end subroutine
