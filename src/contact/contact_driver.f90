@@ -67,8 +67,6 @@ contains
     call comms_allgather_count(size(ct%owned_pos), owned_counts)
     call comms_allgatherv_int(ct%owned_pos, owned_counts, ct%gather_pos)
     ct%counts = 7*owned_counts
-    allocate(ct%mine(ct%n_nodes), source=.false.)
-    ct%mine(ct%owned_pos) = .true.
     allocate(ct%rec_counts(0:np-1), ct%rec_next(0:np-1))
     allocate(ct%send(7*size(ct%owned_pos) + 1), ct%recv(7*ct%n_nodes))
     allocate(ct%v_prev(3, size(ct%owned_pos)), ct%v_pre(3, size(ct%owned_pos)))
@@ -259,6 +257,8 @@ contains
     n_found = 0
     deepest = 0
     worst = 0
+    ! self-contact: in contact in this pass (found, not separating)
+    if (it%self) it%touched = .false.
     do
       best_q = -1
       k = huge(1)
@@ -285,6 +285,7 @@ contains
           cycle
         end if
         n_found = n_found + 1
+        if (it%self) it%touched(k) = .true.
         if (-dist > deepest) then
           deepest = -dist
           worst = ps
@@ -462,11 +463,10 @@ contains
     n_rec = 0
     do k = 1, size(it%slave)
       ps = it%slave(k)
-      if (.not. ct%mine(ps)) cycle
+      if (.not. it%mine(k)) cycle
       if (it%self) it%near(it%ring(it%ring_start(k):it%ring_start(k+1)-1)) = .true.
       call nearest_behind(ps, .false., best, best_dist, best_n, best_g, separating, slot=k)
       if (it%self) it%near(it%ring(it%ring_start(k):it%ring_start(k+1)-1)) = .false.
-      if (it%self) it%touched(k) = best /= 0 .and. .not. separating
       if (best == 0) cycle
       if (separating) then
         ! the paper releases it (no velocity change); it only goes back on the surface
@@ -545,7 +545,7 @@ contains
       n_rec = 0
       do k = 1, it%n_pass
         ps = it%active(k)
-        if (.not. ct%mine(ps)) cycle
+        if (.not. it%mine(it%slot(k))) cycle
         room = it%room(k)
         x_new = ct%x(:,ps)
         do iter = 1, 2
@@ -633,7 +633,7 @@ contains
       own_lo = huge(1.0_rk)
       own_hi = -huge(1.0_rk)
       do k = 1, size(it%slave)
-        if (.not. ct%mine(it%slave(k))) cycle
+        if (.not. it%mine(k)) cycle
         own_lo = min(own_lo, ct%x(:,it%slave(k)))
         own_hi = max(own_hi, ct%x(:,it%slave(k)))
       end do
@@ -652,7 +652,7 @@ contains
       it%cand_start(1) = 1
       do k = 1, size(it%slave)
         c = 0
-        if (ct%mine(it%slave(k))) c = grid_cell(it%grid, ct%x(:,it%slave(k)))
+        if (it%mine(k)) c = grid_cell(it%grid, ct%x(:,it%slave(k)))
         if (c > 0) then
           do s = it%grid%start(c), it%grid%start(c+1) - 1
             t = it%sub_tri(it%grid%items(s))

@@ -10,7 +10,9 @@ module udar_contact_setup
   use udar_deck, only: deck_where
   use udar_setup, only: find_group, group_list
   use udar_strings, only: itoa, to_lower
-  use udar_contact_model, only: feature_edges, contact_t, interface_t, size_interface_work, self_neighbourhoods, on_symmetry_plane
+  use udar_comms, only: comms_rank, comms_size
+  use udar_contact_model, only: feature_edges, contact_t, interface_t, size_interface_work, self_neighbourhoods, on_symmetry_plane, &
+                                assign_slaves
   implicit none
   private
   public :: build_contact, tet_face, contact_edges
@@ -132,6 +134,7 @@ contains
     ct%sym_planes = sym_planes(ct%gidx)
     do i = 1, n_ifc
       if (ct%ifc(i)%edges) call contact_edges(ct%ifc(i), ct%x0)
+      call assign_slaves(ct%ifc(i), ct%x0, comms_rank(), comms_size())
     end do
 
   contains

@@ -6,12 +6,12 @@
 module udar_contact_model
   use udar_kinds, only: rk, i8, max_name_len
   use udar_contact_search, only: bucket_grid_t
-  use udar_ordering, only: stable_sort_permutation
+  use udar_ordering, only: stable_sort_permutation, morton_keys
   use udar_vectors, only: cross
   use udar_config, only: contact_weights_area
   implicit none
   private
-  public :: size_interface_work, on_symmetry_plane, self_neighbourhoods, feature_edges
+  public :: size_interface_work, on_symmetry_plane, self_neighbourhoods, feature_edges, assign_slaves
 
   !> One direction of an interface: slave nodes against master triangles.
   type, public :: interface_t
@@ -34,6 +34,7 @@ module udar_contact_model
     integer, allocatable :: ring_start(:), ring(:)   !< CSR over slave nodes: the nodes within two surface edges
     logical, allocatable :: near(:)        !< (contact nodes) work: the current slave node's ring
     logical, allocatable :: touched(:)     !< (slave nodes) in contact in the last pass (self-contact)
+    logical, allocatable :: mine(:)        !< (slave nodes) this rank searches for it (assign_slaves)
     real(rk) :: friction = 0
     integer :: iterations = 50, weights = contact_weights_area
     real(rk) :: tolerance = 0
@@ -120,8 +121,8 @@ module udar_contact_model
     integer, allocatable :: counts(:)      !< reals each rank sends (7 per owned contact node)
     real(rk), allocatable :: send(:), recv(:)
     ! the search and the returns are shared out: each rank searches for its
-    ! own slave nodes (mine) and the found ones go to every rank as records
-    logical, allocatable :: mine(:)        !< (n_nodes) this rank owns the contact node
+    ! share of the slave nodes (interface_t mine) and the found ones go to
+    ! every rank as records
     real(rk), allocatable :: rec_send(:), rec_recv(:)
     integer, allocatable :: rec_counts(:), rec_next(:)   !< (0:ranks-1) reals from each rank, merge positions
     real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3, owned contact nodes) m/s: v(n-1/2), v(n+1/2) before the pass
@@ -135,6 +136,30 @@ contains
     integer, intent(in) :: sym_planes(:), tri(3)
     on_symmetry_plane = iand(iand(sym_planes(tri(1)), sym_planes(tri(2))), sym_planes(tri(3))) /= 0
   end function
+
+  !> Which slave nodes this rank searches for (mine): the slave list in
+  !> Morton order of the nodes' initial positions x0, cut into equal runs,
+  !> one per rank: a balanced and compact share whatever the partition of
+  !> the mesh (a projectile's surface is usually on one rank). The results
+  !> do not depend on it.
+  subroutine assign_slaves(it, x0, rank, n_ranks)
+    type(interface_t), intent(inout) :: it
+    real(rk), intent(in) :: x0(:,:)
+    integer, intent(in) :: rank, n_ranks
+    integer(i8), allocatable :: keys(:)
+    integer, allocatable :: perm(:)
+    integer :: ns, first, last
+    ns = size(it%slave)
+    if (allocated(it%mine)) deallocate(it%mine)
+    allocate(it%mine(ns), source=.false.)
+    if (ns == 0) return
+    allocate(keys(ns), perm(ns))
+    call morton_keys(transpose(x0(:, it%slave)), keys)
+    call stable_sort_permutation(keys, perm)
+    first = int(int(ns, i8)*rank/n_ranks) + 1
+    last = int(int(ns, i8)*(rank + 1)/n_ranks)
+    it%mine(perm(first:last)) = .true.
+  end subroutine
 
   !> The interface's work arrays hold its current triangles and slave nodes
   !> (grown by half again when too small: no allocation in a steady run).
