@@ -161,6 +161,9 @@ for h in 1.2e-3 0.6e-3 0.3e-3; do
   fi
 done
 
+# ---- the contact on 1, 2 and 4 ranks, and its projection to 64 (doc/scaling.md)
+tests/bench_contact.sh "$out"
+
 # ---- side by side with OpenRadioss (issue 12): the full OFHC cylinder
 # (bench/taylor_full.geo) at h 0.62 and 0.31 mm, 190 m/s to 80 us: cycles
 # and final length / footprint diameter. OpenRadioss's figures are from the

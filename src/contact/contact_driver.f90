@@ -13,7 +13,8 @@ module udar_contact
   use udar_contact_search, only: grid_build, grid_cell, ensure
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_shares, &
                                   edge_crossing
-  use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real
+  use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, &
+                        comms_max, comms_alltoall_counts, comms_alltoallv_real, comms_wtime
   implicit none
   private
   public :: contact_distribute, contact_enforce, contact_overlaps, contact_settle, contact_pressure, &
@@ -35,9 +36,11 @@ module udar_contact
   !> what is left is taken in the next cycles
   real(rk), parameter :: return_fraction = 0.02_rk
   ! the records the ranks exchange: a found slave node (slave index, triangle,
-  ! kind, depth, normal, area coordinates, shares, position) and a node
-  ! moved by its owner (contact node, position)
-  integer, parameter :: rec_found = 16, rec_moved = 4
+  ! kind, depth, normal, area coordinates, shares; the slave node's position,
+  ! velocity and altitude, the triangle's nodes' positions and velocities),
+  ! a node moved by its searcher (contact node, position) and a node's state
+  ! (contact node, position, velocity, altitude)
+  integer, parameter :: rec_found = 38, rec_moved = 4, rec_state = 8
   integer, parameter :: kind_found = 1, kind_separating = 2
   !> the parts of a pass (detect): finding the slave nodes, and after the
   !> velocity matching (match_passes) the impulses and the returns
@@ -67,7 +70,12 @@ contains
     call comms_allgather_count(size(ct%owned_pos), owned_counts)
     call comms_allgatherv_int(ct%owned_pos, owned_counts, ct%gather_pos)
     ct%counts = 7*owned_counts
-    allocate(ct%rec_counts(0:np-1), ct%rec_next(0:np-1))
+    allocate(ct%rec_counts(0:np-1), ct%rec_next(0:np-1), ct%x_counts(0:np-1), ct%x_rcounts(0:np-1), &
+             ct%region_counts(0:np-1), ct%regions(6*np))
+    ct%region_counts = 6
+    ct%x_counts = 0
+    allocate(ct%fresh(ct%n_nodes), source=0)
+    ct%full_state = any([(ct%ifc(p)%edges, p = 1, ct%n_interfaces)])
     allocate(ct%send(7*size(ct%owned_pos) + 1), ct%recv(7*ct%n_nodes))
     allocate(ct%v_prev(3, size(ct%owned_pos)), ct%v_pre(3, size(ct%owned_pos)))
   end subroutine
@@ -115,23 +123,32 @@ contains
     call scatter_state(ct, dom)
   end subroutine
 
-  !> One contact pass (every rank, same data, same order).
+  !> One contact pass: each rank searches for its share of the slave
+  !> nodes in its neighbourhood of the surfaces; every rank matches the
+  !> velocities of all the nodes found, in one order.
   subroutine contact_enforce(ct, dom, dt)
     type(contact_t), intent(inout) :: ct
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
     integer :: i, k, last, n_found, worst
     real(rk) :: vmax, margin(2), depth
+    real(rk) :: t0
     if (ct%n_interfaces == 0) return
-    call gather_state(ct, dom)
-    ct%impulse = 0
-    ct%dt_last = dt
+    t0 = comms_wtime()
     ! nothing crosses unseen: a slave node and a triangle close by at most
     ! twice the fastest contact node's step
-    vmax = 0
-    do i = 1, ct%n_nodes
-      vmax = max(vmax, norm2(ct%v(:,i)))
-    end do
+    if (ct%full_state .or. comms_size() == 1) then
+      call gather_state(ct, dom)
+      vmax = 0
+      do i = 1, ct%n_nodes
+        vmax = max(vmax, norm2(ct%v(:,i)))
+      end do
+    else
+      call exchange_neighbourhood(ct, dom, dt, vmax)
+    end if
+    ct%seconds_exchange = ct%seconds_exchange + (comms_wtime() - t0)
+    ct%impulse = 0
+    ct%dt_last = dt
     ! each interface, or a symmetric contact's two directions together:
     ! find, match the velocities, then impulses and returns
     i = 1
@@ -142,12 +159,14 @@ contains
         margin(k-i+1) = 2.0_rk*vmax*dt + 0.05_rk*ct%ifc(k)%h_mean
         call detect(ct, ct%ifc(k), margin(k-i+1), .true., dt, stage_search, n_found, depth, worst)
       end do
+      t0 = comms_wtime()
       call match_passes(ct, i, last, dt)
       do k = i, last
         call detect(ct, ct%ifc(k), margin(k-i+1), .true., dt, stage_finish, n_found, depth, worst)
       end do
       ! edge against edge (a symmetric pair's edges once)
       if (ct%ifc(i)%edges) call edge_pass(ct, ct%ifc(i), dt, margin(1))
+      ct%seconds_replicated = ct%seconds_replicated + (comms_wtime() - t0)
       i = last + 1
     end do
     call scatter_state(ct, dom)
@@ -234,21 +253,38 @@ contains
 
   !> The found slave nodes of every rank's search (records of rec_found
   !> reals in ct%rec_send(1:n_rec)) on every rank, in ascending slave
-  !> index: the separating ones put back where their owner moved them (if
-  !> move), the others the pass's active list; the deep ones counted
-  !> (collective).
-  subroutine share_found(ct, it, n_rec, depth_limit, dt, move, n_found, deepest, worst)
+  !> index: their nodes' states current everywhere (the separating ones
+  !> where their searcher put them back), the others the pass's active
+  !> list; the deep ones counted (collective).
+  subroutine share_found(ct, it, n_rec, depth_limit, dt, n_found, deepest, worst)
     type(contact_t), intent(inout) :: ct
     type(interface_t), intent(inout) :: it
     integer, intent(in) :: n_rec
     real(rk), intent(in) :: depth_limit, dt
-    logical, intent(in) :: move
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
-    integer :: q, r, k, ps, best_q, end_q, np
+    integer :: q, r, k, ps, best_q, end_q, np, t(3), a
     real(rk) :: dist
     np = comms_size()
     call gather_records(ct, n_rec)
+    ! the states of the nodes found and of their triangles' nodes, current
+    ! on every rank: the triangles' first, then the slave nodes' (a slave
+    ! node of a self-contact put back is another's triangle node)
+    do r = 0, sum(ct%rec_counts) - rec_found, rec_found
+      t = it%tri(:, nint(ct%rec_recv(r+2)))
+      do a = 1, 3
+        ct%x(:,t(a)) = ct%rec_recv(r+18+3*a:r+20+3*a)
+        ct%v(:,t(a)) = ct%rec_recv(r+27+3*a:r+29+3*a)
+        ct%fresh(t(a)) = ct%stamp
+      end do
+    end do
+    do r = 0, sum(ct%rec_counts) - rec_found, rec_found
+      ps = it%slave(nint(ct%rec_recv(r+1)))
+      ct%x(:,ps) = ct%rec_recv(r+14:r+16)
+      ct%v(:,ps) = ct%rec_recv(r+17:r+19)
+      ct%h(ps) = ct%rec_recv(r+20)
+      ct%fresh(ps) = ct%stamp
+    end do
     ! merge the ranks' ascending runs
     ct%rec_next(0) = 0
     do q = 1, np - 1
@@ -280,10 +316,7 @@ contains
           it%n_deep = it%n_deep + 1
           it%deep_max = max(it%deep_max, -dist)
         end if
-        if (nint(rec(3)) == kind_separating) then
-          if (move) ct%x(:,ps) = rec(14:16)
-          cycle
-        end if
+        if (nint(rec(3)) == kind_separating) cycle
         n_found = n_found + 1
         if (it%self) it%touched(k) = .true.
         if (-dist > deepest) then
@@ -421,6 +454,7 @@ contains
     real(rk), intent(out) :: deepest
     real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), vm(3,3), xa0(3,3), share(3), x_new(3)
     integer :: nt, t, k, ps, best, iter, a, pa, kc, n_rec
+    real(rk) :: t_search, t_share
     logical :: separating
     real(rk) :: room
     nt = size(it%tri, 2)
@@ -437,6 +471,7 @@ contains
     ! surface is behind the planes of many of its own faces)
     if (it%self .and. dt <= 0.0_rk) return
     it%passes = it%passes + 1
+    t_search = comms_wtime()
     ! the pass's boxes: of the triangles in the candidate lists (a slave
     ! node is only ever tested against its own), all of them after a full search
     if (lists_hold()) then
@@ -483,7 +518,10 @@ contains
       call master_shares(it%weights, xa, ct%x(:,ps), best_g, best_n, xa0, ct%x(:,ps) - dt*ct%v(:,ps), share)
       call add_record(k, best, kind_found, best_dist, best_n, best_g, share, ct%x(:,ps))
     end do
-    call share_found(ct, it, n_rec, depth_limit, dt, move, n_found, deepest, worst)
+    t_share = comms_wtime()
+    ct%seconds_search = ct%seconds_search + (t_share - t_search)
+    call share_found(ct, it, n_rec, depth_limit, dt, n_found, deepest, worst)
+    ct%seconds_exchange = ct%seconds_exchange + (comms_wtime() - t_share)
     if (dt > 0.0_rk) then
       it%n_active = n_found
       it%max_depth = deepest
@@ -560,11 +598,15 @@ contains
       call share_positions(ct, n_rec)
     end subroutine
 
-    !> Appends a found slave node's record for share_found.
+    !> Appends a found slave node's record for share_found: with the
+    !> states of its node (at x) and of the triangle's.
     subroutine add_record(k, t, kind, dist, n, g, share, x)
       integer, intent(in) :: k, t, kind
       real(rk), intent(in) :: dist, n(3), g(3), share(3), x(3)
-      ct%rec_send(n_rec+1:n_rec+rec_found) = [real(k, rk), real(t, rk), real(kind, rk), dist, n, g, share, x]
+      ps = it%slave(k)
+      ct%rec_send(n_rec+1:n_rec+rec_found) = [real(k, rk), real(t, rk), real(kind, rk), dist, n, g, share, x, &
+        ct%v(:,ps), ct%h(ps), ct%x(:,it%tri(1,t)), ct%x(:,it%tri(2,t)), ct%x(:,it%tri(3,t)), &
+        ct%v(:,it%tri(1,t)), ct%v(:,it%tri(2,t)), ct%v(:,it%tri(3,t))]
       n_rec = n_rec + rec_found
     end subroutine
 
@@ -585,6 +627,15 @@ contains
       lo = lo - reach
       hi = hi + reach
     end subroutine
+
+    !> Whether this rank has the current state of triangle t's nodes (and
+    !> of the element under it): a triangle within reach of its share of
+    !> the slave nodes always is (exchange_neighbourhood).
+    logical function known(t)
+      integer, intent(in) :: t
+      known = all(ct%fresh(it%tri(:,t)) == ct%stamp)
+      if (known .and. it%apex(t) > 0) known = ct%fresh(it%apex(t)) == ct%stamp
+    end function
 
     !> How far slave node ps may be returned in this pass.
     real(rk) function allowance(ps)
@@ -609,13 +660,22 @@ contains
     !> twice the margin (velocity corrections, return to the surface).
     logical function lists_hold()
       real(rk) :: d2
-      integer :: p
+      integer :: p, j
       lists_hold = .false.
       if (.not. it%tracking .or. dt <= 0.0_rk .or. it%reach_built < 0.0_rk) return
       d2 = 0
-      do p = 1, ct%n_nodes
-        d2 = max(d2, sum((ct%x(:,p) - it%x_built(:,p))**2))
-      end do
+      if (ct%full_state .or. comms_size() == 1) then
+        do p = 1, ct%n_nodes
+          d2 = max(d2, sum((ct%x(:,p) - it%x_built(:,p))**2))
+        end do
+      else
+        ! each rank's own nodes (the only ones every rank has current)
+        do j = 1, size(ct%owned_pos)
+          p = ct%owned_pos(j)
+          d2 = max(d2, sum((ct%x(:,p) - it%x_built(:,p))**2))
+        end do
+        d2 = comms_max(d2)
+      end if
       lists_hold = 3.0_rk*depth_limit + 2.0_rk*sqrt(d2) <= it%reach_built
     end function
 
@@ -639,6 +699,7 @@ contains
       end do
       it%n_sub = 0
       do t = 1, nt
+        if (.not. known(t)) cycle
         call triangle_box(t, reach, it%wide_lo(:,t), it%wide_hi(:,t))
         if (any(it%wide_hi(:,t) < own_lo) .or. any(it%wide_lo(:,t) > own_hi)) cycle
         call triangle_box(t, depth_limit, it%box_lo(:,t), it%box_hi(:,t))
@@ -709,6 +770,7 @@ contains
       last = it%cand_start(slot+1) - 1
       do s = first, last
         t = it%cand(s)
+        if (.not. known(t)) cycle
         if (any(it%tri(:,t) == ps)) cycle
         if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
         if (it%self) then
@@ -782,6 +844,45 @@ contains
         ct%v_pre(:,k) = dom%nd_v(:, ct%local(ct%owned_pos(k)))
       end if
     end do
+    ! at the start of the step every node here is current: the triangles'
+    ! extent for the neighbourhood of the coming pass
+    if (which == 1 .and. .not. ct%full_state .and. comms_size() > 1) call triangle_extent(ct, dom)
+  end subroutine
+
+  !> The largest distance between two nodes of a triangle of the surfaces
+  !> (or its node and the element's fourth corner) over the triangles whose
+  !> nodes are all on this rank (every triangle is whole on the rank of its
+  !> element), at the nodes' current positions: ct%size_local.
+  subroutine triangle_extent(ct, dom)
+    type(contact_t), intent(inout) :: ct
+    type(domain_t), intent(in) :: dom
+    integer :: i, k, t, a, b, c(4), nc
+    real(rk) :: e
+    e = 0
+    do i = 1, ct%n_interfaces
+      associate (it => ct%ifc(i))
+        if (.not. it%local_tri_valid) then
+          it%local_tri = pack([(t, t = 1, size(it%tri, 2))], [(all(ct%local(it%tri(:,t)) > 0) .and. &
+                              (it%apex(t) == 0 .or. ct%local(max(it%apex(t), 1)) > 0), t = 1, size(it%tri, 2))])
+          it%local_tri_valid = .true.
+        end if
+        do k = 1, size(it%local_tri)
+          t = it%local_tri(k)
+          nc = 3
+          c(1:3) = ct%local(it%tri(:,t))
+          if (it%apex(t) > 0) then
+            nc = 4
+            c(4) = ct%local(it%apex(t))
+          end if
+          do a = 1, nc - 1
+            do b = a + 1, nc
+              e = max(e, sum((dom%nd_x(:,c(a)) - dom%nd_x(:,c(b)))**2))
+            end do
+          end do
+        end do
+      end associate
+    end do
+    ct%size_local = sqrt(e)
   end subroutine
 
   !> Work of the contact impulses of the pass on this rank's own nodes into
@@ -810,13 +911,16 @@ contains
   !> tributary area, a third of each adjacent contact face that is wholly in
   !> contact (all three nodes loaded; so an edge node does not count the
   !> free side faces), or of every adjacent face for a node that has none.
-  subroutine contact_pressure(ct)
+  subroutine contact_pressure(ct, dom)
     type(contact_t), intent(inout) :: ct
+    type(domain_t), intent(in) :: dom
     integer :: f, pass
     real(rk) :: third_area
     ct%pressure = 0
     ct%work_area = 0
     if (ct%dt_last <= 0.0_rk) return       ! before the first pass
+    ! the faces' current areas: every contact node (an output step only)
+    call gather_state(ct, dom)
     do pass = 1, 2
       do f = 1, size(ct%faces, 2)
         if (pass == 1) then
@@ -847,11 +951,13 @@ contains
     type(contact_t), intent(inout) :: ct
     type(domain_t), intent(in) :: dom
     integer :: k, p, n
+    ct%stamp = ct%stamp + 1
+    ct%fresh = ct%stamp
     if (comms_size() == 1) then
       ct%x = dom%nd_x(:, ct%local)
       ct%v = dom%nd_v(:, ct%local)
       do p = 1, ct%n_nodes
-        ct%h(p) = node_altitude(dom, ct%local(p))
+        if (ct%returns(p)) ct%h(p) = node_altitude(dom, ct%local(p))
       end do
       return
     end if
@@ -859,7 +965,8 @@ contains
       n = ct%local(ct%owned_pos(k))
       ct%send(7*k-6:7*k-4) = dom%nd_x(:,n)
       ct%send(7*k-3:7*k-1) = dom%nd_v(:,n)
-      ct%send(7*k) = node_altitude(dom, n)
+      ct%send(7*k) = huge(1.0_rk)
+      if (ct%returns(ct%owned_pos(k))) ct%send(7*k) = node_altitude(dom, n)
     end do
     call comms_allgatherv_real(ct%send, ct%counts, ct%recv)
     do k = 1, ct%n_nodes
@@ -868,6 +975,119 @@ contains
       ct%v(:,p) = ct%recv(7*k-3:7*k-1)
       ct%h(p) = ct%recv(7*k)
     end do
+  end subroutine
+
+  !> The state of the contact nodes this rank needs for its share of the
+  !> search, not of all (collective; several ranks): its own contact nodes;
+  !> the slave nodes of its share, from their owners; and every contact
+  !> node within reach of them, i.e. within the box of its share's slave
+  !> nodes widened by the search reach, the largest extent of a triangle
+  !> and the element under it (at the start of the step, size_local, plus
+  !> what its nodes can move since) and what the pass can move the nodes.
+  !> Those nodes are fresh (ct%fresh = ct%stamp); the search uses no other.
+  !> vmax: the fastest contact node (every rank).
+  subroutine exchange_neighbourhood(ct, dom, dt, vmax)
+    type(contact_t), intent(inout) :: ct
+    type(domain_t), intent(in) :: dom
+    real(rk), intent(in) :: dt
+    real(rk), intent(out) :: vmax
+    integer :: k, p, n, q, i, me, np, pass, r
+    real(rk) :: lo(3), hi(3), widen, reach
+    np = comms_size()
+    me = comms_rank()
+    ct%stamp = ct%stamp + 1
+    vmax = 0
+    do k = 1, size(ct%owned_pos)
+      p = ct%owned_pos(k)
+      n = ct%local(p)
+      ct%x(:,p) = dom%nd_x(:,n)
+      ct%v(:,p) = dom%nd_v(:,n)
+      if (ct%returns(p)) ct%h(p) = node_altitude(dom, n)
+      ct%fresh(p) = ct%stamp
+      vmax = max(vmax, norm2(ct%v(:,p)))
+    end do
+    vmax = comms_max(vmax)
+    ! the slave nodes this rank owns to the ranks that search for them
+    do pass = 1, 2
+      if (pass == 2) call start_fill()
+      do i = 1, ct%n_interfaces
+        do k = 1, size(ct%ifc(i)%slave)
+          p = ct%ifc(i)%slave(k)
+          q = ct%ifc(i)%searcher(k)
+          if (q /= me .and. ct%fresh(p) == ct%stamp) then
+            if (ct%local(p) <= dom%n_owned_nodes) call put(pass, q, p)
+          end if
+        end do
+      end do
+    end do
+    call swap()
+    ! every rank's region: the box of its share's slave nodes
+    lo = huge(1.0_rk)
+    hi = -huge(1.0_rk)
+    reach = 0
+    do i = 1, ct%n_interfaces
+      associate (it => ct%ifc(i))
+        do k = 1, size(it%slave)
+          if (.not. it%mine(k)) cycle
+          lo = min(lo, ct%x(:,it%slave(k)))
+          hi = max(hi, ct%x(:,it%slave(k)))
+        end do
+        reach = max(reach, 2.0_rk*vmax*dt + 0.05_rk*it%h_mean + it%skin)
+      end associate
+    end do
+    ct%regions(6*me+1:6*me+6) = [lo, hi]
+    call comms_allgatherv_real(ct%regions(6*me+1:6*me+6), ct%region_counts, ct%regions)
+    widen = reach + comms_max(ct%size_local) + 8.0_rk*vmax*dt
+    ! this rank's contact nodes within the others' widened regions
+    do pass = 1, 2
+      if (pass == 2) call start_fill()
+      do k = 1, size(ct%owned_pos)
+        p = ct%owned_pos(k)
+        do q = 0, np - 1
+          if (q == me) cycle
+          r = 6*q
+          if (any(ct%x(:,p) < ct%regions(r+1:r+3) - widen) .or. any(ct%x(:,p) > ct%regions(r+4:r+6) + widen)) cycle
+          call put(pass, q, p)
+        end do
+      end do
+    end do
+    call swap()
+
+  contains
+
+    subroutine put(pass, q, p)
+      integer, intent(in) :: pass, q, p
+      if (pass == 1) then
+        ct%x_counts(q) = ct%x_counts(q) + rec_state
+      else
+        ct%x_send(ct%rec_next(q)+1:ct%rec_next(q)+rec_state) = [real(p, rk), ct%x(:,p), ct%v(:,p), ct%h(p)]
+        ct%rec_next(q) = ct%rec_next(q) + rec_state
+      end if
+    end subroutine
+
+    subroutine start_fill()
+      ct%rec_next(0) = 0
+      do q = 1, np - 1
+        ct%rec_next(q) = ct%rec_next(q-1) + ct%x_counts(q-1)
+      end do
+      call ensure(ct%x_send, sum(ct%x_counts))
+    end subroutine
+
+    !> Sends what was put, takes in what came: the nodes' states, fresh.
+    subroutine swap()
+      integer :: j
+      call comms_alltoall_counts(ct%x_counts, ct%x_rcounts)
+      call ensure(ct%x_recv, sum(ct%x_rcounts))
+      call comms_alltoallv_real(ct%x_send, ct%x_counts, ct%x_recv, ct%x_rcounts)
+      do j = 0, sum(ct%x_rcounts) - rec_state, rec_state
+        p = nint(ct%x_recv(j+1))
+        ct%x(:,p) = ct%x_recv(j+2:j+4)
+        ct%v(:,p) = ct%x_recv(j+5:j+7)
+        ct%h(p) = ct%x_recv(j+8)
+        ct%fresh(p) = ct%stamp
+      end do
+      ct%x_counts = 0
+    end subroutine
   end subroutine
 
   !> Smallest altitude of the elements at owned node n (huge when none is
@@ -882,14 +1102,15 @@ contains
     end do
   end function
 
-  !> The corrected x and v back into this rank's nodes (owned and ghost).
+  !> The corrected x and v back into this rank's nodes (owned and ghost)
+  !> that the pass knew.
   subroutine scatter_state(ct, dom)
     type(contact_t), intent(in) :: ct
     type(domain_t), intent(inout) :: dom
     integer :: p, n
     do p = 1, ct%n_nodes
       n = ct%local(p)
-      if (n == 0) cycle
+      if (n == 0 .or. ct%fresh(p) /= ct%stamp) cycle
       dom%nd_x(:,n) = ct%x(:,p)
       dom%nd_v(:,n) = ct%v(:,p)
     end do

@@ -7,7 +7,7 @@
 module udar_contact_erosion
   use udar_comms, only: comms_rank, comms_size
   use udar_contact_model, only: contact_t, interface_t, size_interface_work, on_symmetry_plane, self_neighbourhoods, &
-                                assign_slaves
+                                assign_slaves, mark_returns
   use udar_contact_setup, only: tet_face, contact_edges
   implicit none
   private
@@ -129,6 +129,7 @@ contains
         it%reach_built = -1.0       ! a full search on the new surfaces
       end associate
     end do
+    call mark_returns(ct)
     ! faces for the contact pressure: the fixed ones and the eroding parts' current ones
     n_fixed = size(ct%fixed_faces, 2)
     deallocate(ct%faces)

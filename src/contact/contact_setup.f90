@@ -12,7 +12,7 @@ module udar_contact_setup
   use udar_strings, only: itoa, to_lower
   use udar_comms, only: comms_rank, comms_size
   use udar_contact_model, only: feature_edges, contact_t, interface_t, size_interface_work, self_neighbourhoods, on_symmetry_plane, &
-                                assign_slaves
+                                assign_slaves, mark_returns
   implicit none
   private
   public :: build_contact, tet_face, contact_edges
@@ -136,6 +136,7 @@ contains
       if (ct%ifc(i)%edges) call contact_edges(ct%ifc(i), ct%x0)
       call assign_slaves(ct%ifc(i), ct%x0, comms_rank(), comms_size())
     end do
+    call mark_returns(ct)
 
   contains
 

@@ -11,7 +11,7 @@ module udar_contact_model
   use udar_config, only: contact_weights_area
   implicit none
   private
-  public :: size_interface_work, on_symmetry_plane, self_neighbourhoods, feature_edges, assign_slaves
+  public :: size_interface_work, on_symmetry_plane, self_neighbourhoods, feature_edges, assign_slaves, mark_returns
 
   !> One direction of an interface: slave nodes against master triangles.
   type, public :: interface_t
@@ -35,6 +35,12 @@ module udar_contact_model
     logical, allocatable :: near(:)        !< (contact nodes) work: the current slave node's ring
     logical, allocatable :: touched(:)     !< (slave nodes) in contact in the last pass (self-contact)
     logical, allocatable :: mine(:)        !< (slave nodes) this rank searches for it (assign_slaves)
+    integer, allocatable :: searcher(:)    !< (slave nodes) the rank that searches for it
+    ! triangles whose nodes (and apex) are all on this rank: their size at
+    ! the start of the step bounds how far a triangle reaches (rebuilt with
+    ! the surfaces)
+    logical :: local_tri_valid = .false.
+    integer, allocatable :: local_tri(:)
     real(rk) :: friction = 0
     integer :: iterations = 50, weights = contact_weights_area
     real(rk) :: tolerance = 0
@@ -99,6 +105,7 @@ module udar_contact_model
     real(rk), allocatable :: x(:,:), v(:,:), m(:)   !< (3,n), (3,n), (n): gathered state, masses
     real(rk), allocatable :: x0(:,:)       !< (3,n) m, initial positions (the feature edges are judged on them)
     real(rk), allocatable :: h(:)     !< m, smallest altitude of each contact node's elements (bounds its returns)
+    logical, allocatable :: returns(:)     !< the node can be returned (a slave node or a slave edge's): its h is kept
     integer, allocatable :: sym_planes(:)   !< bit p set: the node lies on symmetry plane p
     integer, allocatable :: faces(:,:)     !< (3, n_faces) every face of a contact surface once
     real(rk), allocatable :: impulse(:)    !< N s, normal contact impulse on each contact node in the last pass
@@ -125,6 +132,19 @@ module udar_contact_model
     ! every rank as records
     real(rk), allocatable :: rec_send(:), rec_recv(:)
     integer, allocatable :: rec_counts(:), rec_next(:)   !< (0:ranks-1) reals from each rank, merge positions
+    ! the neighbourhood: each cycle a rank gets the state of the contact
+    ! nodes near its share of the slave nodes, not of all (stamp: the
+    ! exchange's number; fresh(p) = stamp when node p's state is current)
+    integer :: stamp = 0
+    integer, allocatable :: fresh(:)
+    real(rk) :: size_local = 0             !< m, largest extent of the local triangles at the start of the step
+    logical :: full_state = .false.        !< edge-to-edge contact: every rank gets every contact node
+    real(rk), allocatable :: x_send(:), x_recv(:), regions(:)
+    ! where the pass's time goes on this rank (s, the run): the exchanges
+    ! between ranks, the search for its share, the work every rank repeats
+    ! (matching the velocities, returns, edges)
+    real(rk) :: seconds_exchange = 0, seconds_search = 0, seconds_replicated = 0
+    integer, allocatable :: x_counts(:), x_rcounts(:), region_counts(:)
     real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3, owned contact nodes) m/s: v(n-1/2), v(n+1/2) before the pass
   end type
 contains
@@ -137,6 +157,19 @@ contains
     on_symmetry_plane = iand(iand(sym_planes(tri(1)), sym_planes(tri(2))), sym_planes(tri(3))) /= 0
   end function
 
+  !> ct%returns: the slave nodes and the slave edges' nodes of every
+  !> interface (the nodes whose altitude bounds a return).
+  subroutine mark_returns(ct)
+    type(contact_t), intent(inout) :: ct
+    integer :: i
+    if (.not. allocated(ct%returns)) allocate(ct%returns(ct%n_nodes))
+    ct%returns = .false.
+    do i = 1, ct%n_interfaces
+      ct%returns(ct%ifc(i)%slave) = .true.
+      if (allocated(ct%ifc(i)%edge_s)) ct%returns(reshape(ct%ifc(i)%edge_s, [size(ct%ifc(i)%edge_s)])) = .true.
+    end do
+  end subroutine
+
   !> Which slave nodes this rank searches for (mine): the slave list in
   !> Morton order of the nodes' initial positions x0, cut into equal runs,
   !> one per rank: a balanced and compact share whatever the partition of
@@ -148,17 +181,23 @@ contains
     integer, intent(in) :: rank, n_ranks
     integer(i8), allocatable :: keys(:)
     integer, allocatable :: perm(:)
-    integer :: ns, first, last
+    integer :: ns, first, last, q
     ns = size(it%slave)
     if (allocated(it%mine)) deallocate(it%mine)
+    if (allocated(it%searcher)) deallocate(it%searcher)
     allocate(it%mine(ns), source=.false.)
+    allocate(it%searcher(ns), source=0)
+    it%local_tri_valid = .false.
     if (ns == 0) return
     allocate(keys(ns), perm(ns))
     call morton_keys(transpose(x0(:, it%slave)), keys)
     call stable_sort_permutation(keys, perm)
-    first = int(int(ns, i8)*rank/n_ranks) + 1
-    last = int(int(ns, i8)*(rank + 1)/n_ranks)
-    it%mine(perm(first:last)) = .true.
+    do q = 0, n_ranks - 1
+      first = int(int(ns, i8)*q/n_ranks) + 1
+      last = int(int(ns, i8)*(q + 1)/n_ranks)
+      it%searcher(perm(first:last)) = q
+    end do
+    it%mine = it%searcher == rank
   end subroutine
 
   !> The interface's work arrays hold its current triangles and slave nodes

@@ -11,7 +11,7 @@ module udar_comms
   public :: comms_init, comms_finalize, comms_abort, comms_exit, comms_xor_i8, comms_rank, comms_size, &
             comms_is_root, comms_barrier, comms_min, comms_max, comms_wtime, &
             comms_min_int, comms_max_int, comms_max_i8, comms_sum_int, comms_sum_exact, comms_alltoall_counts, &
-            comms_alltoallv_int, comms_bcast_int, comms_halo_exchange, comms_halo_exchange_scalar, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, comms_world_handle, comms_info_null_handle
+            comms_alltoallv_int, comms_alltoallv_real, comms_bcast_int, comms_halo_exchange, comms_halo_exchange_scalar, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, comms_world_handle, comms_info_null_handle
 
   !> A halo: which local nodes go to and come from which neighbour rank.
   !> Built once (udar_halo); the exchange itself allocates nothing.
@@ -191,6 +191,21 @@ contains
     end do
     call MPI_Alltoallv(send, send_counts, sdisp, MPI_INTEGER, recv, recv_counts, rdisp, MPI_INTEGER, &
                        MPI_COMM_WORLD, ierr)
+  end subroutine
+
+  !> As comms_alltoallv_int, for reals.
+  subroutine comms_alltoallv_real(send, send_counts, recv, recv_counts)
+    real(rk), intent(in) :: send(:)
+    integer, intent(in) :: send_counts(0:), recv_counts(0:)
+    real(rk), intent(out) :: recv(:)
+    integer :: sdisp(0:n_ranks-1), rdisp(0:n_ranks-1), q, ierr
+    sdisp(0) = 0; rdisp(0) = 0
+    do q = 1, n_ranks - 1
+      sdisp(q) = sdisp(q-1) + send_counts(q-1)
+      rdisp(q) = rdisp(q-1) + recv_counts(q-1)
+    end do
+    call MPI_Alltoallv(send, send_counts, sdisp, MPI_DOUBLE_PRECISION, recv, recv_counts, rdisp, &
+                       MPI_DOUBLE_PRECISION, MPI_COMM_WORLD, ierr)
   end subroutine
 
   !> counts(q) = n of rank q, on every rank.

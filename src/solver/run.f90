@@ -449,6 +449,12 @@ contains
         itoa(n_slave)//' slave nodes, '//fixed(1.0e9_rk*contact_seconds/(real(n_slave, rk)*max(cycles_run, 1)), 1)// &
         ' ns per slave node-cycle'
       call log_info(line)
+      ! the slowest rank's: what a rank waits for
+      line = '         contact: of which exchanges '//fixed(comms_max(ct%seconds_exchange), 3)// &
+        ' s, the search for each rank''s share '//fixed(comms_max(ct%seconds_search), 3)// &
+        ' s, matching and returns (every rank) '//fixed(comms_max(ct%seconds_replicated), 3)// &
+        ' s (the slowest rank''s)'
+      call log_info(line)
       do k = 1, ct%n_interfaces
         write(line, '(a,i0,a,i0,a)') '         contact '//trim(ct%ifc(k)%name)//': full searches in ', &
           ct%ifc(k)%full_searches, ' of ', ct%ifc(k)%passes, ' passes (local tracking in the others)'
@@ -722,7 +728,7 @@ contains
         if (ok) call fw_elem_scalar(fw, 'fracture_state', work_elem, ok, msg)
       end if
       if (ok .and. ct%n_interfaces > 0) then
-        call contact_pressure(ct)
+        call contact_pressure(ct, dom)
         work_node(:,1) = 0
         do i = 1, ct%n_nodes
           if (ct%local(i) > 0 .and. ct%local(i) <= dom%n_owned_nodes) work_node(ct%local(i),1) = ct%pressure(i)
