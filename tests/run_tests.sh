@@ -82,6 +82,7 @@ run_test "cli/ranks_coulomb_wall" tests/cli/rank_invariance.sh bin/udar-debug co
 run_test "cli/more_ranks_than_elements" tests/cli/more_ranks_than_elements.sh bin/udar-debug
 run_test "cli/ranks_plate_impact" tests/cli/rank_invariance.sh bin/udar plate_impact
 run_test "cli/ranks_blocks_head_on" tests/cli/rank_invariance.sh bin/udar blocks_head_on
+run_test "cli/ranks_oblique_free" tests/cli/rank_invariance.sh bin/udar oblique_free
 run_test "cli/ranks_spall" tests/cli/rank_invariance.sh bin/udar spall
 run_test "cli/ranks_penetration" tests/cli/rank_invariance.sh bin/udar penetration 2.5e-6
 run_test "cli/ranks_self_contact" tests/cli/rank_invariance.sh bin/udar self_contact

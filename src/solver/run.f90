@@ -453,7 +453,7 @@ contains
       line = '         contact: of which exchanges '//fixed(comms_max(ct%seconds_exchange), 3)// &
         ' s, the search for each rank''s share '//fixed(comms_max(ct%seconds_search), 3)// &
         ' s, matching and returns (every rank) '//fixed(comms_max(ct%seconds_replicated), 3)// &
-        ' s (the slowest rank''s)'
+        ' s (the slowest rank''s; with the settling after erosion)'
       call log_info(line)
       do k = 1, ct%n_interfaces
         write(line, '(a,i0,a,i0,a)') '         contact '//trim(ct%ifc(k)%name)//': full searches in ', &
