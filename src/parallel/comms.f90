@@ -183,13 +183,8 @@ contains
   subroutine comms_alltoallv_int(send, send_counts, recv, recv_counts)
     integer, intent(in) :: send(:), send_counts(0:), recv_counts(0:)
     integer, intent(out) :: recv(:)
-    integer :: sdisp(0:n_ranks-1), rdisp(0:n_ranks-1), q, ierr
-    sdisp(0) = 0; rdisp(0) = 0
-    do q = 1, n_ranks - 1
-      sdisp(q) = sdisp(q-1) + send_counts(q-1)
-      rdisp(q) = rdisp(q-1) + recv_counts(q-1)
-    end do
-    call MPI_Alltoallv(send, send_counts, sdisp, MPI_INTEGER, recv, recv_counts, rdisp, MPI_INTEGER, &
+    integer :: ierr
+    call MPI_Alltoallv(send, send_counts, offsets(send_counts), MPI_INTEGER, recv, recv_counts, offsets(recv_counts), MPI_INTEGER, &
                        MPI_COMM_WORLD, ierr)
   end subroutine
 
@@ -198,15 +193,21 @@ contains
     real(rk), intent(in) :: send(:)
     integer, intent(in) :: send_counts(0:), recv_counts(0:)
     real(rk), intent(out) :: recv(:)
-    integer :: sdisp(0:n_ranks-1), rdisp(0:n_ranks-1), q, ierr
-    sdisp(0) = 0; rdisp(0) = 0
-    do q = 1, n_ranks - 1
-      sdisp(q) = sdisp(q-1) + send_counts(q-1)
-      rdisp(q) = rdisp(q-1) + recv_counts(q-1)
-    end do
-    call MPI_Alltoallv(send, send_counts, sdisp, MPI_DOUBLE_PRECISION, recv, recv_counts, rdisp, &
+    integer :: ierr
+    call MPI_Alltoallv(send, send_counts, offsets(send_counts), MPI_DOUBLE_PRECISION, recv, recv_counts, offsets(recv_counts), &
                        MPI_DOUBLE_PRECISION, MPI_COMM_WORLD, ierr)
   end subroutine
+
+  !> Where each rank's part starts in a buffer of the ranks' parts in
+  !> rank order (the prefix sums of counts).
+  pure function offsets(counts) result(disp)
+    integer, intent(in) :: counts(0:)
+    integer :: disp(0:size(counts)-1), q
+    disp(0) = 0
+    do q = 1, size(counts) - 1
+      disp(q) = disp(q-1) + counts(q-1)
+    end do
+  end function
 
   !> counts(q) = n of rank q, on every rank.
   subroutine comms_allgather_count(n, counts)
@@ -220,12 +221,8 @@ contains
   subroutine comms_allgatherv_int(send, counts, recv)
     integer, intent(in) :: send(:), counts(0:)
     integer, intent(out) :: recv(:)
-    integer :: disp(0:n_ranks-1), q, ierr
-    disp(0) = 0
-    do q = 1, n_ranks - 1
-      disp(q) = disp(q-1) + counts(q-1)
-    end do
-    call MPI_Allgatherv(send, counts(my_rank), MPI_INTEGER, recv, counts, disp, MPI_INTEGER, MPI_COMM_WORLD, ierr)
+    integer :: ierr
+    call MPI_Allgatherv(send, counts(my_rank), MPI_INTEGER, recv, counts, offsets(counts), MPI_INTEGER, MPI_COMM_WORLD, ierr)
   end subroutine
 
   !> As comms_allgatherv_int, for reals (counts in reals).
@@ -233,12 +230,8 @@ contains
     real(rk), intent(in) :: send(:)
     integer, intent(in) :: counts(0:)
     real(rk), intent(out) :: recv(:)
-    integer :: disp(0:n_ranks-1), q, ierr
-    disp(0) = 0
-    do q = 1, n_ranks - 1
-      disp(q) = disp(q-1) + counts(q-1)
-    end do
-    call MPI_Allgatherv(send, counts(my_rank), MPI_DOUBLE_PRECISION, recv, counts, disp, MPI_DOUBLE_PRECISION, &
+    integer :: ierr
+    call MPI_Allgatherv(send, counts(my_rank), MPI_DOUBLE_PRECISION, recv, counts, offsets(counts), MPI_DOUBLE_PRECISION, &
                         MPI_COMM_WORLD, ierr)
   end subroutine
 
