@@ -1,10 +1,11 @@
 !> The contact pass of each cycle (after the nodes have moved, before the
-!> halo exchange): every rank gathers the state of all contact nodes, runs
-!> the same pass over the slave nodes in ascending global id (search,
-!> penetration test, return to the surface, velocity matching with
-!> friction, iterations), and keeps the results for its own local nodes.
-!> Replicated work, O(surface nodes) per rank, and bitwise the same on any
-!> number of ranks.
+!> halo exchange): each rank gets the state of the contact nodes near its
+!> share of the slave nodes and searches for that share (penetration test,
+!> triangle, shares); the nodes found go to every rank, which all match the
+!> velocities (friction, iterations) over them in ascending global id and
+!> return them to the surface; each keeps the results for its own nodes.
+!> The search divides among the ranks, the matching over the nodes found
+!> is repeated; bitwise the same on any number of ranks (design.md D9).
 module udar_contact
   use udar_kinds, only: rk, i8
   use udar_exact_sum, only: exact_limbs, exact_add

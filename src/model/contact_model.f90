@@ -1,6 +1,7 @@
 !> Contact interfaces as the time loop uses them. Every rank holds the same
-!> global surfaces and, each cycle, the same gathered state of every
-!> contact node, so every rank runs the identical contact pass (the
+!> global surfaces (topology); each cycle it has the current state only of
+!> the contact nodes near its share of the slave nodes (fresh) and of the
+!> nodes found in contact, which every rank matches in the same order (the
 !> results cannot depend on the partition); each then keeps what concerns
 !> its own nodes.
 module udar_contact_model
