@@ -18,7 +18,7 @@ module udar_contact
                         comms_max, comms_alltoall_counts, comms_alltoallv_real, comms_wtime
   implicit none
   private
-  public :: contact_distribute, contact_enforce, contact_overlaps, contact_settle, contact_pressure, &
+  public :: contact_distribute, contact_enforce, contact_overlaps, contact_settle, contact_pressure, contact_extent, &
             contact_keep_velocities, contact_work
 
   !> a projection this far outside a triangle (in area coordinates) still
@@ -71,7 +71,7 @@ contains
     call comms_allgather_count(size(ct%owned_pos), owned_counts)
     call comms_allgatherv_int(ct%owned_pos, owned_counts, ct%gather_pos)
     ct%counts = 7*owned_counts
-    allocate(ct%rec_counts(0:np-1), ct%rec_next(0:np-1), ct%x_counts(0:np-1), ct%x_rcounts(0:np-1), &
+    allocate(ct%rec_counts(0:np-1), ct%rec_next(0:np-1), ct%rec_end(0:np-1), ct%x_counts(0:np-1), ct%x_rcounts(0:np-1), &
              ct%region_counts(0:np-1), ct%regions(6*np))
     ct%region_counts = 6
     ct%x_counts = 0
@@ -177,11 +177,12 @@ contains
   !> crossed a master feature edge during the step (edge_crossing) gets the
   !> frictionless impulse along their common normal, at their closest
   !> points, that stops their approach: the four nodes' velocities change
-  !> in proportion to their linear weights over their masses (momentum
-  !> exact; the impulse acts along the line joining the closest points, so
-  !> no moment either), their positions as if the corrected velocities had
-  !> been used; what is still crossed goes back with the slave edge, in
-  !> bounded steps as a node's return does.
+  !> in proportion to their linear weights (edge_shares: of the points
+  !> whose join was along the normal at the start of the step) over their
+  !> masses (momentum exact, and no moment about the start positions), their
+  !> positions as if the corrected velocities had been used; what is still
+  !> crossed goes back with the slave edge, in bounded steps as a node's
+  !> return does.
   subroutine edge_pass(ct, it, dt, margin)
     type(contact_t), intent(inout) :: ct
     type(interface_t), intent(inout) :: it
@@ -264,7 +265,7 @@ contains
     real(rk), intent(in) :: depth_limit, dt
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
-    integer :: q, r, k, ps, best_q, end_q, np, t(3), a
+    integer :: q, r, k, kq, ps, best_q, np, t(3), a
     real(rk) :: dist
     np = comms_size()
     call gather_records(ct, n_rec)
@@ -286,11 +287,13 @@ contains
       ct%h(ps) = ct%rec_recv(r+20)
       ct%fresh(ps) = ct%stamp
     end do
-    ! merge the ranks' ascending runs
+    ! merge the ranks' ascending runs: rank q's next record at rec_next(q),
+    ! its run ending at rec_end(q)
     ct%rec_next(0) = 0
     do q = 1, np - 1
       ct%rec_next(q) = ct%rec_next(q-1) + ct%rec_counts(q-1)
     end do
+    ct%rec_end(0:np-1) = ct%rec_next(0:np-1) + ct%rec_counts(0:np-1)
     n_found = 0
     deepest = 0
     worst = 0
@@ -300,10 +303,10 @@ contains
       best_q = -1
       k = huge(1)
       do q = 0, np - 1
-        end_q = sum(ct%rec_counts(0:q))
-        if (ct%rec_next(q) >= end_q) cycle
-        if (nint(ct%rec_recv(ct%rec_next(q) + 1)) < k) then
-          k = nint(ct%rec_recv(ct%rec_next(q) + 1))
+        if (ct%rec_next(q) >= ct%rec_end(q)) cycle
+        kq = nint(ct%rec_recv(ct%rec_next(q) + 1))
+        if (kq < k) then
+          k = kq
           best_q = q
         end if
       end do
@@ -845,20 +848,20 @@ contains
         ct%v_pre(:,k) = dom%nd_v(:, ct%local(ct%owned_pos(k)))
       end if
     end do
-    ! at the start of the step every node here is current: the triangles'
-    ! extent for the neighbourhood of the coming pass
-    if (which == 1 .and. .not. ct%full_state .and. comms_size() > 1) call triangle_extent(ct, dom)
   end subroutine
 
   !> The largest distance between two nodes of a triangle of the surfaces
   !> (or its node and the element's fourth corner) over the triangles whose
   !> nodes are all on this rank (every triangle is whole on the rank of its
-  !> element), at the nodes' current positions: ct%size_local.
-  subroutine triangle_extent(ct, dom)
+  !> element), at the nodes' current positions: ct%size_local, what
+  !> exchange_neighbourhood widens by. Called at the start of the step,
+  !> when every node here (ghosts too) is current.
+  subroutine contact_extent(ct, dom)
     type(contact_t), intent(inout) :: ct
     type(domain_t), intent(in) :: dom
     integer :: i, k, t, a, b, c(4), nc
     real(rk) :: e
+    if (ct%n_interfaces == 0 .or. ct%full_state .or. comms_size() == 1) return
     e = 0
     do i = 1, ct%n_interfaces
       associate (it => ct%ifc(i))
@@ -1015,9 +1018,8 @@ contains
         do k = 1, size(ct%ifc(i)%slave)
           p = ct%ifc(i)%slave(k)
           q = ct%ifc(i)%searcher(k)
-          if (q /= me .and. ct%fresh(p) == ct%stamp) then
-            if (ct%local(p) <= dom%n_owned_nodes) call put(pass, q, p)
-          end if
+          if (q == me .or. ct%local(p) == 0) cycle
+          if (ct%local(p) <= dom%n_owned_nodes) call put(pass, q, p)
         end do
       end do
     end do

@@ -132,7 +132,7 @@ module udar_contact_model
     ! share of the slave nodes (interface_t mine) and the found ones go to
     ! every rank as records
     real(rk), allocatable :: rec_send(:), rec_recv(:)
-    integer, allocatable :: rec_counts(:), rec_next(:)   !< (0:ranks-1) reals from each rank, merge positions
+    integer, allocatable :: rec_counts(:), rec_next(:), rec_end(:)   !< (0:ranks-1) reals from each rank, merge positions
     ! the neighbourhood: each cycle a rank gets the state of the contact
     ! nodes near its share of the slave nodes, not of all (stamp: the
     ! exchange's number; fresh(p) = stamp when node p's state is current)

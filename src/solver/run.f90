@@ -37,7 +37,7 @@ module udar_run
   use udar_strings, only: itoa, fixed
   use udar_contact_model, only: contact_t
   use udar_contact, only: contact_enforce, contact_overlaps, contact_settle, contact_pressure, contact_keep_velocities, &
-      contact_work
+      contact_work, contact_extent
   use udar_contact_erosion, only: contact_erode
   use udar_files, only: rename_file, remove_if_present, make_directories
   implicit none
@@ -251,6 +251,7 @@ contains
       dt_v = 0.5_rk*(st%dt_old + dt)
       ! ---- nodes: v(n+1/2), conditions, walls, x(n+1); then the ghosts' from their owners
       call contact_keep_velocities(ct, dom, 1)
+      call contact_extent(ct, dom)
       call update_velocities(dom, dt_v)
       call apply_velocity_conditions(dom)
       do k = 1, size(dom%walls)
