@@ -346,7 +346,6 @@ contains
       do i = 1, nb
         if (gone(i)) fe(i,:,:) = 0.0_rk
       end do
-      call add_forces(dom, first, nb, fe)
       ! the pressure each element gives its nodes' average (nodal_pressures)
       if (stab) then
         p_node(1:nb) = blended_pressures(geo, .false., share(1:nb), p(1:nb), j_new(1:nb), jbar(1:nb), je(1:nb))
@@ -354,19 +353,15 @@ contains
       else
         p_node(1:nb) = p(1:nb)
       end if
-      ! nodal pressures and stiffness sums: the weighted pressures and the
-      ! bounds added element by element in ascending id, each node's mean
-      ! formed once its last element is done
-      do i = 1, nb
-        if (gone(i)) cycle
-        e = first + i - 1
-        do k = 1, 4
-          n = dom%el_conn(e,k)
-          if (n > dom%n_owned_nodes) cycle
-          if (dom%anti_locking) dom%nd_p(n) = dom%nd_p(n) + dom%el_vol0(e)*p_node(i)
-          dom%nd_k(n) = dom%nd_k(n) + lam(i)
-        end do
-      end do
+      ! forces, nodal pressures and stiffness sums added element by element
+      ! in ascending id, each node's mean formed once its last element is
+      ! done; an eroded element adds zeros (and the plain element no pressure)
+      if (dom%anti_locking) then
+        p_node(1:nb) = merge(0.0_rk, p_node(1:nb), gone(1:nb))
+      else
+        p_node(1:nb) = 0.0_rk
+      end if
+      call add_element_sums(dom, first, nb, fe, dom%el_vol0(first:last), p_node, dom%el_k(first:last))
       if (dom%anti_locking) then
         do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
           n = dom%blk_nd(k)
@@ -548,6 +543,27 @@ contains
         dom%nd_f(1,n) = dom%nd_f(1,n) + fe(i,a,1)
         dom%nd_f(2,n) = dom%nd_f(2,n) + fe(i,a,2)
         dom%nd_f(3,n) = dom%nd_f(3,n) + fe(i,a,3)
+      end do
+    end do
+  end subroutine
+
+  !> add_forces with each owned node's sums of the volume-weighted pressures
+  !> (v0 p) and of the stiffness bounds in the same sweep (one pass over the
+  !> connectivity instead of two).
+  subroutine add_element_sums(dom, first, nb, fe, v0, p, k_el)
+    type(domain_t), intent(inout) :: dom
+    integer, intent(in) :: first, nb
+    real(rk), intent(in) :: fe(block_size,4,3), v0(nb), p(block_size), k_el(nb)
+    integer :: a, i, n
+    do i = 1, nb
+      do a = 1, 4
+        n = dom%el_conn(first+i-1, a)
+        if (n > dom%n_owned_nodes) cycle
+        dom%nd_f(1,n) = dom%nd_f(1,n) + fe(i,a,1)
+        dom%nd_f(2,n) = dom%nd_f(2,n) + fe(i,a,2)
+        dom%nd_f(3,n) = dom%nd_f(3,n) + fe(i,a,3)
+        dom%nd_p(n) = dom%nd_p(n) + v0(i)*p(i)
+        dom%nd_k(n) = dom%nd_k(n) + k_el(i)
       end do
     end do
   end subroutine
