@@ -246,8 +246,10 @@ contains
         call blended_volume_ratios(geo, dom%stab_beta, dom%stab_beta_large, dom%stab_onset, nb, jbar, je, j_new, share)
         j_new(1:nb) = merge(jbar(1:nb), j_new(1:nb), gone(1:nb))
       end if
+      ! fractured and eroded elements keep a zero deviator (set when they
+      ! fracture or erode), so it is copied as it is
       do k = 1, 6
-        s(1:nb,k) = merge(0.0_rk, dom%el_s(first:last,k), no_shear(1:nb))
+        s(1:nb,k) = dom%el_s(first:last,k)
       end do
       eps(1:nb) = dom%el_eps_p(first:last)
       hard(1:nb) = dom%el_hard(first:last)
