@@ -363,7 +363,7 @@ contains
       else
         p_node(1:nb) = 0.0_rk
       end if
-      call add_element_sums(dom, first, nb, fe, dom%el_vol0(first:last), p_node, dom%el_k(first:last))
+      call add_forces(dom, first, nb, fe, dom%el_vol0(first:last), p_node, dom%el_k(first:last))
       if (dom%anti_locking) then
         do k = dom%blk_nd_ptr(b), dom%blk_nd_ptr(b+1) - 1
           n = dom%blk_nd(k)
@@ -478,6 +478,7 @@ contains
     type(domain_t), intent(inout) :: dom
     integer, parameter :: ld = block_size
     real(rk) :: p_bar(ld), fe(ld,4,3), xe(ld,4,3)
+    real(rk), parameter :: no_sum(ld) = 0.0_rk
     integer :: b, i, e, nb, first
     do b = 1, dom%n_blocks
       first = dom%blk_first(b)
@@ -492,7 +493,7 @@ contains
         if (dom%el_state(e) == el_eroded) p_bar(i) = 0.0_rk
       end do
       call tet_pressure_forces(ld, nb, xe, p_bar, fe)
-      call add_forces(dom, first, nb, fe)
+      call add_forces(dom, first, nb, fe, dom%el_vol0(first:first+nb-1), no_sum, no_sum)
     end do
   end subroutine
 
@@ -531,28 +532,12 @@ contains
   end subroutine
 
   !> Block forces (ld,4,3) added to the owned nodes' forces, element after
-  !> element: each node's sum runs in ascending element id, the order of its
-  !> node->element list. nd_f of the owned nodes is zeroed before the first block.
-  subroutine add_forces(dom, first, nb, fe)
-    type(domain_t), intent(inout) :: dom
-    integer, intent(in) :: first, nb
-    real(rk), intent(in) :: fe(block_size,4,3)
-    integer :: a, i, n
-    do i = 1, nb
-      do a = 1, 4
-        n = dom%el_conn(first+i-1, a)
-        if (n > dom%n_owned_nodes) cycle
-        dom%nd_f(1,n) = dom%nd_f(1,n) + fe(i,a,1)
-        dom%nd_f(2,n) = dom%nd_f(2,n) + fe(i,a,2)
-        dom%nd_f(3,n) = dom%nd_f(3,n) + fe(i,a,3)
-      end do
-    end do
-  end subroutine
-
-  !> add_forces with each owned node's sums of the volume-weighted pressures
-  !> (v0 p) and of the stiffness bounds in the same sweep (one pass over the
-  !> connectivity instead of two).
-  subroutine add_element_sums(dom, first, nb, fe, v0, p, k_el)
+  !> element, and in the same sweep each owned node's sums of the
+  !> volume-weighted pressures (v0 p) and of the stiffness bounds k_el (the
+  !> averaged forces' pass adds zeros there): each node's sums run in
+  !> ascending element id, the order of its node->element list. nd_f, nd_p
+  !> and nd_k of the owned nodes are zeroed before the first block.
+  subroutine add_forces(dom, first, nb, fe, v0, p, k_el)
     type(domain_t), intent(inout) :: dom
     integer, intent(in) :: first, nb
     real(rk), intent(in) :: fe(block_size,4,3), v0(nb), p(block_size), k_el(nb)
