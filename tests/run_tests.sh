@@ -116,6 +116,9 @@ run_test "regression/oblique_free_distance_fails" regression_fails oblique_free 
 run_test "regression/oblique_friction" regression oblique_friction bin/udar-debug
 run_test "regression/oblique_stick" regression oblique_friction bin/udar-debug oblique_stick
 run_test "regression/rod_3kms" regression rod_3kms bin/udar
+run_test "regression/rod_3kms_fast" regression rod_3kms bin/udar rod_3kms_fast
+run_test "regression/rod_3kms_fast_seams_off_fails" regression_fails rod_3kms bin/udar rod_3kms_fast_seams_off \
+  rod_nodes_inside_plate_over_h
 run_test "regression/spall" regression spall bin/udar-debug
 run_test "regression/spall_averaged" regression spall bin/udar-debug spall_averaged
 run_test "regression/penetration" regression penetration bin/udar

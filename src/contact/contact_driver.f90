@@ -12,8 +12,9 @@ module udar_contact
   use udar_domain, only: domain_t
   use udar_contact_model, only: contact_t, interface_t
   use udar_contact_search, only: grid_build, grid_cell, ensure
+  use udar_vectors, only: cross
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_shares, &
-                                  edge_crossing
+                                  edge_crossing, behind_surface, closest_on_triangle, behind_not, behind_face, behind_seam
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, &
                         comms_max, comms_alltoall_counts, comms_alltoallv_real, comms_wtime
   implicit none
@@ -456,7 +457,7 @@ contains
     integer, intent(in) :: stage             !< stage_search, stage_finish or stage_both
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
-    real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), vm(3,3), xa0(3,3), share(3), x_new(3)
+    real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), vm(3,3), xa0(3,3), share(3), x_new(3), c_edge(3)
     integer :: nt, t, k, ps, best, iter, a, pa, kc, n_rec
     real(rk) :: t_search, t_share
     logical :: separating
@@ -565,7 +566,15 @@ contains
         xa = ct%x(:, it%tri(:,t))
         call triangle_projection(xa, ct%x(:,ps), n, dist, g)
         room = allowance(ps)
-        if (dist < 0.0_rk) call put_back(ps, -dist*n, room)
+        if (dist < 0.0_rk) then
+          if (it%seams .and. minval(g) < -edge_tolerance) then
+            ! beyond the triangle's outline (a seam): onto its closest point
+            call closest_on_triangle(xa, ct%x(:,ps), c_edge, g)
+            call put_back(ps, c_edge - ct%x(:,ps), room)
+          else
+            call put_back(ps, -dist*n, room)
+          end if
+        end if
         it%room(k) = room
         ! slip at the contact points that carry a normal impulse (a node whose
         ! push was all taken back by the later passes is not in contact)
@@ -764,8 +773,10 @@ contains
                   sep_dist, sep_n(3), lam(4)
       integer :: other, sep
       integer :: t, s, first, last
-      real(rk) :: xa(3,3), n(3), dist, g(3)
-      best = 0; other = 0; sep = 0
+      real(rk) :: xa(3,3), n(3), dist, g(3), c_near(3), seam_dist, seam_n(3), seam_g(3)
+      integer :: verdict, seam
+      best = 0; other = 0; sep = 0; seam = 0
+      seam_dist = -huge(1.0_rk)
       sep_dist = -huge(1.0_rk)
       separating = .false.
       best_dist = -huge(1.0_rk); other_dist = -huge(1.0_rk)
@@ -782,7 +793,24 @@ contains
         end if
         xa = ct%x(:, it%tri(:,t))
         call triangle_projection(xa, ct%x(:,ps), n, dist, g)
-        if (dist >= 0.0_rk .or. any(g < -edge_tolerance)) cycle
+        if (dist >= 0.0_rk) cycle
+        if (it%seams) then
+          verdict = behind_here(t, ps, xa, n, dist, g)
+        else
+          verdict = merge(behind_not, behind_face, any(g < -edge_tolerance))
+        end if
+        if (verdict == behind_not) cycle
+        if (verdict == behind_seam) then
+          ! in the seam of a dented surface (no face has it within its
+          ! outline): the contact is with the triangle's closest point,
+          ! along the way to it; taken only when no face has the node
+          if (it%self .or. dist < -depth_limit) cycle
+          call closest_on_triangle(xa, ct%x(:,ps), c_near, g)
+          dist = -norm2(c_near - ct%x(:,ps))
+          if (dist >= 0.0_rk .or. dist <= seam_dist) cycle
+          seam = t; seam_dist = dist; seam_n = (ct%x(:,ps) - c_near)/dist; seam_g = g
+          cycle
+        end if
         if (dist < -depth_limit) then
           ! deeper than any approach in a step: only inside the element under
           ! the face (a face erosion exposed under a node already inside)
@@ -825,11 +853,41 @@ contains
       end do
       if (best == 0 .and. other /= 0) then
         best = other; best_dist = other_dist; best_n = other_n; best_g = other_g
+      else if (best == 0 .and. seam /= 0) then
+        best = seam; best_dist = seam_dist; best_n = seam_n; best_g = seam_g
+        if (dt > 0.0_rk .and. .not. geometric) then
+          closing = dot_product(seam_n, seam_g(1)*ct%v(:,it%tri(1,seam)) + seam_g(2)*ct%v(:,it%tri(2,seam)) &
+                                        + seam_g(3)*ct%v(:,it%tri(3,seam)) - ct%v(:,ps))
+          ! moving out of the seam: as a separating node, only put back
+          separating = closing <= 0.0_rk
+        end if
       else if (best == 0 .and. sep /= 0) then
         best = sep; best_dist = sep_dist; best_n = sep_n
         separating = .true.
       end if
     end subroutine
+
+    !> behind_surface's verdict on slave node ps behind triangle t's plane,
+    !> with the neighbouring triangles this rank has current (every rank has
+    !> those near its own slave nodes: the neighbourhood reaches a
+    !> triangle's extent beyond them).
+    integer function behind_here(t, ps, xa, n, dist, g)
+      integer, intent(in) :: t, ps
+      real(rk), intent(in) :: xa(3,3), n(3), dist, g(3)
+      real(rk) :: xb(3,3,3)
+      logical :: has(3)
+      integer :: a, tb
+      behind_here = behind_face
+      if (all(g >= -edge_tolerance)) return
+      do a = 1, 3
+        tb = it%tri_nbr(a,t)
+        has(a) = tb > 0
+        if (has(a)) has(a) = known(tb)
+        xb(:,:,a) = 0
+        if (has(a)) xb(:,:,a) = ct%x(:, it%tri(:,tb))
+      end do
+      behind_here = behind_surface(xa, n, dist, g, xb, has, ct%x(:,ps), edge_tolerance)
+    end function
   end subroutine
 
   !> Keeps the velocities of this rank's own contact nodes: v(n-1/2) before

@@ -6,7 +6,7 @@
 !> (and the contact pass) stay the same on any number of ranks.
 module udar_contact_erosion
   use udar_comms, only: comms_rank, comms_size
-  use udar_contact_model, only: contact_t, interface_t, size_interface_work, on_symmetry_plane, self_neighbourhoods, &
+  use udar_contact_model, only: contact_t, interface_t, size_interface_work, surface_neighbours, on_symmetry_plane, self_neighbourhoods, &
                                 assign_slaves, mark_returns
   use udar_contact_setup, only: tet_face, contact_edges
   implicit none
@@ -125,6 +125,7 @@ contains
           end if
         end if
         call size_interface_work(it)
+        if (it%seams) call surface_neighbours(it)
         call assign_slaves(it, ct%x0, comms_rank(), comms_size())
         it%reach_built = -1.0       ! a full search on the new surfaces
       end associate

@@ -7,7 +7,13 @@ module udar_contact_kernels
   use udar_vectors, only: cross
   implicit none
   private
-  public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_crossing, edge_shares
+  public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_crossing, edge_shares, &
+            behind_surface, closest_on_triangle, behind_not, behind_face, behind_seam
+
+  !> behind_surface's verdicts: not behind the surface; behind this face;
+  !> behind the surface beyond one of its concave edges (the contact point
+  !> is then the closest point of the triangle, closest_on_triangle)
+  integer, parameter :: behind_not = 0, behind_face = 1, behind_seam = 2
 
 contains
 
@@ -31,6 +37,81 @@ contains
     g(1) = dot_product(n, cross(xa(:,2) - p, xa(:,3) - p))/area2
     g(2) = dot_product(n, cross(xa(:,3) - p, xa(:,1) - p))/area2
     g(3) = 1.0_rk - g(1) - g(2)
+  end subroutine
+
+  !> Where a node xs behind the plane of master triangle xa (its
+  !> triangle_projection: normal n, distance dist < 0, area coordinates g)
+  !> is, when its projection falls outside the triangle: across each edge
+  !> it falls beyond, the triangle there (xb(:,:,a): the corners of the one
+  !> across the edge opposite corner a, counter-clockwise seen from
+  !> outside; has(a) false: none known) decides.
+  !> - Beyond a convex or flat edge (the neighbour's centre not in front of
+  !>   this plane beyond rounding) the neighbour has the node, if anyone:
+  !>   behind_not.
+  !> - Beyond a concave edge (a dented surface) the body is behind either
+  !>   plane: a node behind the neighbour's plane too whose projection falls
+  !>   into the gap between the two outlines (within its depth times tan of
+  !>   half the angle between the normals beyond the edge) is behind the
+  !>   surface though on neither face (the seam a node slips through when a
+  !>   step's approach is deep): behind_seam.
+  !> - Without a neighbour (a rim) it is not behind this face.
+  !> A projection on the triangle (no coordinate below -tol) is behind_face.
+  pure integer function behind_surface(xa, n, dist, g, xb, has, xs, tol) result(verdict)
+    real(rk), intent(in) :: xa(3,3), n(3), dist, g(3), xb(3,3,3), xs(3), tol
+    logical, intent(in) :: has(3)
+    real(rk), parameter :: flat = 1.0e-9_rk      ! of the edge's length: rounding
+    real(rk) :: area2, edge, beyond, nb(3), db, gb(3), centre(3), cos_n
+    integer :: a
+    verdict = behind_not
+    area2 = norm2(cross(xa(:,2) - xa(:,1), xa(:,3) - xa(:,1)))
+    beyond = 0
+    do a = 1, 3
+      if (g(a) >= -tol) cycle
+      if (.not. has(a)) return
+      edge = norm2(xa(:,mod(a+1,3)+1) - xa(:,mod(a,3)+1))
+      centre = (xb(:,1,a) + xb(:,2,a) + xb(:,3,a))/3.0_rk
+      if (dot_product(n, centre - xa(:,1)) <= flat*edge) return
+      call triangle_projection(xb(:,:,a), xs, nb, db, gb)
+      if (db > -flat*edge) return
+      ! how far beyond the edge the projection falls (area2/edge: the altitude over it)
+      beyond = -g(a)*area2/edge
+      cos_n = dot_product(n, nb)
+      if (beyond > -dist*sqrt(max(1.0_rk - cos_n, 0.0_rk)/(1.0_rk + cos_n))) return
+      verdict = behind_seam
+    end do
+    if (verdict == behind_not) verdict = behind_face
+  end function
+
+  !> The point c of triangle xa closest to p, and its area coordinates g
+  !> (all in [0, 1]): the projection if it falls on the triangle, else
+  !> the closest point of the nearest edge or corner.
+  pure subroutine closest_on_triangle(xa, p, c, g)
+    real(rk), intent(in) :: xa(3,3), p(3)
+    real(rk), intent(out) :: c(3), g(3)
+    real(rk) :: n(3), dist, s, best, e(3), q(3), d2
+    integer :: a, i, j
+    call triangle_projection(xa, p, n, dist, g)
+    if (all(g >= 0.0_rk)) then
+      c = p - dist*n
+      return
+    end if
+    best = huge(1.0_rk)
+    do a = 1, 3
+      ! the edge opposite corner a, from corner i to corner j
+      i = mod(a,3) + 1
+      j = mod(a+1,3) + 1
+      e = xa(:,j) - xa(:,i)
+      s = min(max(dot_product(p - xa(:,i), e)/max(dot_product(e, e), tiny(1.0_rk)), 0.0_rk), 1.0_rk)
+      q = xa(:,i) + s*e
+      d2 = sum((p - q)**2)
+      if (d2 < best) then
+        best = d2
+        c = q
+        g = 0
+        g(i) = 1.0_rk - s
+        g(j) = s
+      end if
+    end do
   end subroutine
 
   !> Barycentric coordinates lam of point p in the tetrahedron of master

@@ -11,7 +11,7 @@ module udar_contact_setup
   use udar_setup, only: find_group, group_list
   use udar_strings, only: itoa, to_lower
   use udar_comms, only: comms_rank, comms_size
-  use udar_contact_model, only: feature_edges, contact_t, interface_t, size_interface_work, self_neighbourhoods, on_symmetry_plane, &
+  use udar_contact_model, only: feature_edges, contact_t, interface_t, size_interface_work, surface_neighbours, self_neighbourhoods, on_symmetry_plane, &
                                 assign_slaves, mark_returns
   implicit none
   private
@@ -223,6 +223,7 @@ contains
       it%friction = cfg%contacts(k)%friction
       it%iterations = cfg%contacts(k)%iterations
       it%tracking = cfg%contacts(k)%tracking
+      it%seams = cfg%contacts(k)%seams
       it%tolerance = cfg%contacts(k)%tolerance
       it%weights = cfg%contacts(k)%weights
       it%move_overlaps = cfg%contacts(k)%initial_overlap == overlap_move
@@ -237,6 +238,7 @@ contains
       ! element a step (3 km/s)
       if (it%tracking) it%skin = 0.5_rk*it%h_mean
       call size_interface_work(it)
+      if (it%seams) call surface_neighbours(it)
     end subroutine
   end subroutine
 

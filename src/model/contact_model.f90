@@ -12,7 +12,8 @@ module udar_contact_model
   use udar_config, only: contact_weights_area
   implicit none
   private
-  public :: size_interface_work, on_symmetry_plane, self_neighbourhoods, feature_edges, assign_slaves, mark_returns
+  public :: size_interface_work, on_symmetry_plane, self_neighbourhoods, feature_edges, assign_slaves, mark_returns, &
+            surface_neighbours
 
   !> One direction of an interface: slave nodes against master triangles.
   type, public :: interface_t
@@ -22,6 +23,10 @@ module udar_contact_model
     !> master parts; 0 for a fixed surface): a slave node inside that
     !> element is found however deep (exposed by erosion under it)
     integer, allocatable :: apex(:)
+    !> (3, n_tri) the triangle across the edge opposite each corner (0: a
+    !> rim, or an edge of more than two faces): whether a node near an edge
+    !> is behind the surface depends on how the faces meet there
+    integer, allocatable :: tri_nbr(:,:)
     integer, allocatable :: slave(:)       !< contact-node indices, ascending (= ascending global id)
     integer :: master_part = 0, slave_part = 0   !< eroding parts whose current boundary is the surface (0: fixed surface)
     !> self-contact: master and slave are one part's boundary (without its
@@ -44,6 +49,9 @@ module udar_contact_model
     integer, allocatable :: local_tri(:)
     real(rk) :: friction = 0
     integer :: iterations = 50, weights = contact_weights_area
+    !> nodes in the seams of a dented master surface are found (behind_surface;
+    !> needs tri_nbr)
+    logical :: seams = .true.
     real(rk) :: tolerance = 0
     logical :: move_overlaps = .false.     !< initial overlaps: move the slave nodes (else report only)
     real(rk) :: h_mean = 0                 !< m, mean master edge length
@@ -230,6 +238,61 @@ contains
     if (.not. allocated(it%cand)) allocate(it%cand(4*size(it%slave) + 1))
   end subroutine
 
+  !> Every edge of every triangle of a surface, as key(:,k) = (lower node,
+  !> higher node, triangle, the triangle's corner opposite the edge), and
+  !> the order that sorts them by (lower, higher) node: the faces at one
+  !> edge are consecutive in it.
+  subroutine edge_keys(tri, key, order)
+    integer, intent(in) :: tri(:,:)
+    integer, allocatable, intent(out) :: key(:,:), order(:)
+    integer :: t, a, i, j, m
+    m = size(tri, 2)
+    allocate(key(4, 3*m), order(3*m))
+    do t = 1, m
+      do a = 1, 3
+        i = tri(mod(a,3)+1,t)
+        j = tri(mod(a+1,3)+1,t)
+        key(:, 3*(t-1)+a) = [min(i,j), max(i,j), t, a]
+      end do
+    end do
+    if (m == 0) return
+    call stable_sort_permutation(int(key(1,:), i8)*(maxval(key(2,:)) + 1_i8) + key(2,:), order)
+  end subroutine
+
+  !> The last position in the sorted edge list (edge_keys) of the run of
+  !> faces at the same edge as position i.
+  pure integer function same_edge_end(key, order, i) result(j)
+    integer, intent(in) :: key(:,:), order(:), i
+    j = i
+    do while (j < size(order))
+      if (any(key(1:2,order(j+1)) /= key(1:2,order(i)))) exit
+      j = j + 1
+    end do
+  end function
+
+  !> it%tri_nbr of the interface's current master surface (after every
+  !> rebuild of it%tri): the triangle across each edge where exactly two
+  !> faces meet.
+  subroutine surface_neighbours(it)
+    type(interface_t), intent(inout) :: it
+    integer, allocatable :: key(:,:), order(:)
+    integer :: i, j, p, q
+    if (allocated(it%tri_nbr)) deallocate(it%tri_nbr)
+    allocate(it%tri_nbr(3, size(it%tri, 2)), source=0)
+    call edge_keys(it%tri, key, order)
+    i = 1
+    do while (i <= size(order))
+      j = same_edge_end(key, order, i)
+      if (j == i + 1) then
+        p = order(i)
+        q = order(j)
+        it%tri_nbr(key(4,p), key(3,p)) = key(3,q)
+        it%tri_nbr(key(4,q), key(3,q)) = key(3,p)
+      end if
+      i = j + 1
+    end do
+  end subroutine
+
   !> The feature edges of a surface (triangles tri, contact nodes at x):
   !> every edge of one triangle only (a rim), and every edge of two whose
   !> faces meet convexly at more than 30 degrees (a body's edge, where a
@@ -242,36 +305,25 @@ contains
     integer, allocatable :: key(:,:), order(:)
     real(rk), allocatable :: nrm(:,:)
     real(rk), parameter :: cos_limit = 0.866_rk   ! 30 degrees
-    integer :: t, a, m, i, j, n_e, t1, t2, opp
+    integer :: t, m, i, j, n_e, t1, t2, opp
     logical :: keep
     m = size(tri, 2)
-    allocate(key(4, 3*m), nrm(3, m))
+    allocate(nrm(3, m))
     do t = 1, m
       nrm(:,t) = cross(x(:,tri(2,t)) - x(:,tri(1,t)), x(:,tri(3,t)) - x(:,tri(1,t)))
       nrm(:,t) = nrm(:,t)/max(norm2(nrm(:,t)), tiny(1.0_rk))
-      do a = 1, 3
-        i = tri(a,t)
-        j = tri(mod(a,3)+1,t)
-        key(:, 3*(t-1)+a) = [min(i,j), max(i,j), t, tri(mod(a+1,3)+1,t)]   ! edge, its face, the third node
-      end do
     end do
-    ! sorted by (lower, higher) node
-    allocate(order(3*m))
-    call stable_sort_permutation(int(key(1,:), i8)*(maxval(key(2,:)) + 1_i8) + key(2,:), order)
+    call edge_keys(tri, key, order)
     allocate(edges(2, 3*m))
     n_e = 0
     i = 1
     do while (i <= 3*m)
-      j = i
-      do while (j < 3*m)
-        if (any(key(1:2,order(j+1)) /= key(1:2,order(i)))) exit
-        j = j + 1
-      end do
+      j = same_edge_end(key, order, i)
       keep = j == i                           ! a rim
       if (j == i + 1) then
         t1 = key(3,order(i))
         t2 = key(3,order(j))
-        opp = key(4,order(j))                 ! the other face's third node: behind the first face at a convex edge
+        opp = tri(key(4,order(j)), t2)        ! the other face's third node: behind the first face at a convex edge
         keep = dot_product(nrm(:,t1), nrm(:,t2)) < cos_limit .and. &
                dot_product(nrm(:,t1), x(:,opp) - x(:,key(1,order(i)))) < 0.0_rk
       end if

@@ -9,7 +9,9 @@ program test_contact_kernels
   use udar_config, only: contact_weights_area, contact_weights_distance
   use udar_vectors, only: cross
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, edge_crossing, edge_shares, &
-                                  tetrahedron_coordinates
+                                  tetrahedron_coordinates, behind_surface, closest_on_triangle, behind_not, behind_face, &
+                                  behind_seam
+  use udar_contact_model, only: interface_t, surface_neighbours
   use unit_checks, only: check, check_summary
   implicit none
   integer, parameter :: ns = 4
@@ -52,8 +54,76 @@ program test_contact_kernels
   call test_moving_correction()
   call test_moving_edges()
   call test_edges_and_elements()
+  call test_seams()
   call check_summary()
 contains
+
+  !> The surface beyond a triangle's edges (behind_surface,
+  !> closest_on_triangle, surface_neighbours), by hand. Triangle T =
+  !> (0,0,0), (1,0.5,0), (0,1,0) in the plane z = 0, outward +z; the edge
+  !> opposite its corner 2 is x = 0. Across it a concave neighbour rising at
+  !> 45 degrees (to (-1,0.5,1): a dented surface; the gap between the two
+  !> outlines is tan(22.5) = 0.414 of a node's depth wide), a shallow one
+  !> (to (-1,0.5,0.1): 0.0499 of the depth), or a convex one (falling back
+  !> under T to (0.5,0.5,-1)).
+  subroutine test_seams()
+    real(rk) :: xa(3,3), xb(3,3,3), g(3), c(3), err
+    logical :: has(3)
+    integer :: v(6)
+    type(interface_t) :: it
+    xa = reshape([0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.5_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk], [3, 3])
+    has = [.false., .true., .false.]
+    xb = 0
+    xb(:,:,2) = reshape([0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk, -1.0_rk, 0.5_rk, 1.0_rk], [3, 3])
+    ! 0.02 deep, 0.005 beyond the edge (gap 0.0083): in the seam; 0.01 beyond: the neighbour's
+    v(1) = verdict_at(xa, xb, has, [-0.005_rk, 0.3_rk, -0.02_rk])
+    v(2) = verdict_at(xa, xb, has, [-0.01_rk, 0.3_rk, -0.02_rk])
+    ! without the neighbour (a rim): off the triangle
+    has(2) = .false.
+    v(3) = verdict_at(xa, xb, has, [-0.005_rk, 0.3_rk, -0.02_rk])
+    has(2) = .true.
+    ! the shallow fold: 0.01 beyond at 0.3 deep (gap 0.0150) in the seam, at 0.1 deep (0.0050) not
+    xb(:,:,2) = reshape([0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk, -1.0_rk, 0.5_rk, 0.1_rk], [3, 3])
+    v(4) = verdict_at(xa, xb, has, [-0.01_rk, 0.3_rk, -0.3_rk])
+    v(5) = verdict_at(xa, xb, has, [-0.01_rk, 0.3_rk, -0.1_rk])
+    ! beyond a convex edge: not behind T
+    xb(:,:,2) = reshape([0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk, 0.5_rk, 0.5_rk, -1.0_rk], [3, 3])
+    v(6) = verdict_at(xa, xb, has, [-0.01_rk, 0.5_rk, -0.002_rk])
+    call check('seam_verdicts_by_hand', all(v == [behind_seam, behind_not, behind_not, behind_seam, behind_not, behind_not]), &
+               'concave: in the gap / beyond it / rim; shallow: deep / not deep enough; convex (2 0 0 2 0 0 wanted): '// &
+               trim(ints(v)))
+    ! on the triangle behind its plane: the face
+    has = .true.
+    call check('seam_verdict_on_the_face', verdict_at(xa, xb, has, [0.2_rk, 0.5_rk, -0.3_rk]) == behind_face, 'a projection on T')
+    ! closest points: on the edge x = 0, at a corner, the projection
+    call closest_on_triangle(xa, [-0.5_rk, 0.5_rk, 0.3_rk], c, g)
+    err = maxval(abs(c - [0.0_rk, 0.5_rk, 0.0_rk])) + maxval(abs(g - [0.5_rk, 0.0_rk, 0.5_rk]))
+    call closest_on_triangle(xa, [-1.0_rk, -1.0_rk, 0.0_rk], c, g)
+    err = err + maxval(abs(c)) + maxval(abs(g - [1.0_rk, 0.0_rk, 0.0_rk]))
+    call closest_on_triangle(xa, [0.2_rk, 0.5_rk, -1.0_rk], c, g)
+    err = err + maxval(abs(c - [0.2_rk, 0.5_rk, 0.0_rk])) + maxval(abs(g - [0.4_rk, 0.2_rk, 0.4_rk]))
+    call check('closest_on_triangle_by_hand', err < 1.0e-15_rk, 'summed error '//s(err))
+    ! neighbours of a strip of three triangles (nodes 1..5) and of a fan of
+    ! three at the edge 6-7 (none across an edge of more than two faces)
+    it%tri = reshape([1, 2, 3, 3, 2, 4, 3, 4, 5, 6, 7, 8, 7, 6, 9, 6, 7, 10], [3, 6])
+    call surface_neighbours(it)
+    call check('surface_neighbours_by_hand', all(it%tri_nbr(:,1) == [2, 0, 0]) .and. all(it%tri_nbr(:,2) == [0, 3, 1]) &
+               .and. all(it%tri_nbr(:,3) == [0, 0, 2]) .and. all(it%tri_nbr(:,4:6) == 0), 'a strip and a fan')
+  end subroutine
+
+  !> behind_surface of the point p behind triangle xa's plane.
+  integer function verdict_at(xa, xb, has, p)
+    real(rk), intent(in) :: xa(3,3), xb(3,3,3), p(3)
+    logical, intent(in) :: has(3)
+    real(rk) :: n(3), dist, g(3)
+    call triangle_projection(xa, p, n, dist, g)
+    verdict_at = behind_surface(xa, n, dist, g, xb, has, p, 1.0e-3_rk)
+  end function
+
+  character(len=40) function ints(k)
+    integer, intent(in) :: k(:)
+    write(ints, '(6i2)') k
+  end function
 
   !> Edge against edge and a point in the element under a face, by hand:
   !> slave edge (-1,0,0.2)-(1,0,0.2) moving at (0,0,-2) for 0.2 s over the

@@ -15,7 +15,8 @@ from check_geometry import deepest_inside  # noqa: E402
 
 
 out = os.path.join(sys.argv[1], 'out')
-with h5py.File(os.path.join(out, 'rod_3kms.h5'), 'r') as f:
+deck = sys.argv[2] if len(sys.argv) > 2 else 'rod_3kms'
+with h5py.File(os.path.join(out, deck + '.h5'), 'r') as f:
     part = f['mesh/part_id'][...]
     conn = f['mesh/connectivity'][...]
     rod_nodes = np.unique(conn[part == 1])
@@ -35,7 +36,7 @@ with h5py.File(os.path.join(out, 'rod_3kms.h5'), 'r') as f:
 print(f"MEASURED crater depth (plate top surface) {dent * 1e3:.3f} mm at 1 us")
 checks.below('rod_nodes_inside_plate_over_h', worst / h_plate, 1e-6)
 checks.above('plate_dented_m', dent, 0.5e-3, 'm')
-h = udar_results.read_history(os.path.join(out, 'rod_3kms_history.csv'))
+h = udar_results.read_history(os.path.join(out, deck + '_history.csv'))
 p0 = h['momentum_z'][0]
 checks.below('momentum_conserved_relative', np.abs(h['momentum_z'] - p0).max() / abs(p0), 1e-13)
 checks.finish()
