@@ -10,7 +10,7 @@ module udar_contact
   use udar_kinds, only: rk, i8
   use udar_exact_sum, only: exact_limbs, exact_add
   use udar_domain, only: domain_t
-  use udar_contact_model, only: contact_t, interface_t
+  use udar_contact_model, only: contact_t, interface_t, neighbour_across
   use udar_contact_search, only: grid_build, grid_cell, ensure
   use udar_vectors, only: cross
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_shares, &
@@ -880,7 +880,8 @@ contains
       behind_here = behind_face
       if (all(g >= -edge_tolerance)) return
       do a = 1, 3
-        tb = it%tri_nbr(a,t)
+        tb = 0
+        if (g(a) < -edge_tolerance) tb = neighbour_across(it, t, a)
         has(a) = tb > 0
         if (has(a)) has(a) = known(tb)
         xb(:,:,a) = 0

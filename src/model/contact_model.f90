@@ -13,7 +13,7 @@ module udar_contact_model
   implicit none
   private
   public :: size_interface_work, on_symmetry_plane, self_neighbourhoods, feature_edges, assign_slaves, mark_returns, &
-            surface_neighbours
+            surface_neighbours, neighbour_across
 
   !> One direction of an interface: slave nodes against master triangles.
   type, public :: interface_t
@@ -23,10 +23,10 @@ module udar_contact_model
     !> master parts; 0 for a fixed surface): a slave node inside that
     !> element is found however deep (exposed by erosion under it)
     integer, allocatable :: apex(:)
-    !> (3, n_tri) the triangle across the edge opposite each corner (0: a
-    !> rim, or an edge of more than two faces): whether a node near an edge
-    !> is behind the surface depends on how the faces meet there
-    integer, allocatable :: tri_nbr(:,:)
+    !> CSR over contact nodes: the master triangles at each (seams: whether a
+    !> node beyond an edge is behind the surface depends on the triangle
+    !> across it, neighbour_across)
+    integer, allocatable :: tri_start(:), tri_at(:)
     integer, allocatable :: slave(:)       !< contact-node indices, ascending (= ascending global id)
     integer :: master_part = 0, slave_part = 0   !< eroding parts whose current boundary is the surface (0: fixed surface)
     !> self-contact: master and slave are one part's boundary (without its
@@ -50,7 +50,7 @@ module udar_contact_model
     real(rk) :: friction = 0
     integer :: iterations = 50, weights = contact_weights_area
     !> nodes in the seams of a dented master surface are found (behind_surface;
-    !> needs tri_nbr)
+    !> needs the node-triangle lists of surface_neighbours)
     logical :: seams = .true.
     real(rk) :: tolerance = 0
     logical :: move_overlaps = .false.     !< initial overlaps: move the slave nodes (else report only)
@@ -270,28 +270,55 @@ contains
     end do
   end function
 
-  !> it%tri_nbr of the interface's current master surface (after every
-  !> rebuild of it%tri): the triangle across each edge where exactly two
-  !> faces meet.
+  !> The triangles at each node of the interface's current master surface
+  !> (it%tri_start, it%tri_at; after every rebuild of it%tri): what
+  !> neighbour_across searches. No sort: it is redone at every erosion.
   subroutine surface_neighbours(it)
     type(interface_t), intent(inout) :: it
-    integer, allocatable :: key(:,:), order(:)
-    integer :: i, j, p, q
-    if (allocated(it%tri_nbr)) deallocate(it%tri_nbr)
-    allocate(it%tri_nbr(3, size(it%tri, 2)), source=0)
-    call edge_keys(it%tri, key, order)
-    i = 1
-    do while (i <= size(order))
-      j = same_edge_end(key, order, i)
-      if (j == i + 1) then
-        p = order(i)
-        q = order(j)
-        it%tri_nbr(key(4,p), key(3,p)) = key(3,q)
-        it%tri_nbr(key(4,q), key(3,q)) = key(3,p)
-      end if
-      i = j + 1
+    integer, allocatable :: fill(:)
+    integer :: t, a, i, m, nn
+    m = size(it%tri, 2)
+    nn = 0
+    if (m > 0) nn = maxval(it%tri)
+    if (allocated(it%tri_start)) deallocate(it%tri_start, it%tri_at)
+    allocate(it%tri_start(nn + 1), source=0)
+    do t = 1, m
+      it%tri_start(it%tri(:,t) + 1) = it%tri_start(it%tri(:,t) + 1) + 1
+    end do
+    it%tri_start(1) = 1
+    do i = 1, nn
+      it%tri_start(i+1) = it%tri_start(i+1) + it%tri_start(i)
+    end do
+    allocate(it%tri_at(it%tri_start(nn+1) - 1), fill(nn))
+    fill = it%tri_start(1:nn)
+    do t = 1, m
+      do a = 1, 3
+        i = it%tri(a,t)
+        it%tri_at(fill(i)) = t
+        fill(i) = fill(i) + 1
+      end do
     end do
   end subroutine
+
+  !> The triangle across the edge of triangle t opposite its corner a (0: a
+  !> rim, or an edge of more than two faces), from surface_neighbours' lists.
+  pure integer function neighbour_across(it, t, a) result(found)
+    type(interface_t), intent(in) :: it
+    integer, intent(in) :: t, a
+    integer :: i, j, k, s
+    i = it%tri(mod(a,3)+1,t)
+    j = it%tri(mod(a+1,3)+1,t)
+    found = 0
+    do k = it%tri_start(i), it%tri_start(i+1) - 1
+      s = it%tri_at(k)
+      if (s == t .or. all(it%tri(:,s) /= j)) cycle
+      if (found /= 0) then
+        found = 0          ! more than two faces at the edge
+        return
+      end if
+      found = s
+    end do
+  end function
 
   !> The feature edges of a surface (triangles tri, contact nodes at x):
   !> every edge of one triangle only (a rim), and every edge of two whose

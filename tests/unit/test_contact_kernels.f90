@@ -11,7 +11,7 @@ program test_contact_kernels
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, edge_crossing, edge_shares, &
                                   tetrahedron_coordinates, behind_surface, closest_on_triangle, behind_not, behind_face, &
                                   behind_seam
-  use udar_contact_model, only: interface_t, surface_neighbours
+  use udar_contact_model, only: interface_t, surface_neighbours, neighbour_across
   use unit_checks, only: check, check_summary
   implicit none
   integer, parameter :: ns = 4
@@ -59,7 +59,7 @@ program test_contact_kernels
 contains
 
   !> The surface beyond a triangle's edges (behind_surface,
-  !> closest_on_triangle, surface_neighbours), by hand. Triangle T =
+  !> closest_on_triangle, neighbour_across), by hand. Triangle T =
   !> (0,0,0), (1,0.5,0), (0,1,0) in the plane z = 0, outward +z; the edge
   !> opposite its corner 2 is x = 0. Across it a concave neighbour rising at
   !> 45 degrees (to (-1,0.5,1): a dented surface; the gap between the two
@@ -68,6 +68,7 @@ contains
   !> under T to (0.5,0.5,-1)).
   subroutine test_seams()
     real(rk) :: xa(3,3), xb(3,3,3), g(3), c(3), err
+    integer :: nbr(3,6), t, a
     logical :: has(3)
     integer :: v(6)
     type(interface_t) :: it
@@ -107,8 +108,13 @@ contains
     ! three at the edge 6-7 (none across an edge of more than two faces)
     it%tri = reshape([1, 2, 3, 3, 2, 4, 3, 4, 5, 6, 7, 8, 7, 6, 9, 6, 7, 10], [3, 6])
     call surface_neighbours(it)
-    call check('surface_neighbours_by_hand', all(it%tri_nbr(:,1) == [2, 0, 0]) .and. all(it%tri_nbr(:,2) == [0, 3, 1]) &
-               .and. all(it%tri_nbr(:,3) == [0, 0, 2]) .and. all(it%tri_nbr(:,4:6) == 0), 'a strip and a fan')
+    do t = 1, 6
+      do a = 1, 3
+        nbr(a,t) = neighbour_across(it, t, a)
+      end do
+    end do
+    call check('neighbour_across_by_hand', all(nbr(:,1) == [2, 0, 0]) .and. all(nbr(:,2) == [0, 3, 1]) &
+               .and. all(nbr(:,3) == [0, 0, 2]) .and. all(nbr(:,4:6) == 0), 'a strip and a fan')
   end subroutine
 
   !> behind_surface of the point p behind triangle xa's plane.
