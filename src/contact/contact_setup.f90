@@ -107,6 +107,8 @@ contains
     ct%n_nodes = mark_count
     do i = 1, n_ifc
       if (ifc(i)%self) call self_neighbourhoods(ifc(i), ct%n_nodes)
+      ! the triangles at each node, by contact-node index (after the renumbering)
+      if (ifc(i)%seams) call surface_neighbours(ifc(i))
     end do
     do i = 1, n_ifc
       allocate(ifc(i)%x_built(3, ct%n_nodes))
@@ -238,7 +240,6 @@ contains
       ! element a step (3 km/s)
       if (it%tracking) it%skin = 0.5_rk*it%h_mean
       call size_interface_work(it)
-      if (it%seams) call surface_neighbours(it)
     end subroutine
   end subroutine
 
