@@ -12,7 +12,6 @@ module udar_contact
   use udar_domain, only: domain_t
   use udar_contact_model, only: contact_t, interface_t, neighbour_across
   use udar_contact_search, only: grid_build, grid_cell, ensure
-  use udar_vectors, only: cross
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_shares, &
                                   edge_crossing, behind_surface, closest_on_triangle, behind_not, behind_face, behind_seam
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, &
