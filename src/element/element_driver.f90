@@ -478,7 +478,6 @@ contains
     type(domain_t), intent(inout) :: dom
     integer, parameter :: ld = block_size
     real(rk) :: p_bar(ld), fe(ld,4,3), xe(ld,4,3)
-    real(rk), parameter :: no_sum(ld) = 0.0_rk
     integer :: b, i, e, nb, first
     do b = 1, dom%n_blocks
       first = dom%blk_first(b)
@@ -493,7 +492,7 @@ contains
         if (dom%el_state(e) == el_eroded) p_bar(i) = 0.0_rk
       end do
       call tet_pressure_forces(ld, nb, xe, p_bar, fe)
-      call add_forces(dom, first, nb, fe, dom%el_vol0(first:first+nb-1), no_sum, no_sum)
+      call add_forces(dom, first, nb, fe)
     end do
   end subroutine
 
@@ -532,15 +531,17 @@ contains
   end subroutine
 
   !> Block forces (ld,4,3) added to the owned nodes' forces, element after
-  !> element, and in the same sweep each owned node's sums of the
-  !> volume-weighted pressures (v0 p) and of the stiffness bounds k_el (the
-  !> averaged forces' pass adds zeros there): each node's sums run in
-  !> ascending element id, the order of its node->element list. nd_f, nd_p
-  !> and nd_k of the owned nodes are zeroed before the first block.
+  !> element, and when given, in the same sweep, each owned node's sums of
+  !> the volume-weighted pressures (v0 p) and of the stiffness bounds k_el:
+  !> each node's sums run in ascending element id, the order of its
+  !> node->element list. nd_f, nd_p and nd_k of the owned nodes are zeroed
+  !> before the first block. (The test of the optional sums is loop
+  !> invariant: gcc unswitches the loop.)
   subroutine add_forces(dom, first, nb, fe, v0, p, k_el)
     type(domain_t), intent(inout) :: dom
     integer, intent(in) :: first, nb
-    real(rk), intent(in) :: fe(block_size,4,3), v0(nb), p(block_size), k_el(nb)
+    real(rk), intent(in) :: fe(block_size,4,3)
+    real(rk), intent(in), optional :: v0(nb), p(block_size), k_el(nb)
     integer :: a, i, n
     do i = 1, nb
       do a = 1, 4
@@ -549,8 +550,10 @@ contains
         dom%nd_f(1,n) = dom%nd_f(1,n) + fe(i,a,1)
         dom%nd_f(2,n) = dom%nd_f(2,n) + fe(i,a,2)
         dom%nd_f(3,n) = dom%nd_f(3,n) + fe(i,a,3)
-        dom%nd_p(n) = dom%nd_p(n) + v0(i)*p(i)
-        dom%nd_k(n) = dom%nd_k(n) + k_el(i)
+        if (present(k_el)) then
+          dom%nd_p(n) = dom%nd_p(n) + v0(i)*p(i)
+          dom%nd_k(n) = dom%nd_k(n) + k_el(i)
+        end if
       end do
     end do
   end subroutine

@@ -238,63 +238,38 @@ contains
     if (.not. allocated(it%cand)) allocate(it%cand(4*size(it%slave) + 1))
   end subroutine
 
-  !> Every edge of every triangle of a surface, as key(:,k) = (lower node,
-  !> higher node, triangle, the triangle's corner opposite the edge), and
-  !> the order that sorts them by (lower, higher) node: the faces at one
-  !> edge are consecutive in it.
-  subroutine edge_keys(tri, key, order)
-    integer, intent(in) :: tri(:,:)
-    integer, allocatable, intent(out) :: key(:,:), order(:)
-    integer :: t, a, i, j, m
-    m = size(tri, 2)
-    allocate(key(4, 3*m), order(3*m))
-    do t = 1, m
-      do a = 1, 3
-        i = tri(mod(a,3)+1,t)
-        j = tri(mod(a+1,3)+1,t)
-        key(:, 3*(t-1)+a) = [min(i,j), max(i,j), t, a]
-      end do
-    end do
-    if (m == 0) return
-    call stable_sort_permutation(int(key(1,:), i8)*(maxval(key(2,:)) + 1_i8) + key(2,:), order)
-  end subroutine
-
-  !> The last position in the sorted edge list (edge_keys) of the run of
-  !> faces at the same edge as position i.
-  pure integer function same_edge_end(key, order, i) result(j)
-    integer, intent(in) :: key(:,:), order(:), i
-    j = i
-    do while (j < size(order))
-      if (any(key(1:2,order(j+1)) /= key(1:2,order(i)))) exit
-      j = j + 1
-    end do
-  end function
-
   !> The triangles at each node of the interface's current master surface
   !> (it%tri_start, it%tri_at; after every rebuild of it%tri): what
   !> neighbour_across searches. No sort: it is redone at every erosion.
   subroutine surface_neighbours(it)
     type(interface_t), intent(inout) :: it
-    integer, allocatable :: fill(:)
-    integer :: t, a, i, m, nn
-    m = size(it%tri, 2)
+    integer :: nn
     nn = 0
-    if (m > 0) nn = maxval(it%tri)
-    if (allocated(it%tri_start)) deallocate(it%tri_start, it%tri_at)
-    allocate(it%tri_start(nn + 1), source=0)
-    do t = 1, m
-      it%tri_start(it%tri(:,t) + 1) = it%tri_start(it%tri(:,t) + 1) + 1
+    if (size(it%tri, 2) > 0) nn = maxval(it%tri)
+    call node_triangles(it%tri, nn, it%tri_start, it%tri_at)
+  end subroutine
+
+  !> The triangles at each of n_nodes nodes (CSR: at(start(n):start(n+1)-1),
+  !> ascending) of a surface tri.
+  pure subroutine node_triangles(tri, n_nodes, start, at)
+    integer, intent(in) :: tri(:,:), n_nodes
+    integer, allocatable, intent(out) :: start(:), at(:)
+    integer, allocatable :: fill(:)
+    integer :: t, a, i
+    allocate(start(n_nodes + 1), source=0)
+    do t = 1, size(tri, 2)
+      start(tri(:,t) + 1) = start(tri(:,t) + 1) + 1
     end do
-    it%tri_start(1) = 1
-    do i = 1, nn
-      it%tri_start(i+1) = it%tri_start(i+1) + it%tri_start(i)
+    start(1) = 1
+    do i = 1, n_nodes
+      start(i+1) = start(i+1) + start(i)
     end do
-    allocate(it%tri_at(it%tri_start(nn+1) - 1), fill(nn))
-    fill = it%tri_start(1:nn)
-    do t = 1, m
+    allocate(at(start(n_nodes+1) - 1), fill(n_nodes))
+    fill = start(1:n_nodes)
+    do t = 1, size(tri, 2)
       do a = 1, 3
-        i = it%tri(a,t)
-        it%tri_at(fill(i)) = t
+        i = tri(a,t)
+        at(fill(i)) = t
         fill(i) = fill(i) + 1
       end do
     end do
@@ -332,25 +307,36 @@ contains
     integer, allocatable :: key(:,:), order(:)
     real(rk), allocatable :: nrm(:,:)
     real(rk), parameter :: cos_limit = 0.866_rk   ! 30 degrees
-    integer :: t, m, i, j, n_e, t1, t2, opp
+    integer :: t, a, m, i, j, n_e, t1, t2, opp
     logical :: keep
     m = size(tri, 2)
-    allocate(nrm(3, m))
+    allocate(key(4, 3*m), nrm(3, m))
     do t = 1, m
       nrm(:,t) = cross(x(:,tri(2,t)) - x(:,tri(1,t)), x(:,tri(3,t)) - x(:,tri(1,t)))
       nrm(:,t) = nrm(:,t)/max(norm2(nrm(:,t)), tiny(1.0_rk))
+      do a = 1, 3
+        i = tri(a,t)
+        j = tri(mod(a,3)+1,t)
+        key(:, 3*(t-1)+a) = [min(i,j), max(i,j), t, tri(mod(a+1,3)+1,t)]   ! edge, its face, the third node
+      end do
     end do
-    call edge_keys(tri, key, order)
+    ! sorted by (lower, higher) node
+    allocate(order(3*m))
+    call stable_sort_permutation(int(key(1,:), i8)*(maxval(key(2,:)) + 1_i8) + key(2,:), order)
     allocate(edges(2, 3*m))
     n_e = 0
     i = 1
     do while (i <= 3*m)
-      j = same_edge_end(key, order, i)
+      j = i
+      do while (j < 3*m)
+        if (any(key(1:2,order(j+1)) /= key(1:2,order(i)))) exit
+        j = j + 1
+      end do
       keep = j == i                           ! a rim
       if (j == i + 1) then
         t1 = key(3,order(i))
         t2 = key(3,order(j))
-        opp = tri(key(4,order(j)), t2)        ! the other face's third node: behind the first face at a convex edge
+        opp = key(4,order(j))                 ! the other face's third node: behind the first face at a convex edge
         keep = dot_product(nrm(:,t1), nrm(:,t2)) < cos_limit .and. &
                dot_product(nrm(:,t1), x(:,opp) - x(:,key(1,order(i)))) < 0.0_rk
       end if
@@ -369,26 +355,10 @@ contains
   subroutine self_neighbourhoods(it, n_nodes)
     type(interface_t), intent(inout) :: it
     integer, intent(in) :: n_nodes
-    integer, allocatable :: tri_start(:), tri_of(:), fill(:), ring1(:)
+    integer, allocatable :: tri_start(:), tri_of(:), ring1(:)
     logical, allocatable :: mark(:)
-    integer :: t, a, k, j, n_ring, n1, pass
-    ! triangles at each node (CSR)
-    allocate(tri_start(n_nodes + 1), source=0)
-    do t = 1, size(it%tri, 2)
-      tri_start(it%tri(:,t) + 1) = tri_start(it%tri(:,t) + 1) + 1
-    end do
-    tri_start(1) = 1
-    do a = 1, n_nodes
-      tri_start(a+1) = tri_start(a+1) + tri_start(a)
-    end do
-    allocate(tri_of(tri_start(n_nodes+1) - 1), fill(n_nodes))
-    fill = tri_start(1:n_nodes)
-    do t = 1, size(it%tri, 2)
-      do a = 1, 3
-        tri_of(fill(it%tri(a,t))) = t
-        fill(it%tri(a,t)) = fill(it%tri(a,t)) + 1
-      end do
-    end do
+    integer :: k, j, n_ring, n1, pass
+    call node_triangles(it%tri, n_nodes, tri_start, tri_of)
     allocate(mark(n_nodes), source=.false.)
     if (allocated(it%ring_start)) deallocate(it%ring_start, it%ring)
     allocate(it%ring_start(size(it%slave) + 1), ring1(64))
