@@ -87,6 +87,7 @@ run_test "cli/ranks_spall" tests/cli/rank_invariance.sh bin/udar spall
 run_test "cli/ranks_penetration" tests/cli/rank_invariance.sh bin/udar penetration 2.5e-6
 run_test "cli/ranks_self_contact" tests/cli/rank_invariance.sh bin/udar self_contact
 run_test "cli/ranks_crossed_edges" tests/cli/rank_invariance.sh bin/udar crossed_edges 8.0e-6
+run_test "cli/ranks_rod_valleys" tests/cli/rank_invariance.sh bin/udar rod_3kms - - rod_3kms_fast
 run_test "cli/restart_erosion" tests/cli/restart_erosion.sh bin/udar
 run_test "cli/restart_erosion_anti_locking" tests/cli/restart_erosion.sh bin/udar anti_locking
 run_test "cli/restart_erosion_stabilised" tests/cli/restart_erosion.sh bin/udar stabilised
@@ -118,6 +119,8 @@ run_test "regression/oblique_stick" regression oblique_friction bin/udar-debug o
 run_test "regression/rod_3kms" regression rod_3kms bin/udar
 run_test "regression/rod_3kms_fast" regression rod_3kms bin/udar rod_3kms_fast
 run_test "regression/rod_3kms_fast_seams_off_fails" regression_fails rod_3kms bin/udar rod_3kms_fast_seams_off \
+  rod_nodes_inside_plate_over_h
+run_test "regression/rod_3kms_fast_valleys_off_fails" regression_fails rod_3kms bin/udar rod_3kms_fast_valleys_off \
   rod_nodes_inside_plate_over_h
 run_test "regression/spall" regression spall bin/udar-debug
 run_test "regression/spall_averaged" regression spall bin/udar-debug spall_averaged

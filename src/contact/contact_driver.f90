@@ -42,7 +42,14 @@ module udar_contact
   ! a node moved by its searcher (contact node, position) and a node's state
   ! (contact node, position, velocity, altitude)
   integer, parameter :: rec_found = 38, rec_moved = 4, rec_state = 8
-  integer, parameter :: kind_found = 1, kind_separating = 2
+  integer, parameter :: kind_found = 1, kind_separating = 2, kind_valley = 3
+  !> a valley's two faces fold by more than about 37 degrees (the cosine of
+  !> their normals' angle below this): at smaller folds one face's matching
+  !> leaves little drift through the other, and the velocity matching's
+  !> passes, which converge like the cosine squared for a node held by
+  !> two rows, would take hundreds of sweeps (at 0.94: 115 of 171 passes on
+  !> the rod deck stopped unconverged at 50)
+  real(rk), parameter :: valley_cos = 0.8_rk
   !> the parts of a pass (detect): finding the slave nodes, and after the
   !> velocity matching (match_passes) the impulses and the returns
   integer, parameter :: stage_search = 1, stage_finish = 2, stage_both = 3
@@ -316,11 +323,12 @@ contains
       associate (rec => ct%rec_recv(r+1:r+rec_found))
         ps = it%slave(k)
         dist = rec(4)
-        if (-dist > depth_limit .and. dt > 0.0_rk) then
+        if (-dist > depth_limit .and. dt > 0.0_rk .and. nint(rec(3)) /= kind_valley) then
           it%n_deep = it%n_deep + 1
           it%deep_max = max(it%deep_max, -dist)
         end if
         if (nint(rec(3)) == kind_separating) cycle
+        if (nint(rec(3)) == kind_valley .and. dt > 0.0_rk) it%valley_total = it%valley_total + 1
         n_found = n_found + 1
         if (it%self) it%touched(k) = .true.
         if (-dist > deepest) then
@@ -498,7 +506,7 @@ contains
     end if
     ! ---- search: each of this rank's own slave nodes' master triangle, in
     ! ascending global id; what it found goes to every rank (share_found)
-    call ensure(ct%rec_send, rec_found*size(it%slave))
+    call ensure(ct%rec_send, 2*rec_found*size(it%slave))   ! a valley node has two
     n_rec = 0
     do k = 1, size(it%slave)
       ps = it%slave(k)
@@ -521,13 +529,27 @@ contains
       end do
       call master_shares(it%weights, xa, ct%x(:,ps), best_g, best_n, xa0, ct%x(:,ps) - dt*ct%v(:,ps), share)
       call add_record(k, best, kind_found, best_dist, best_n, best_g, share, ct%x(:,ps))
+      ! in a valley of the master surface: the other face it is behind too
+      if (.not. it%valleys .or. it%self .or. dt <= 0.0_rk) cycle
+      call valley_partner(ps, k, best, best_n, t, dist, n, g)
+      if (t == 0) cycle
+      xa = ct%x(:, it%tri(:,t))
+      do a = 1, 3
+        xa0(:,a) = xa(:,a) - dt*ct%v(:,it%tri(a,t))
+      end do
+      call master_shares(it%weights, xa, ct%x(:,ps), g, n, xa0, ct%x(:,ps) - dt*ct%v(:,ps), share)
+      call add_record(k, t, kind_valley, dist, n, g, share, ct%x(:,ps))
     end do
     t_share = comms_wtime()
     ct%seconds_search = ct%seconds_search + (t_share - t_search)
     call share_found(ct, it, n_rec, depth_limit, dt, n_found, deepest, worst)
     ct%seconds_exchange = ct%seconds_exchange + (comms_wtime() - t_share)
     if (dt > 0.0_rk) then
+      ! nodes, not rows: a valley node has two
       it%n_active = n_found
+      do k = 2, n_found
+        if (it%slot(k) == it%slot(k-1)) it%n_active = it%n_active - 1
+      end do
       it%max_depth = deepest
       if (it%n_deep > 0) then
         it%deep_total = it%deep_total + it%n_deep
@@ -565,6 +587,10 @@ contains
         xa = ct%x(:, it%tri(:,t))
         call triangle_projection(xa, ct%x(:,ps), n, dist, g)
         room = allowance(ps)
+        ! a valley node's second face: what is left of the same room
+        if (k > 1) then
+          if (it%slot(k-1) == it%slot(k)) room = it%room(k-1)
+        end if
         if (dist < 0.0_rk) then
           if (it%seams .and. minval(g) < -edge_tolerance) then
             ! beyond the triangle's outline (a seam): onto its closest point
@@ -596,6 +622,9 @@ contains
       do k = 1, it%n_pass
         ps = it%active(k)
         if (.not. it%mine(it%slot(k))) cycle
+        if (k < it%n_pass) then
+          if (it%slot(k+1) == it%slot(k)) cycle     ! a valley node: after its second face
+        end if
         room = it%room(k)
         x_new = ct%x(:,ps)
         do iter = 1, 2
@@ -864,6 +893,49 @@ contains
         best = sep; best_dist = sep_dist; best_n = sep_n
         separating = .true.
       end if
+    end subroutine
+
+    !> The second face of a valley (&contact valleys) that slave node ps is
+    !> behind besides its triangle best (normal best_n): a face of its
+    !> candidates sharing an edge with best, within the search depth, with
+    !> the node's projection on it, that the node approaches, and that folds
+    !> concavely against best by more than valley_cos (each one's centroid
+    !> in front of the other's plane): outside such a fold is in front of
+    !> both planes, so matching one face leaves the node drifting through
+    !> the other. The fastest approached; ties: the deeper, then the lowest
+    !> index. t2 = 0: none.
+    subroutine valley_partner(ps, slot, best, best_n, t2, dist2, n2, g2)
+      integer, intent(in) :: ps, slot, best
+      real(rk), intent(in) :: best_n(3)
+      integer, intent(out) :: t2
+      real(rk), intent(out) :: dist2, n2(3), g2(3)
+      real(rk) :: xa(3,3), n(3), dist, g(3), gc(3), closing, best_closing, c_best(3), fold
+      integer :: s, t, a2
+      t2 = 0; dist2 = 0; n2 = 0; g2 = 0
+      best_closing = 0
+      c_best = sum(ct%x(:, it%tri(:,best)), dim=2)/3.0_rk
+      fold = 1.0e-3_rk*it%h_mean
+      do s = it%cand_start(slot), it%cand_start(slot+1) - 1
+        t = it%cand(s)
+        if (t == best) cycle
+        if (.not. known(t)) cycle
+        if (any(it%tri(:,t) == ps)) cycle
+        if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
+        xa = ct%x(:, it%tri(:,t))
+        call triangle_projection(xa, ct%x(:,ps), n, dist, g)
+        if (dist >= 0.0_rk .or. dist < -depth_limit) cycle
+        if (any(g < -edge_tolerance)) cycle
+        if (dot_product(n, best_n) > valley_cos) cycle
+        if (count([(any(it%tri(:,t) == it%tri(a2,best)), a2 = 1, 3)]) < 2) cycle
+        if (dot_product(best_n, sum(xa, dim=2)/3.0_rk - c_best) <= fold) cycle
+        if (dot_product(n, c_best - sum(xa, dim=2)/3.0_rk) <= fold) cycle
+        gc = max(g, 0.0_rk)/sum(max(g, 0.0_rk))
+        closing = dot_product(n, gc(1)*ct%v(:,it%tri(1,t)) + gc(2)*ct%v(:,it%tri(2,t)) &
+                                 + gc(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps))
+        if (closing <= 0.0_rk .or. closing < best_closing) cycle
+        if (closing == best_closing .and. dist >= dist2) cycle
+        t2 = t; dist2 = dist; n2 = n; g2 = g; best_closing = closing
+      end do
     end subroutine
 
     !> behind_surface's verdict on slave node ps behind triangle t's plane,

@@ -226,6 +226,7 @@ contains
       it%iterations = cfg%contacts(k)%iterations
       it%tracking = cfg%contacts(k)%tracking
       it%seams = cfg%contacts(k)%seams
+      it%valleys = cfg%contacts(k)%valleys
       it%tolerance = cfg%contacts(k)%tolerance
       it%weights = cfg%contacts(k)%weights
       it%move_overlaps = cfg%contacts(k)%initial_overlap == overlap_move

@@ -52,6 +52,9 @@ module udar_contact_model
     !> nodes in the seams of a dented master surface are found (behind_surface;
     !> needs the node-triangle lists of surface_neighbours)
     logical :: seams = .true.
+    !> a slave node in a valley of the master surface is matched to both
+    !> faces (detect's valley_partner; up to two rows a node in the matching)
+    logical :: valleys = .false.
     real(rk) :: tolerance = 0
     logical :: move_overlaps = .false.     !< initial overlaps: move the slave nodes (else report only)
     real(rk) :: h_mean = 0                 !< m, mean master edge length
@@ -102,6 +105,7 @@ module udar_contact_model
     integer :: n_deep = 0                  !< slave nodes found deeper than the search margin (inside a master element)
     ! the whole run (log)
     integer(i8) :: deep_total = 0          !< deep slave nodes found, summed over the passes
+    integer(i8) :: valley_total = 0        !< slave nodes matched to a valley's second face, summed over the passes (log)
     integer :: deep_passes = 0             !< passes that found any
     real(rk) :: deep_max = 0               !< m, the deepest of them
   end type
@@ -227,13 +231,14 @@ contains
       allocate(it%tri_mark(nt), source=.false.)
     end if
     if (allocated(it%active)) then
-      if (size(it%active) < ns) deallocate(it%active, it%on_tri, it%slot, it%cand_start, it%normal, it%area, &
+      if (size(it%active) < 2*ns) deallocate(it%active, it%on_tri, it%slot, it%cand_start, it%normal, it%area, &
                                            it%share, it%dn_sum, it%t_sum, it%room)
     end if
     if (.not. allocated(it%active)) then
       ns = max(ns, 3*size(it%slave)/2)
-      allocate(it%active(ns), it%on_tri(ns), it%slot(ns), it%cand_start(ns + 1), it%normal(3,ns), it%area(3,ns), &
-               it%share(3,ns), it%dn_sum(ns), it%t_sum(3,ns), it%room(ns))
+      ! up to two faces a slave node (a valley of the master surface)
+      allocate(it%active(2*ns), it%on_tri(2*ns), it%slot(2*ns), it%cand_start(ns + 1), it%normal(3,2*ns), it%area(3,2*ns), &
+               it%share(3,2*ns), it%dn_sum(2*ns), it%t_sum(3,2*ns), it%room(2*ns))
     end if
     if (.not. allocated(it%cand)) allocate(it%cand(4*size(it%slave) + 1))
   end subroutine

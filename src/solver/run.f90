@@ -467,6 +467,11 @@ contains
           real(ct%ifc(k)%sweeps, rk)/max(ct%ifc(k)%passes, 1), ' sweeps a pass on average; ', &
           ct%ifc(k)%sweep_limit_hits, ' passes ended at iterations = ', ct%ifc(k)%iterations, ' unconverged'
         call log_info(line)
+        if (ct%ifc(k)%valleys) then
+          write(line, '(a,i0,a)') '         contact '//trim(ct%ifc(k)%name)//': ', ct%ifc(k)%valley_total, &
+            ' slave nodes matched to a valley''s second face (summed over the passes)'
+          call log_info(line)
+        end if
         if (ct%ifc(k)%edges) then
           write(line, '(a,i0,a,es10.3,a)') '         contact '//trim(ct%ifc(k)%name)//': ', &
             ct%ifc(k)%edge_contacts_total, ' edge-to-edge corrections, the deepest crossing ', &

@@ -2,19 +2,23 @@
 # Rank-count independence: a regression deck run on 1, 2, 3 and 4 MPI ranks
 # gives bitwise identical history files (cmp) and field files (h5diff,
 # /provenance excluded, which holds the rank count).
-#   rank_invariance.sh EXE CASE [T_END] [TET_FORMULATION]
-# CASE is a folder of tests/regression; T_END, if given (or '-'), shortens the
-# run; TET_FORMULATION, if given, replaces the deck's &numerics with
-# tet_formulation = TET_FORMULATION.
+#   rank_invariance.sh EXE CASE [T_END] [TET_FORMULATION] [DECK]
+# CASE is a folder of tests/regression; T_END, if given (and not '-'), shortens
+# the run; TET_FORMULATION, if given (and not '-'), replaces the deck's
+# &numerics with tet_formulation = TET_FORMULATION; DECK names one of the
+# case's decks (default: CASE.nml).
 source "$(dirname "$0")/common.sh" "$1"
 case=$2
 t_end=${3:-}
 [ "$t_end" = - ] && t_end=
 tet=${4:-}
+[ "$tet" = - ] && tet=
+deck=${5:-$case}
 # the same deck in the same folder (the resolved deck, stored in the field
 # file, names the mesh by its absolute path); each run's output moved aside
 mkdir -p "$W/run"
-cp "$ROOT/tests/regression/$case/$case.msh" "$ROOT/tests/regression/$case/$case.nml" "$W/run/"
+cp "$ROOT/tests/regression/$case/$case.msh" "$W/run/"
+cp "$ROOT/tests/regression/$case/$deck.nml" "$W/run/$case.nml"
 [ -n "$t_end" ] && sed -i "s/^\( *\)t_end = .*/\1t_end = $t_end/" "$W/run/$case.nml"
 if [ -n "$tet" ]; then
   sed -i '/^&numerics/d' "$W/run/$case.nml"

@@ -14,6 +14,8 @@ def deepest_inside(points, x, tets):
     h_min = vol6 / np.max([np.linalg.norm(f, axis=1) for f in faces], axis=0)
     lo, hi = np.minimum.reduce([a, b, c, d]), np.maximum.reduce([a, b, c, d])
     worst = 0.0
+    # only the points within the tetrahedra's overall box can be inside one
+    points = points[np.all((points >= lo.min(axis=0)) & (points <= hi.max(axis=0)), axis=1)]
     for p in points:
         near = np.all((p >= lo) & (p <= hi), axis=1)
         if not near.any():
