@@ -797,7 +797,7 @@ contains
       integer, intent(out) :: best
       real(rk), intent(out) :: best_dist, best_n(3), best_g(3)
       logical, intent(out) :: separating
-      real(rk) :: closing, best_closing, gc(3), other_closing, other_dist, other_n(3), other_g(3), &
+      real(rk) :: closing, best_closing, other_closing, other_dist, other_n(3), other_g(3), &
                   sep_dist, sep_n(3), lam(4)
       integer :: other, sep
       integer :: t, s, first, last
@@ -850,9 +850,7 @@ contains
           if (dot_product(n, n_ref) < 0.5_rk) cycle
         end if
         if (dt > 0.0_rk .and. .not. geometric) then
-          gc = max(g, 0.0_rk)/sum(max(g, 0.0_rk))
-          closing = dot_product(n, gc(1)*ct%v(:,it%tri(1,t)) + gc(2)*ct%v(:,it%tri(2,t)) &
-                                   + gc(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps))
+          closing = approach(ps, t, n, g)
           if (closing <= 0.0_rk) then
             ! self-contact: only a node in contact in the last pass (no
             ! false contact with the part's own far side)
@@ -909,7 +907,7 @@ contains
       real(rk), intent(in) :: best_n(3)
       integer, intent(out) :: t2
       real(rk), intent(out) :: dist2, n2(3), g2(3)
-      real(rk) :: xa(3,3), n(3), dist, g(3), gc(3), closing, best_closing, c_best(3), fold
+      real(rk) :: xa(3,3), n(3), dist, g(3), closing, best_closing, c_best(3), fold
       integer :: s, t, a2
       t2 = 0; dist2 = 0; n2 = 0; g2 = 0
       best_closing = 0
@@ -929,14 +927,23 @@ contains
         if (count([(any(it%tri(:,t) == it%tri(a2,best)), a2 = 1, 3)]) < 2) cycle
         if (dot_product(best_n, sum(xa, dim=2)/3.0_rk - c_best) <= fold) cycle
         if (dot_product(n, c_best - sum(xa, dim=2)/3.0_rk) <= fold) cycle
-        gc = max(g, 0.0_rk)/sum(max(g, 0.0_rk))
-        closing = dot_product(n, gc(1)*ct%v(:,it%tri(1,t)) + gc(2)*ct%v(:,it%tri(2,t)) &
-                                 + gc(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps))
+        closing = approach(ps, t, n, g)
         if (closing <= 0.0_rk .or. closing < best_closing) cycle
         if (closing == best_closing .and. dist >= dist2) cycle
         t2 = t; dist2 = dist; n2 = n; g2 = g; best_closing = closing
       end do
     end subroutine
+
+    !> How fast slave node ps approaches triangle t along its normal n at
+    !> its projection (area coordinates g, clipped onto the triangle).
+    real(rk) function approach(ps, t, n, g)
+      integer, intent(in) :: ps, t
+      real(rk), intent(in) :: n(3), g(3)
+      real(rk) :: gc(3)
+      gc = max(g, 0.0_rk)/sum(max(g, 0.0_rk))
+      approach = dot_product(n, gc(1)*ct%v(:,it%tri(1,t)) + gc(2)*ct%v(:,it%tri(2,t)) &
+                                + gc(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps))
+    end function
 
     !> behind_surface's verdict on slave node ps behind triangle t's plane,
     !> with the neighbouring triangles this rank has current (every rank has
