@@ -87,6 +87,7 @@ run_test "cli/ranks_spall" tests/cli/rank_invariance.sh bin/udar spall
 run_test "cli/ranks_penetration" tests/cli/rank_invariance.sh bin/udar penetration 2.5e-6
 run_test "cli/ranks_self_contact" tests/cli/rank_invariance.sh bin/udar self_contact
 run_test "cli/ranks_crossed_edges" tests/cli/rank_invariance.sh bin/udar crossed_edges 8.0e-6
+run_test "cli/ranks_crossed_edges_friction" tests/cli/rank_invariance.sh bin/udar crossed_edges 8.0e-6 - crossed_edges_friction
 run_test "cli/ranks_rod_valleys" tests/cli/rank_invariance.sh bin/udar rod_3kms - - rod_3kms_fast
 run_test "cli/restart_erosion" tests/cli/restart_erosion.sh bin/udar
 run_test "cli/restart_erosion_anti_locking" tests/cli/restart_erosion.sh bin/udar anti_locking
@@ -127,6 +128,7 @@ run_test "regression/spall_averaged" regression spall bin/udar-debug spall_avera
 run_test "regression/penetration" regression penetration bin/udar
 run_test "regression/deep_node" regression deep_node bin/udar-debug
 run_test "regression/crossed_edges" regression crossed_edges bin/udar-debug
+run_test "regression/crossed_edges_friction" regression crossed_edges bin/udar-debug crossed_edges_friction
 run_test "regression/crossed_edges_off_fails" regression_fails crossed_edges bin/udar crossed_edges_off \
   edges_through_each_other_over_h
 run_test "regression/self_contact" regression self_contact bin/udar-debug

@@ -182,8 +182,9 @@ contains
 
   !> Edge-to-edge contact (&contact edges): every slave feature edge that
   !> crossed a master feature edge during the step (edge_crossing) gets the
-  !> frictionless impulse along their common normal, at their closest
-  !> points, that stops their approach: the four nodes' velocities change
+  !> impulse along their common normal, at their closest points, that stops
+  !> their approach, and with friction the tangential one that stops their
+  !> slip, at most friction times the normal one: the four nodes' velocities change
   !> in proportion to their linear weights (edge_shares: of the points
   !> whose join was along the normal at the start of the step) over their
   !> masses (momentum exact, and no moment about the start positions), their
@@ -194,7 +195,7 @@ contains
     type(contact_t), intent(inout) :: ct
     type(interface_t), intent(inout) :: it
     real(rk), intent(in) :: dt, margin
-    real(rk) :: reach, mid(3), alpha, beta, n(3), g0, g1, w(4), w0(4), wm, u, j, room, dv(3)
+    real(rk) :: reach, mid(3), alpha, beta, n(3), g0, g1, w(4), w0(4), wm, u, j, room, dv(3), jt(3)
     integer :: nm, e, f, s, c, nodes(4), a
     logical :: crossed
     it%n_edge_contacts = 0
@@ -249,6 +250,21 @@ contains
           it%normal_impulse = it%normal_impulse + j
           it%master_impulse = it%master_impulse - j*n      ! the master side's weights sum to -1
           g1 = g1 - dt*u
+          ! friction: the tangential impulse that stops the closest points'
+          ! slip (the same weights, so the same effective mass), at most
+          ! friction times the normal one (Coulomb)
+          if (it%friction > 0.0_rk) then
+            dv = w(1)*ct%v(:,nodes(1)) + w(2)*ct%v(:,nodes(2)) + w(3)*ct%v(:,nodes(3)) + w(4)*ct%v(:,nodes(4))
+            jt = -(dv - dot_product(dv, n)*n)/wm
+            if (norm2(jt) > it%friction*j) jt = (it%friction*j/norm2(jt))*jt
+            do a = 1, 4
+              dv = (w0(a)/ct%m(nodes(a)))*jt
+              ct%v(:,nodes(a)) = ct%v(:,nodes(a)) + dv
+              ct%x(:,nodes(a)) = ct%x(:,nodes(a)) + dt*dv
+            end do
+            it%friction_impulse = it%friction_impulse + norm2(jt)
+            it%master_impulse = it%master_impulse - jt
+          end if
         end if
         if (g1 < 0.0_rk) then
           room = return_room(min(ct%h(nodes(1)), ct%h(nodes(2))))

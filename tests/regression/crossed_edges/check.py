@@ -3,7 +3,8 @@ field step the upper bar's lower edge and the lower bar's upper edge, each
 interpolated at the crossing from its two nodes either side of it, must not
 pass through each other by more than 1e-3 h (h = 1 mm). The deck without
 the option (crossed_edges_off) must fail that check (its edges pass through
-by about half an element). Momentum is exchanged exactly.
+by about half an element). Momentum is exchanged exactly. With friction
+(crossed_edges_friction) the friction impulse is mu times the normal one.
 Usage: check.py RUN_DIR DECK"""
 import os
 import sys
@@ -52,4 +53,13 @@ hist = udar_results.read_history(os.path.join(out, deck + '_history.csv'))
 p = np.array([hist['momentum_' + c] for c in 'xyz'])
 checks.below('momentum_change_relative', np.abs(p - p[:, :1]).max() / np.abs(p[:, 0]).max(), 1e-13)
 print(f"MEASURED energy error at the end {hist['energy_error'][-1]:.3g}")
+# Coulomb: a contact that slides carries friction times its normal impulse
+# (crossed_edges_friction: the edges slide over each other all along); the
+# others are frictionless
+mu = 0.05 if deck.endswith('friction') else 0.0
+dt_v = 0.5 * (np.concatenate([[0.0], hist['dt'][:-1]]) + hist['dt'])
+normal = np.sum(hist['contact_normal_upper_on_lower'] * dt_v)
+friction = np.sum(hist['contact_friction_upper_on_lower'] * dt_v)
+print(f'MEASURED contact impulses: normal {normal:.6g} N s, friction {friction:.6g} N s')
+checks.below('friction_over_normal_impulse_minus_mu', abs(friction / normal - mu), 1e-6 * max(mu, 1.0))
 checks.finish()
