@@ -201,7 +201,7 @@ contains
     real(rk), intent(in) :: dt, q_trial, eps_p, soft, rate_factor
     logical, intent(in) :: plastic_rate
     real(rk), intent(inout) :: de, sy, hard
-    real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, h, r, de_new, slope, de_rate1, de_pw
+    real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, h, r, de_new, slope, de_rate1, de_pw, inv_e, inv_e_pw
     integer :: it
     g3 = 3.0_rk*mat%shear_modulus
     r = rate_factor
@@ -217,19 +217,28 @@ contains
     lo = 0.0_rk
     hi = (q_trial - soft*r*mat%jc_a)/g3
     slope = 0.0_rk
-    if (eps_p > 0.0_rk) slope = soft*r*mat%jc_b*mat%jc_n*pw0/eps_p
+    ! 1/(eps_p + the increment pw belongs to): the series' argument is a
+    ! product, the one division of an iteration being Newton's step
+    inv_e_pw = 0.0_rk
+    if (eps_p > 0.0_rk) then
+      inv_e_pw = 1.0_rk/eps_p
+      slope = soft*r*mat%jc_b*mat%jc_n*pw0*inv_e_pw
+    end if
     de = min((q_trial - sy)/(g3 + slope), hi)
+    de_pw = 0.0_rk
     do it = 1, 80
       e = eps_p + de
+      inv_e = 1.0_rk/e
       if (it > 1) then
         ! from the last iterate: Newton's steps are small, so the series serves
-        pw = pw*power_ratio((de - de_pw)/(eps_p + de_pw), mat%jc_n)
+        pw = pw*power_ratio((de - de_pw)*inv_e_pw, mat%jc_n)
       else if (eps_p > 0.0_rk) then
-        pw = pw0*power_ratio(de/eps_p, mat%jc_n)
+        pw = pw0*power_ratio(de*inv_e_pw, mat%jc_n)
       else
         pw = e**mat%jc_n
       end if
       de_pw = de          ! the increment pw belongs to
+      inv_e_pw = inv_e
       h = mat%jc_a + mat%jc_b*pw
       if (plastic_rate) then
         r = 1.0_rk
@@ -244,7 +253,7 @@ contains
       else
         hi = de
       end if
-      fp = -g3 - soft*r*mat%jc_b*mat%jc_n*pw/e
+      fp = -g3 - soft*r*mat%jc_b*mat%jc_n*pw*inv_e
       if (plastic_rate .and. de > de_rate1) fp = fp - soft*h*mat%jc_c/de
       de_new = de - f/fp
       if (de_new <= lo .or. de_new >= hi) de_new = 0.5_rk*(lo + hi)
@@ -257,7 +266,7 @@ contains
     ! on the yield surface by construction of the return
     sy = q_trial - g3*de
     ! the power of the last iteration, moved by its step if it moved de
-    if (de /= de_pw) pw = pw*power_ratio((de - de_pw)/(eps_p + de_pw), mat%jc_n)
+    if (de /= de_pw) pw = pw*power_ratio((de - de_pw)*inv_e_pw, mat%jc_n)
     hard = mat%jc_a + mat%jc_b*pw
   end subroutine
 
