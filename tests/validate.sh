@@ -2,7 +2,8 @@
 # make validate: the longer validation runs behind doc/validation.md, two
 # at a time: the Taylor bars (tests/validate_taylor.sh), the long-rod
 # penetration on the deck's 1 mm mesh (tests/validate_long_rod.sh) and the
-# seed paper's decks with the ricochet (tests/validate_paper.sh). Every mesh
+# seed paper's decks with the ricochet (tests/validate_paper.sh), and the
+# contact depth sweeps (tests/validate_contact.sh). Every mesh
 # of every script is compared with doc/validation/meshes.csv first, so a
 # wrong one stops make validate before the first run. The long-rod
 # refinements (0.7 and 0.5 mm, hours) are run by hand: see
@@ -15,3 +16,4 @@ MESHES_ONLY=1 tests/validate_paper.sh
 tests/validate_taylor.sh
 tests/validate_long_rod.sh
 tests/validate_paper.sh
+tests/validate_contact.sh

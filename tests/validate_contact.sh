@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Contact depth sweeps (part of make validate; doc/validation.md 4r): the
+# 3 km/s rod deck (tests/regression/rod_3kms, rod_3kms_fast.nml) and the
+# eroding penetration deck (tests/regression/penetration) on their
+# committed meshes, at several dt_safety, with &contact valleys off and on,
+# fields every 0.05 us: over every frame, how often and how deep a slave
+# node is inside a remaining master element (tests/tools/contact_depth.py).
+# The make check decks look at a few frames of one dt_safety, where a
+# node's stay inside for a few cycles can fall between frames; this is the
+# measure of a contact change. Results: doc/validation/contact_depth.csv.
+source "$(dirname "$0")/validate_common.sh" contact
+meshes_checked
+runs=()
+for dts in 0.7 0.75 0.8 0.85 0.9 0.95 1.0; do
+  for v in off on; do runs+=("rod_3kms rod_3kms_fast $dts $v"); done
+done
+for dts in 0.33 0.35 0.37 0.4 0.5 0.7 0.9; do
+  for v in off on; do runs+=("penetration penetration $dts $v"); done
+done
+for r in "${runs[@]}"; do
+  set -- $r
+  d=$W/$2_$3_$4
+  mkdir -p "$d"
+  cp tests/regression/$1/$1.msh "$d/"
+  # the deck's own contact line with valleys set, its step and field interval changed
+  sed -e "s/^\( *\)dt_safety = [0-9.]*/\1dt_safety = $3/" -e "s/dt_field = [0-9.e-]*/dt_field = 0.05e-6/" \
+      -e "s/, valleys = \.[a-z]*\.//" \
+      -e "/^&contact/s| /\$|, valleys = .$([ $4 = on ] && echo true || echo false). /|" \
+      tests/regression/$1/$2.nml > "$d/$2.nml"
+  grep -q "valleys = .$([ $4 = on ] && echo true || echo false)." "$d/$2.nml" || { echo "stopped: valleys not set in $d/$2.nml"; exit 1; }
+done
+export W
+printf '%s\n' "${runs[@]}" | awk '{print $2"_"$3"_"$4" "$2}' | \
+  xargs -P "$JOBS" -L1 sh -c 'cd "$W/$0" && "$W/udar" "$1.nml" > run.log 2>&1 || echo "FAILED $0"'
+csv=doc/validation/contact_depth.csv
+echo "deck,dt_safety,valleys,frames,frames_with_a_node_inside,deepest_over_h,at_us,cycles,energy_error" > $csv
+for r in "${runs[@]}"; do
+  set -- $r
+  d=$W/$2_$3_$4
+  depth=$($PYTHON tests/tools/contact_depth.py "$d/out/$2.h5" 1 2)
+  cyc=$(log_value "$d/run.log" cycles)
+  err=$(log_value "$d/run.log" energy_error)
+  echo "$2,$3,$4,$depth,$cyc,$err" | tee -a $csv
+done
+echo "results in $csv"
