@@ -10,7 +10,6 @@ import os
 import sys
 
 import h5py
-import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'regression', 'rod_3kms'))
 from check_geometry import deepest_inside, slave_and_master  # noqa: E402
