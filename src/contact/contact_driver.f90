@@ -195,7 +195,7 @@ contains
     type(contact_t), intent(inout) :: ct
     type(interface_t), intent(inout) :: it
     real(rk), intent(in) :: dt, margin
-    real(rk) :: reach, mid(3), alpha, beta, n(3), g0, g1, w(4), w0(4), wm, u, j, room, dv(3), jt(3)
+    real(rk) :: reach, mid(3), alpha, beta, n(3), g0, g1, w(4), w0(4), wm, u, j, room, dv(3), jt(3), slip(3)
     integer :: nm, e, f, s, c, nodes(4), a
     logical :: crossed
     it%n_edge_contacts = 0
@@ -254,8 +254,8 @@ contains
           ! slip (the same weights, so the same effective mass), at most
           ! friction times the normal one (Coulomb)
           if (it%friction > 0.0_rk) then
-            dv = w(1)*ct%v(:,nodes(1)) + w(2)*ct%v(:,nodes(2)) + w(3)*ct%v(:,nodes(3)) + w(4)*ct%v(:,nodes(4))
-            jt = -(dv - dot_product(dv, n)*n)/wm
+            slip = w(1)*ct%v(:,nodes(1)) + w(2)*ct%v(:,nodes(2)) + w(3)*ct%v(:,nodes(3)) + w(4)*ct%v(:,nodes(4))
+            jt = -(slip - dot_product(slip, n)*n)/wm
             if (norm2(jt) > it%friction*j) jt = (it%friction*j/norm2(jt))*jt
             do a = 1, 4
               dv = (w0(a)/ct%m(nodes(a)))*jt
@@ -897,12 +897,8 @@ contains
         best = other; best_dist = other_dist; best_n = other_n; best_g = other_g
       else if (best == 0 .and. seam /= 0) then
         best = seam; best_dist = seam_dist; best_n = seam_n; best_g = seam_g
-        if (dt > 0.0_rk .and. .not. geometric) then
-          closing = dot_product(seam_n, seam_g(1)*ct%v(:,it%tri(1,seam)) + seam_g(2)*ct%v(:,it%tri(2,seam)) &
-                                        + seam_g(3)*ct%v(:,it%tri(3,seam)) - ct%v(:,ps))
-          ! moving out of the seam: as a separating node, only put back
-          separating = closing <= 0.0_rk
-        end if
+        ! moving out of the seam: as a separating node, only put back
+        if (dt > 0.0_rk .and. .not. geometric) separating = approach(ps, seam, seam_n, seam_g) <= 0.0_rk
       else if (best == 0 .and. sep /= 0) then
         best = sep; best_dist = sep_dist; best_n = sep_n
         separating = .true.
@@ -923,7 +919,7 @@ contains
       real(rk), intent(in) :: best_n(3)
       integer, intent(out) :: t2
       real(rk), intent(out) :: dist2, n2(3), g2(3)
-      real(rk) :: xa(3,3), n(3), dist, g(3), closing, best_closing, c_best(3), fold
+      real(rk) :: xa(3,3), n(3), dist, g(3), closing, best_closing, c_best(3), c_t(3), fold
       integer :: s, t, a2
       t2 = 0; dist2 = 0; n2 = 0; g2 = 0
       best_closing = 0
@@ -941,8 +937,9 @@ contains
         if (any(g < -edge_tolerance)) cycle
         if (dot_product(n, best_n) > valley_cos) cycle
         if (count([(any(it%tri(:,t) == it%tri(a2,best)), a2 = 1, 3)]) < 2) cycle
-        if (dot_product(best_n, sum(xa, dim=2)/3.0_rk - c_best) <= fold) cycle
-        if (dot_product(n, c_best - sum(xa, dim=2)/3.0_rk) <= fold) cycle
+        c_t = sum(xa, dim=2)/3.0_rk
+        if (dot_product(best_n, c_t - c_best) <= fold) cycle
+        if (dot_product(n, c_best - c_t) <= fold) cycle
         closing = approach(ps, t, n, g)
         if (closing <= 0.0_rk .or. closing < best_closing) cycle
         if (closing == best_closing .and. dist >= dist2) cycle
