@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Contact depth sweeps (part of make validate; doc/validation.md 4r): the
+# Contact depth sweeps (part of make validate; doc/validation.md 4r, 4s): the
 # 3 km/s rod deck (tests/regression/rod_3kms, rod_3kms_fast.nml) and the
 # eroding penetration deck (tests/regression/penetration) on their
-# committed meshes, at several dt_safety, with &contact valleys off and on,
-# fields every 0.05 us: over every frame, how often and how deep a slave
+# committed meshes, at several dt_safety, with &contact valleys off and on
+# (and, for the penetration deck, sharp_edges on), fields every 0.05 us; the
+# block sliding past a wedge's sharp edge (tests/regression/sharp_edge) with
+# sharp_edges on and off: over every frame, how often and how deep a slave
 # node is inside a remaining master element (tests/tools/contact_depth.py).
 # The make check decks look at a few frames of one dt_safety, where a
 # node's stay inside for a few cycles can fall between frames; this is the
@@ -15,7 +17,7 @@ for dts in 0.7 0.75 0.8 0.85 0.9 0.95 1.0; do
   for v in off on; do runs+=("rod_3kms rod_3kms_fast $dts $v"); done
 done
 for dts in 0.33 0.35 0.37 0.4 0.5 0.7 0.9; do
-  for v in off on; do runs+=("penetration penetration $dts $v"); done
+  for v in off on sharp; do runs+=("penetration penetration $dts $v"); done
 done
 for r in "${runs[@]}"; do
   set -- $r
@@ -23,17 +25,26 @@ for r in "${runs[@]}"; do
   mkdir -p "$d"
   cp tests/regression/$1/$1.msh "$d/"
   # the deck's own contact line with valleys set, its step and field interval changed
+  # off: the deck's contact; on: with valleys; sharp: with sharp_edges
+  extra=", valleys = .$([ $4 = on ] && echo true || echo false)."
+  [ $4 = sharp ] && extra="$extra, sharp_edges = .true."
   sed -e "s/^\( *\)dt_safety = [0-9.]*/\1dt_safety = $3/" -e "s/dt_field = [0-9.e-]*/dt_field = 0.05e-6/" \
-      -e "s/, valleys = \.[a-z]*\.//" \
-      -e "/^&contact/s| /\$|, valleys = .$([ $4 = on ] && echo true || echo false). /|" \
+      -e "s/, valleys = \.[a-z]*\.//" -e "/^&contact/s| /\$|$extra /|" \
       tests/regression/$1/$2.nml > "$d/$2.nml"
   grep -q "valleys = .$([ $4 = on ] && echo true || echo false)." "$d/$2.nml" || { echo "stopped: valleys not set in $d/$2.nml"; exit 1; }
+done
+# the wedge, as its decks are (sharp_edges on / off)
+for deck in sharp_edge sharp_edge_off; do
+  runs+=("sharp_edge $deck - -")
+  d=$W/${deck}_-_-
+  mkdir -p "$d"
+  cp tests/regression/sharp_edge/sharp_edge.msh tests/regression/sharp_edge/$deck.nml "$d/"
 done
 export W
 printf '%s\n' "${runs[@]}" | awk '{print $2"_"$3"_"$4" "$2}' | \
   xargs -P "$JOBS" -L1 sh -c 'cd "$W/$0" && "$W/udar" "$1.nml" > run.log 2>&1 || echo "FAILED $0"'
 csv=doc/validation/contact_depth.csv
-echo "deck,dt_safety,valleys,frames,frames_with_a_node_inside,deepest_over_h,at_us,cycles,energy_error" > $csv
+echo "deck,dt_safety,variant,frames,frames_with_a_node_inside,deepest_over_h,at_us,cycles,energy_error" > $csv
 for r in "${runs[@]}"; do
   set -- $r
   d=$W/$2_$3_$4

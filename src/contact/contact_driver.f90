@@ -13,7 +13,7 @@ module udar_contact
   use udar_contact_model, only: contact_t, interface_t, neighbour_across
   use udar_contact_search, only: grid_build, grid_cell, ensure
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_shares, &
-                                  edge_crossing, behind_surface, closest_on_triangle, behind_not, behind_face, behind_seam
+                                  edge_crossing, behind_surface, beside_sharp_edge, closest_on_triangle, behind_not, behind_face, behind_seam
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, &
                         comms_max, comms_alltoall_counts, comms_alltoallv_real, comms_wtime
   implicit none
@@ -817,8 +817,9 @@ contains
                   sep_dist, sep_n(3), lam(4)
       integer :: other, sep
       integer :: t, s, first, last
-      real(rk) :: xa(3,3), n(3), dist, g(3), c_near(3), seam_dist, seam_n(3), seam_g(3)
-      integer :: verdict, seam
+      real(rk) :: xa(3,3), n(3), dist, g(3), c_near(3), seam_dist, seam_n(3), seam_g(3), xb(3,3,3), xs(3,3,3)
+      logical :: has(3), shares(3,3)
+      integer :: verdict, seam, n_beside, a
       best = 0; other = 0; sep = 0; seam = 0
       seam_dist = -huge(1.0_rk)
       sep_dist = -huge(1.0_rk)
@@ -838,8 +839,20 @@ contains
         xa = ct%x(:, it%tri(:,t))
         call triangle_projection(xa, ct%x(:,ps), n, dist, g)
         if (dist >= 0.0_rk) cycle
+        if (it%seams .or. it%sharp_edges) call faces_beside(t, xb, has)
+        if (it%sharp_edges) then
+          ! the faces across its edges (each shares the corners but the one opposite)
+          n_beside = 0
+          do a = 1, 3
+            if (.not. has(a)) cycle
+            n_beside = n_beside + 1
+            xs(:,:,n_beside) = xb(:,:,a)
+            shares(:,n_beside) = [1, 2, 3] /= a
+          end do
+          if (beside_sharp_edge(xa, n, g, xs, shares, n_beside, ct%x(:,ps), edge_tolerance)) cycle
+        end if
         if (it%seams) then
-          verdict = behind_here(t, ps, xa, n, dist, g)
+          verdict = behind_surface(xa, n, dist, g, xb, has, ct%x(:,ps), edge_tolerance)
         else
           verdict = merge(behind_not, behind_face, any(g < -edge_tolerance))
         end if
@@ -958,28 +971,23 @@ contains
                                 + gc(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps))
     end function
 
-    !> behind_surface's verdict on slave node ps behind triangle t's plane,
-    !> with the neighbouring triangles this rank has current (every rank has
-    !> those near its own slave nodes: the neighbourhood reaches a
-    !> triangle's extent beyond them).
-    integer function behind_here(t, ps, xa, n, dist, g)
-      integer, intent(in) :: t, ps
-      real(rk), intent(in) :: xa(3,3), n(3), dist, g(3)
-      real(rk) :: xb(3,3,3)
-      logical :: has(3)
+    !> The triangles across the three edges of triangle t (xb(:,:,a): across
+    !> the edge opposite corner a; has(a) false: a rim, or one this rank has
+    !> not current). Every rank has current those near its own slave nodes:
+    !> the neighbourhood reaches a triangle's extent beyond them.
+    subroutine faces_beside(t, xb, has)
+      integer, intent(in) :: t
+      real(rk), intent(out) :: xb(3,3,3)
+      logical, intent(out) :: has(3)
       integer :: a, tb
-      behind_here = behind_face
-      if (all(g >= -edge_tolerance)) return
       do a = 1, 3
-        tb = 0
-        if (g(a) < -edge_tolerance) tb = neighbour_across(it, t, a)
+        tb = neighbour_across(it, t, a)
         has(a) = tb > 0
         if (has(a)) has(a) = known(tb)
         xb(:,:,a) = 0
         if (has(a)) xb(:,:,a) = ct%x(:, it%tri(:,tb))
       end do
-      behind_here = behind_surface(xa, n, dist, g, xb, has, ct%x(:,ps), edge_tolerance)
-    end function
+    end subroutine
   end subroutine
 
   !> Keeps the velocities of this rank's own contact nodes: v(n-1/2) before

@@ -8,12 +8,15 @@ module udar_contact_kernels
   implicit none
   private
   public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_crossing, edge_shares, &
-            behind_surface, closest_on_triangle, behind_not, behind_face, behind_seam
+            behind_surface, beside_sharp_edge, closest_on_triangle, behind_not, behind_face, behind_seam
 
   !> behind_surface's verdicts: not behind the surface; behind this face;
   !> behind the surface beyond one of its concave edges (the contact point
   !> is then the closest point of the triangle, closest_on_triangle)
   integer, parameter :: behind_not = 0, behind_face = 1, behind_seam = 2
+  !> of an edge's length: a fold flatter than this, or a node nearer a plane,
+  !> is rounding
+  real(rk), parameter :: flat = 1.0e-9_rk
 
 contains
 
@@ -59,7 +62,6 @@ contains
   pure integer function behind_surface(xa, n, dist, g, xb, has, xs, tol) result(verdict)
     real(rk), intent(in) :: xa(3,3), n(3), dist, g(3), xb(3,3,3), xs(3), tol
     logical, intent(in) :: has(3)
-    real(rk), parameter :: flat = 1.0e-9_rk      ! of the edge's length: rounding
     real(rk) :: area2, edge, beyond, nb(3), db, gb(3), centre(3), cos_n
     integer :: a
     verdict = behind_not
@@ -80,6 +82,40 @@ contains
       verdict = behind_seam
     end do
     if (verdict == behind_not) verdict = behind_face
+  end function
+
+  !> Whether a node xs behind the plane of master triangle xa (normal n,
+  !> area coordinates g of its projection) is outside the body beside a
+  !> sharp convex edge or corner of the triangle: on or in front of the
+  !> plane of a face beside it (xb(:,:,k), k = 1..nb, sharing the corners
+  !> of xa marked in shares(:,k): an edge or a corner) that falls away
+  !> behind this plane (its centre behind it), with its projection on that
+  !> face (no area coordinate below -tol) and on this one clear of what
+  !> they share (the area coordinates of the corners not shared sum to more
+  !> than tol). Where two faces meet at an interior angle below 90 degrees
+  !> (a fractured fragment's corner, a crater lip, a wedge's edge), a node
+  !> on or just outside one of them is behind the other's plane with its
+  !> projection on it, though it never crossed it. At 90 degrees and more
+  !> such a node projects onto the shared edge or corner or beyond it: a
+  !> node at a body's square edge that crossed the top face stays the top
+  !> face's.
+  pure logical function beside_sharp_edge(xa, n, g, xb, shares, nb, xs, tol) result(outside)
+    integer, intent(in) :: nb
+    real(rk), intent(in) :: xa(3,3), n(3), g(3), xb(3,3,nb), xs(3), tol
+    logical, intent(in) :: shares(3,nb)
+    real(rk) :: size, centre(3), nk(3), dk, gk(3)
+    integer :: k
+    outside = .false.
+    size = max(norm2(xa(:,2) - xa(:,1)), norm2(xa(:,3) - xa(:,2)), norm2(xa(:,1) - xa(:,3)))
+    do k = 1, nb
+      if (sum(g, mask=.not. shares(:,k)) <= tol) cycle
+      centre = (xb(:,1,k) + xb(:,2,k) + xb(:,3,k))/3.0_rk
+      if (dot_product(n, centre - xa(:,1)) >= -flat*size) cycle     ! rising or flat
+      call triangle_projection(xb(:,:,k), xs, nk, dk, gk)
+      if (dk <= -flat*size .or. any(gk < -tol)) cycle
+      outside = .true.
+      return
+    end do
   end function
 
   !> The point c of triangle xa closest to p, and its area coordinates g

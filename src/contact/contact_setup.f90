@@ -108,7 +108,7 @@ contains
     do i = 1, n_ifc
       if (ifc(i)%self) call self_neighbourhoods(ifc(i), ct%n_nodes)
       ! the triangles at each node, by contact-node index (after the renumbering)
-      if (ifc(i)%seams) call surface_neighbours(ifc(i))
+      if (ifc(i)%seams .or. ifc(i)%sharp_edges) call surface_neighbours(ifc(i))
     end do
     do i = 1, n_ifc
       allocate(ifc(i)%x_built(3, ct%n_nodes))
@@ -226,6 +226,7 @@ contains
       it%iterations = cfg%contacts(k)%iterations
       it%tracking = cfg%contacts(k)%tracking
       it%seams = cfg%contacts(k)%seams
+      it%sharp_edges = cfg%contacts(k)%sharp_edges
       it%valleys = cfg%contacts(k)%valleys
       it%tolerance = cfg%contacts(k)%tolerance
       it%weights = cfg%contacts(k)%weights

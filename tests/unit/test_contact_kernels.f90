@@ -9,7 +9,7 @@ program test_contact_kernels
   use udar_config, only: contact_weights_area, contact_weights_distance
   use udar_vectors, only: cross
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, edge_crossing, edge_shares, &
-                                  tetrahedron_coordinates, behind_surface, closest_on_triangle, behind_not, behind_face, &
+                                  tetrahedron_coordinates, behind_surface, beside_sharp_edge, closest_on_triangle, behind_not, behind_face, &
                                   behind_seam
   use udar_contact_model, only: interface_t, surface_neighbours, neighbour_across
   use unit_checks, only: check, check_summary
@@ -55,6 +55,7 @@ program test_contact_kernels
   call test_moving_edges()
   call test_edges_and_elements()
   call test_seams()
+  call test_sharp_edges()
   call check_summary()
 contains
 
@@ -116,6 +117,61 @@ contains
     call check('neighbour_across_by_hand', all(nbr(:,1) == [2, 0, 0]) .and. all(nbr(:,2) == [0, 3, 1]) &
                .and. all(nbr(:,3) == [0, 0, 2]) .and. all(nbr(:,4:6) == 0), 'a strip and a fan')
   end subroutine
+
+  !> A node behind triangle T (that of test_seams: z = 0, outward +z, the
+  !> edge x = 0 opposite its corner 2) beside a sharp convex edge
+  !> (beside_sharp_edge), by hand. Across x = 0 (sharing T's corners 1 and
+  !> 3) a face falling under T to (0.5,0.5,-1): the interior angle is
+  !> atan(2) = 63.4 degrees, the body between the planes z = 0 and
+  !> 2x + z = 0. Points with their projection on T: (0.3,0.5,-0.8) is in
+  !> front of that face (2x + z = -0.2) with its projection on it: outside;
+  !> (0.3,0.5,-0.3) is inside the body; (0.6,0.5,-1.5) is in front of the
+  !> face's plane but projects beyond its apex: not judged outside;
+  !> (0.25,0.5,-0.5) lies on the face's plane: outside (a node on the face
+  !> beside). The same face sharing only T's corner 1 (a sharp corner):
+  !> (0.3,0.5,-0.8) outside. With the face at 90 degrees (down to
+  !> (0,0.5,-1)) a node on its plane projects onto T's edge: not outside (it
+  !> crossed the top face); no face beside, or a rising one: not outside.
+  subroutine test_sharp_edges()
+    real(rk) :: xa(3,3), xb(3,3,1)
+    logical :: edge(3,1), corner(3,1), v(9)
+    xa = reshape([0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.5_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk], [3, 3])
+    edge(:,1) = [.true., .false., .true.]
+    corner(:,1) = [.true., .false., .false.]
+    xb(:,:,1) = reshape([0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk, 0.5_rk, 0.5_rk, -1.0_rk], [3, 3])
+    v(1) = outside_at(xa, xb, edge, 1, [0.3_rk, 0.5_rk, -0.8_rk])
+    v(2) = outside_at(xa, xb, edge, 1, [0.3_rk, 0.5_rk, -0.3_rk])
+    v(3) = outside_at(xa, xb, edge, 1, [0.6_rk, 0.5_rk, -1.5_rk])
+    v(4) = outside_at(xa, xb, edge, 1, [0.25_rk, 0.5_rk, -0.5_rk])
+    v(5) = outside_at(xa, xb, corner, 1, [0.3_rk, 0.5_rk, -0.8_rk])
+    v(6) = outside_at(xa, xb, edge, 0, [0.3_rk, 0.5_rk, -0.8_rk])
+    xb(:,:,1) = reshape([0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk, 0.0_rk, 0.5_rk, -1.0_rk], [3, 3])
+    v(7) = outside_at(xa, xb, edge, 1, [0.0_rk, 0.5_rk, -0.3_rk])
+    v(8) = outside_at(xa, xb, edge, 1, [0.1_rk, 0.5_rk, -0.3_rk])
+    xb(:,:,1) = reshape([0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk, -1.0_rk, 0.5_rk, 1.0_rk], [3, 3])
+    v(9) = outside_at(xa, xb, edge, 1, [0.3_rk, 0.5_rk, -0.8_rk])
+    call check('sharp_edge_verdicts_by_hand', all(v .eqv. [.true., .false., .false., .true., .true., .false., .false., &
+               .false., .false.]), 'in front / inside / beyond the apex / on the plane / corner / none / square edge (2) '// &
+               '/ rising, TFFTTFFFF wanted: '//logicals(v))
+  end subroutine
+
+  logical function outside_at(xa, xb, shares, nb, p)
+    real(rk), intent(in) :: xa(3,3), xb(3,3,1), p(3)
+    logical, intent(in) :: shares(3,1)
+    integer, intent(in) :: nb
+    real(rk) :: n(3), dist, g(3)
+    call triangle_projection(xa, p, n, dist, g)
+    outside_at = beside_sharp_edge(xa, n, g, xb, shares, nb, p, 1.0e-3_rk)
+  end function
+
+  character(len=16) function logicals(l)
+    logical, intent(in) :: l(:)
+    integer :: k
+    logicals = ''
+    do k = 1, size(l)
+      logicals(k:k) = merge('T', 'F', l(k))
+    end do
+  end function
 
   !> behind_surface of the point p behind triangle xa's plane.
   integer function verdict_at(xa, xb, has, p)
