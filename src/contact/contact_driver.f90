@@ -839,7 +839,8 @@ contains
         xa = ct%x(:, it%tri(:,t))
         call triangle_projection(xa, ct%x(:,ps), n, dist, g)
         if (dist >= 0.0_rk) cycle
-        if (it%seams .or. it%sharp_edges) call faces_beside(t, xb, has)
+        ! the faces across its edges: for a sharp edge, or for a seam beyond an edge
+        if (it%sharp_edges .or. (it%seams .and. any(g < -edge_tolerance))) call faces_beside(t, xb, has)
         if (it%sharp_edges) then
           ! the faces across its edges (each shares the corners but the one opposite)
           n_beside = 0
@@ -851,7 +852,7 @@ contains
           end do
           if (beside_sharp_edge(xa, n, g, xs, shares, n_beside, ct%x(:,ps), edge_tolerance)) cycle
         end if
-        if (it%seams) then
+        if (it%seams .and. any(g < -edge_tolerance)) then
           verdict = behind_surface(xa, n, dist, g, xb, has, ct%x(:,ps), edge_tolerance)
         else
           verdict = merge(behind_not, behind_face, any(g < -edge_tolerance))

@@ -103,16 +103,16 @@ contains
     integer, intent(in) :: nb
     real(rk), intent(in) :: xa(3,3), n(3), g(3), xb(3,3,nb), xs(3), tol
     logical, intent(in) :: shares(3,nb)
-    real(rk) :: size, centre(3), nk(3), dk, gk(3)
+    real(rk) :: longest, centre(3), nk(3), dk, gk(3)
     integer :: k
     outside = .false.
-    size = max(norm2(xa(:,2) - xa(:,1)), norm2(xa(:,3) - xa(:,2)), norm2(xa(:,1) - xa(:,3)))
+    longest = max(norm2(xa(:,2) - xa(:,1)), norm2(xa(:,3) - xa(:,2)), norm2(xa(:,1) - xa(:,3)))
     do k = 1, nb
       if (sum(g, mask=.not. shares(:,k)) <= tol) cycle
       centre = (xb(:,1,k) + xb(:,2,k) + xb(:,3,k))/3.0_rk
-      if (dot_product(n, centre - xa(:,1)) >= -flat*size) cycle     ! rising or flat
+      if (dot_product(n, centre - xa(:,1)) >= -flat*longest) cycle     ! rising or flat
       call triangle_projection(xb(:,:,k), xs, nk, dk, gk)
-      if (dk <= -flat*size .or. any(gk < -tol)) cycle
+      if (dk <= -flat*longest .or. any(gk < -tol)) cycle
       outside = .true.
       return
     end do
