@@ -131,6 +131,9 @@ run_test "regression/crossed_edges" regression crossed_edges bin/udar-debug
 run_test "regression/crossed_edges_friction" regression crossed_edges bin/udar-debug crossed_edges_friction
 run_test "regression/crossed_edges_off_fails" regression_fails crossed_edges bin/udar crossed_edges_off \
   edges_through_each_other_over_h
+run_test "regression/sharp_edge" regression sharp_edge bin/udar-debug
+run_test "regression/sharp_edge_off_fails" regression_fails sharp_edge bin/udar-debug sharp_edge_off \
+  block_nodes_inside_wedge_over_h
 run_test "regression/self_contact" regression self_contact bin/udar-debug
 run_test "cli/self_contact_off" tests/cli/self_contact_off.sh bin/udar
 run_test "regression/taylor_wg" regression taylor_wg bin/udar

@@ -4,8 +4,8 @@
 # eroding penetration deck (tests/regression/penetration) on their
 # committed meshes, at several dt_safety, with &contact valleys off and on
 # (and, for the penetration deck, sharp_edges on), fields every 0.05 us; the
-# block sliding past a wedge's sharp edge (tests/regression/sharp_edge) with
-# sharp_edges on and off: over every frame, how often and how deep a slave
+# block sliding towards a wedge's sharp edge (tests/regression/sharp_edge)
+# with sharp_edges on and off: over every frame, how often and how deep a slave
 # node is inside a remaining master element (tests/tools/contact_depth.py).
 # The make check decks look at a few frames of one dt_safety, where a
 # node's stay inside for a few cycles can fall between frames; this is the
@@ -25,15 +25,15 @@ for r in "${runs[@]}"; do
   mkdir -p "$d"
   cp tests/regression/$1/$1.msh "$d/"
   # the deck's own contact line with valleys set, its step and field interval changed
-  # off: the deck's contact; on: with valleys; sharp: with sharp_edges
-  extra=", valleys = .$([ $4 = on ] && echo true || echo false)."
-  [ $4 = sharp ] && extra="$extra, sharp_edges = .true."
+  # off: neither valleys nor sharp_edges (0.5.6's defaults); on: valleys;
+  # sharp: sharp_edges (0.5.7's defaults)
+  extra=", valleys = .$([ $4 = on ] && echo true || echo false)., sharp_edges = .$([ $4 = sharp ] && echo true || echo false)."
   sed -e "s/^\( *\)dt_safety = [0-9.]*/\1dt_safety = $3/" -e "s/dt_field = [0-9.e-]*/dt_field = 0.05e-6/" \
-      -e "s/, valleys = \.[a-z]*\.//" -e "/^&contact/s| /\$|$extra /|" \
+      -e "s/, valleys = \.[a-z]*\.//" -e "s/, sharp_edges = \.[a-z]*\.//" -e "/^&contact/s| /\$|$extra /|" \
       tests/regression/$1/$2.nml > "$d/$2.nml"
   grep -q "valleys = .$([ $4 = on ] && echo true || echo false)." "$d/$2.nml" || { echo "stopped: valleys not set in $d/$2.nml"; exit 1; }
 done
-# the wedge, as its decks are (sharp_edges on / off)
+# the wedge, as its make check decks are (sharp_edges on / off)
 for deck in sharp_edge sharp_edge_off; do
   runs+=("sharp_edge $deck - -")
   d=$W/${deck}_-_-

@@ -841,7 +841,7 @@ contains
         if (dist >= 0.0_rk) cycle
         ! the faces across its edges: for a sharp edge, or for a seam beyond an edge
         if (it%sharp_edges .or. (it%seams .and. any(g < -edge_tolerance))) call faces_beside(t, xb, has)
-        if (it%sharp_edges) then
+        if (it%sharp_edges .and. .not. crossed(ps, t)) then
           ! the faces across its edges (each shares the corners but the one opposite)
           n_beside = 0
           do a = 1, 3
@@ -970,6 +970,22 @@ contains
       gc = max(g, 0.0_rk)/sum(max(g, 0.0_rk))
       approach = dot_product(n, gc(1)*ct%v(:,it%tri(1,t)) + gc(2)*ct%v(:,it%tri(2,t)) &
                                 + gc(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps))
+    end function
+
+    !> Whether slave node ps was in front of triangle t's plane at the start
+    !> of the step (positions x - dt v): it crossed the plane in this step.
+    !> Not in a pass without a step (dt = 0).
+    logical function crossed(ps, t)
+      integer, intent(in) :: ps, t
+      real(rk) :: x0(3,3), n0(3), d0, g0(3)
+      integer :: a
+      crossed = .false.
+      if (dt <= 0.0_rk) return
+      do a = 1, 3
+        x0(:,a) = ct%x(:,it%tri(a,t)) - dt*ct%v(:,it%tri(a,t))
+      end do
+      call triangle_projection(x0, ct%x(:,ps) - dt*ct%v(:,ps), n0, d0, g0)
+      crossed = d0 >= 0.0_rk
     end function
 
     !> The triangles across the three edges of triangle t (xb(:,:,a): across

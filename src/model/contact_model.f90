@@ -54,7 +54,7 @@ module udar_contact_model
     logical :: seams = .true.
     !> a node in front of the face beside a sharp convex edge is not behind
     !> the other face (beside_sharp_edge; the same lists)
-    logical :: sharp_edges = .false.
+    logical :: sharp_edges = .true.
     !> a slave node in a valley of the master surface is matched to both
     !> faces (detect's valley_partner; up to two rows a node in the matching)
     logical :: valleys = .false.

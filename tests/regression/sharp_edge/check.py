@@ -1,0 +1,40 @@
+"""A block sliding towards a wedge's sharp edge (sharp_edge.geo): at every
+field step no block node lies inside a wedge tetrahedron (beyond 1e-6 of
+the block's element size, 1 mm), and the energy balance stays within 1e-3
+(frictionless, elastic: nothing should be lost). Without &contact
+sharp_edges (sharp_edge_off) the nodes near the edge are taken as behind
+the wedge's bottom face and returned into the wedge: that deck must fail
+both. Momentum is exchanged exactly.
+Usage: check.py RUN_DIR DECK"""
+import os
+import sys
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', 'tools'))
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'rod_3kms'))
+import checks  # noqa: E402
+import udar_results  # noqa: E402
+from check_geometry import deepest_inside, slave_and_master  # noqa: E402
+
+deck = sys.argv[2]
+out = os.path.join(sys.argv[1], 'out')
+h_block = 1.0e-3
+with h5py.File(os.path.join(out, deck + '.h5'), 'r') as f:
+    conn, x0, block_nodes, wedge, _ = slave_and_master(f, 1, 2)
+    worst, frames, inside = 0.0, 0, 0
+    for k in sorted(f['steps'].keys(), key=lambda k: f['steps'][k].attrs['time']):
+        x = f['steps'][k]['coordinates'][...]
+        d = deepest_inside(x[block_nodes], x, conn[wedge])
+        frames += 1
+        inside += d > 1e-6 * h_block
+        worst = max(worst, d)
+    lead = x[block_nodes, 0].min()
+print(f'MEASURED {inside} of {frames} field steps with a block node inside the wedge, the deepest {worst:.3g} m; '
+      f'the block\'s leading edge at the end x = {lead * 1e3:.3f} mm (the wedge\'s edge at x = 0)')
+checks.below('block_nodes_inside_wedge_over_h', worst / h_block, 1e-6)
+hist = udar_results.read_history(os.path.join(out, deck + '_history.csv'))
+checks.below('energy_error_max', np.abs(hist['energy_error']).max(), 1e-3)
+p = np.array([hist['momentum_' + c] for c in 'xyz'])
+checks.below('momentum_change_relative', np.abs(p - p[:, :1]).max() / np.abs(p[:, 0]).max(), 1e-13)
