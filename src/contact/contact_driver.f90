@@ -818,7 +818,7 @@ contains
       integer :: other, sep
       integer :: t, s, first, last
       real(rk) :: xa(3,3), n(3), dist, g(3), c_near(3), seam_dist, seam_n(3), seam_g(3), xb(3,3,3), xs(3,3,3)
-      logical :: has(3), shares(3,3)
+      logical :: has(3), shares(3,3), sharp
       integer :: verdict, seam, n_beside, a
       best = 0; other = 0; sep = 0; seam = 0
       seam_dist = -huge(1.0_rk)
@@ -839,9 +839,12 @@ contains
         xa = ct%x(:, it%tri(:,t))
         call triangle_projection(xa, ct%x(:,ps), n, dist, g)
         if (dist >= 0.0_rk) cycle
-        ! the faces across its edges: for a sharp edge, or for a seam beyond an edge
-        if (it%sharp_edges .or. (it%seams .and. any(g < -edge_tolerance))) call faces_beside(t, xb, has)
-        if (it%sharp_edges .and. .not. crossed(ps, t)) then
+        ! the faces across its edges: for a sharp edge (a node that did not
+        ! cross this plane in the step), or for a seam beyond an edge
+        sharp = .false.
+        if (it%sharp_edges) sharp = .not. crossed(ps, t)
+        if (sharp .or. (it%seams .and. any(g < -edge_tolerance))) call faces_beside(t, xb, has)
+        if (sharp) then
           ! the faces across its edges (each shares the corners but the one opposite)
           n_beside = 0
           do a = 1, 3
