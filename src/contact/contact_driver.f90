@@ -242,11 +242,7 @@ contains
                            n, alpha, beta, w0)
           wm = sum(w*w0/ct%m(nodes))
           j = -u/wm
-          do a = 1, 4
-            dv = (w0(a)*j/ct%m(nodes(a)))*n
-            ct%v(:,nodes(a)) = ct%v(:,nodes(a)) + dv
-            ct%x(:,nodes(a)) = ct%x(:,nodes(a)) + dt*dv
-          end do
+          call push(j, n)
           it%normal_impulse = it%normal_impulse + j
           it%master_impulse = it%master_impulse - j*n      ! the master side's weights sum to -1
           g1 = g1 - dt*u
@@ -257,11 +253,7 @@ contains
             slip = w(1)*ct%v(:,nodes(1)) + w(2)*ct%v(:,nodes(2)) + w(3)*ct%v(:,nodes(3)) + w(4)*ct%v(:,nodes(4))
             jt = -(slip - dot_product(slip, n)*n)/wm
             if (norm2(jt) > it%friction*j) jt = (it%friction*j/norm2(jt))*jt
-            do a = 1, 4
-              dv = (w0(a)/ct%m(nodes(a)))*jt
-              ct%v(:,nodes(a)) = ct%v(:,nodes(a)) + dv
-              ct%x(:,nodes(a)) = ct%x(:,nodes(a)) + dt*dv
-            end do
+            call push(1.0_rk, jt)
             it%friction_impulse = it%friction_impulse + norm2(jt)
             it%master_impulse = it%master_impulse - jt
           end if
@@ -274,6 +266,18 @@ contains
       end do
     end do
     it%edge_contacts_total = it%edge_contacts_total + it%n_edge_contacts
+  contains
+    !> The impulse c*jv on the pair's closest points, shared by the start's
+    !> weights w0 over the four nodes' masses: their velocities change, and
+    !> their positions by the change over the step.
+    subroutine push(c, jv)
+      real(rk), intent(in) :: c, jv(3)
+      do a = 1, 4
+        dv = (w0(a)*c/ct%m(nodes(a)))*jv
+        ct%v(:,nodes(a)) = ct%v(:,nodes(a)) + dv
+        ct%x(:,nodes(a)) = ct%x(:,nodes(a)) + dt*dv
+      end do
+    end subroutine
   end subroutine
 
   !> The found slave nodes of every rank's search (records of rec_found
@@ -818,7 +822,7 @@ contains
       integer :: other, sep
       integer :: t, s, first, last
       real(rk) :: xa(3,3), n(3), dist, g(3), c_near(3), seam_dist, seam_n(3), seam_g(3), xb(3,3,3), xs(3,3,3)
-      logical :: has(3), shares(3,3), sharp
+      logical :: has(3), shares(3,3), sharp, off_face
       integer :: verdict, seam, n_beside, a
       best = 0; other = 0; sep = 0; seam = 0
       seam_dist = -huge(1.0_rk)
@@ -841,11 +845,12 @@ contains
         if (dist >= 0.0_rk) cycle
         ! the faces across its edges: for a sharp edge (a node that did not
         ! cross this plane in the step), or for a seam beyond an edge
+        off_face = any(g < -edge_tolerance)
         sharp = .false.
         if (it%sharp_edges) sharp = .not. crossed(ps, t)
-        if (sharp .or. (it%seams .and. any(g < -edge_tolerance))) call faces_beside(t, xb, has)
+        if (sharp .or. (it%seams .and. off_face)) call faces_beside(t, xb, has)
         if (sharp) then
-          ! the faces across its edges (each shares the corners but the one opposite)
+          ! each face across an edge shares the corners but the one opposite
           n_beside = 0
           do a = 1, 3
             if (.not. has(a)) cycle
@@ -855,10 +860,10 @@ contains
           end do
           if (beside_sharp_edge(xa, n, g, xs, shares, n_beside, ct%x(:,ps), edge_tolerance)) cycle
         end if
-        if (it%seams .and. any(g < -edge_tolerance)) then
+        if (it%seams .and. off_face) then
           verdict = behind_surface(xa, n, dist, g, xb, has, ct%x(:,ps), edge_tolerance)
         else
-          verdict = merge(behind_not, behind_face, any(g < -edge_tolerance))
+          verdict = merge(behind_not, behind_face, off_face)
         end if
         if (verdict == behind_not) cycle
         if (verdict == behind_seam) then

@@ -12,19 +12,14 @@ import sys
 import h5py
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'regression', 'rod_3kms'))
-from check_geometry import deepest_inside, slave_and_master  # noqa: E402
+from check_geometry import frames_inside, slave_and_master  # noqa: E402
 
 path, slave, master = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 with h5py.File(path, 'r') as f:
-    conn, x0, slave_nodes, master_tets, h = slave_and_master(f, slave, master)
+    h = slave_and_master(f, slave, master)[4]
     frames, inside, worst, t_worst = 0, 0, 0.0, 0.0
-    for k in f['steps'].keys():
-        g = f['steps'][k]
-        alive = master_tets
-        if 'fracture_state' in g:
-            alive = master_tets & (g['fracture_state'][...] < 1.5)
-        x = g['coordinates'][...]
-        d = deepest_inside(x[slave_nodes], x, conn[alive]) / h
+    for g, _, depth in frames_inside(f, slave, master):
+        d = depth / h
         frames += 1
         inside += d > 1e-6
         if d > worst:

@@ -36,3 +36,18 @@ def slave_and_master(f, slave_part, master_part):
     master = part == master_part
     h = np.median(np.linalg.norm(x0[conn[master, 1]] - x0[conn[master, 0]], axis=1))
     return conn, x0, np.unique(conn[part == slave_part]), master, h
+
+
+def frames_inside(f, slave_part, master_part):
+    """For each field step of an open field file, in time order: the step's
+    group, its coordinates and the depth (m) of the deepest node of part
+    slave_part inside a tetrahedron of part master_part that is still there
+    (not eroded, where the file has fracture states)."""
+    conn, _, slave_nodes, master, _ = slave_and_master(f, slave_part, master_part)
+    for k in sorted(f['steps'].keys(), key=lambda k: f['steps'][k].attrs['time']):
+        g = f['steps'][k]
+        alive = master
+        if 'fracture_state' in g:
+            alive = master & (g['fracture_state'][...] < 1.5)
+        x = g['coordinates'][...]
+        yield g, x, deepest_inside(x[slave_nodes], x, conn[alive])

@@ -16,17 +16,15 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', 'tools'))
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'rod_3kms'))
 import checks  # noqa: E402
 import udar_results  # noqa: E402
-from check_geometry import deepest_inside, slave_and_master  # noqa: E402
+from check_geometry import frames_inside, slave_and_master  # noqa: E402
 
 deck = sys.argv[2]
 out = os.path.join(sys.argv[1], 'out')
 h_block = 1.0e-3
 with h5py.File(os.path.join(out, deck + '.h5'), 'r') as f:
-    conn, x0, block_nodes, wedge, _ = slave_and_master(f, 1, 2)
+    block_nodes = slave_and_master(f, 1, 2)[2]
     worst, frames, inside = 0.0, 0, 0
-    for k in sorted(f['steps'].keys(), key=lambda k: f['steps'][k].attrs['time']):
-        x = f['steps'][k]['coordinates'][...]
-        d = deepest_inside(x[block_nodes], x, conn[wedge])
+    for _, x, d in frames_inside(f, 1, 2):
         frames += 1
         inside += d > 1e-6 * h_block
         worst = max(worst, d)
