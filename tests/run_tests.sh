@@ -23,12 +23,14 @@ run_test() {   # name, command...
 }
 
 # a regression case: copy the deck and its mesh to tests/work/<case>, run it
-# with the given binary, then its check.py judges the output
+# with the given binary (its log also in run.log there), then its check.py
+# judges the output
 regression() {   # case, binary [deck name, when the case has several]
   local case=$1 exe=$2 deck=${3:-$1} dir=$WORK/${3:-$1}
   mkdir -p "$dir"
   cp tests/regression/$case/*.nml tests/regression/$case/*.msh "$dir"/
-  ( cd "$dir" && "$ROOT/$exe" $deck.nml ) && $PYTHON tests/regression/$case/check.py "$dir" $deck
+  ( cd "$dir" && set -o pipefail && "$ROOT/$exe" $deck.nml 2>&1 | tee run.log ) && \
+    $PYTHON tests/regression/$case/check.py "$dir" $deck
 }
 
 # a deck that must fail its case's check at the named assertion (the same
@@ -37,7 +39,7 @@ regression_fails() {   # case, binary, deck, assertion
   local case=$1 exe=$2 deck=$3 dir=$WORK/$3
   mkdir -p "$dir"
   cp tests/regression/$case/*.nml tests/regression/$case/*.msh "$dir"/
-  ( cd "$dir" && "$ROOT/$exe" $deck.nml ) || return 1
+  ( cd "$dir" && set -o pipefail && "$ROOT/$exe" $deck.nml 2>&1 | tee run.log ) || return 1
   if $PYTHON tests/regression/$case/check.py "$dir" $deck | tee "$dir/check.out" | grep -q "^FAIL $4"; then
     echo "PASS $4 fails without the option, as it must"
   else

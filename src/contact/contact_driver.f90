@@ -101,8 +101,12 @@ contains
     if (ct%n_interfaces == 0) return
     call gather_state(ct, dom)
     do i = 1, ct%n_interfaces
-      ! anything behind the surface by up to one master element counts
-      call detect(ct, ct%ifc(i), ct%ifc(i)%h_mean, ct%ifc(i)%move_overlaps, 0.0_rk, stage_both, n_found, depth, worst)
+      ! a node inside the master body, behind the surface by up to one
+      ! master element (ahead of a sharp edge or corner a node can be behind
+      ! the planes of faces beyond it without being inside)
+      call detect(ct, ct%ifc(i), ct%ifc(i)%h_mean, ct%ifc(i)%move_overlaps, 0.0_rk, stage_both, n_found, depth, worst, &
+                  only=ct%ifc(i)%start_inside)
+      if (allocated(ct%ifc(i)%start_inside)) deallocate(ct%ifc(i)%start_inside)
       if (n_found == 0) then
         write(lines(i), '(a)') 'contact '//trim(ct%ifc(i)%name)//': no initial overlap'
       else
@@ -476,12 +480,13 @@ contains
   !> along the normal (eq. 5), in bounded steps. With dt = 0 (before the
   !> first cycle, settling after erosion; stage_both) the slave nodes are
   !> only projected.
-  subroutine detect(ct, it, depth_limit, move, dt, stage, n_found, deepest, worst)
+  subroutine detect(ct, it, depth_limit, move, dt, stage, n_found, deepest, worst, only)
     type(contact_t), intent(inout) :: ct
     type(interface_t), intent(inout) :: it
     real(rk), intent(in) :: depth_limit, dt
     logical, intent(in) :: move
     integer, intent(in) :: stage             !< stage_search, stage_finish or stage_both
+    logical, intent(in), optional, allocatable :: only(:)   !< (slave nodes) if allocated: only these are looked for
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
     real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), vm(3,3), xa0(3,3), share(3), x_new(3), c_edge(3)
@@ -531,6 +536,11 @@ contains
     do k = 1, size(it%slave)
       ps = it%slave(k)
       if (.not. it%mine(k)) cycle
+      if (present(only)) then
+        if (allocated(only)) then
+          if (.not. only(k)) cycle
+        end if
+      end if
       if (it%self) it%near(it%ring(it%ring_start(k):it%ring_start(k+1)-1)) = .true.
       call nearest_behind(ps, .false., best, best_dist, best_n, best_g, separating, slot=k)
       if (it%self) it%near(it%ring(it%ring_start(k):it%ring_start(k+1)-1)) = .false.

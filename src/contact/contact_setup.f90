@@ -13,6 +13,8 @@ module udar_contact_setup
   use udar_comms, only: comms_rank, comms_size
   use udar_contact_model, only: feature_edges, contact_t, interface_t, size_interface_work, surface_neighbours, self_neighbourhoods, on_symmetry_plane, &
                                 assign_slaves, mark_returns
+  use udar_contact_search, only: bucket_grid_t, grid_build, grid_cell
+  use udar_contact_kernels, only: tetrahedron_coordinates
   implicit none
   private
   public :: build_contact, tet_face, contact_edges
@@ -79,6 +81,9 @@ contains
       end associate
     end do
     if (errs%count() > n_err0) return
+    do i = 1, n_ifc
+      if (.not. ifc(i)%self) call mark_start_inside(ifc(i))
+    end do
 
     ! contact nodes: every node of a master triangle or a slave set, and
     ! every node of an eroding part (any may come to the surface)
@@ -191,6 +196,68 @@ contains
         end do
       end do
       call take_faces(in_group(face(1,1:nf)) .and. in_group(face(2,1:nf)) .and. in_group(face(3,1:nf)), tri)
+    end subroutine
+
+    !> Which slave nodes start inside the master body (a tetrahedron of the
+    !> parts the master triangles are faces of, to rounding, not one of its
+    !> corners): only these are initial overlaps. Behind a face's plane
+    !> with the projection on it is not enough: ahead of a sharp edge or
+    !> corner of a coarse master, a node in front of the body is behind the
+    !> planes of faces beyond it. Global node indices.
+    subroutine mark_start_inside(it)
+      type(interface_t), intent(inout) :: it
+      real(rk), parameter :: rounding = 1.0e-9_rk   ! of the area coordinates
+      logical, allocatable :: in_body(:)
+      integer, allocatable :: tets(:)
+      real(rk), allocatable :: lo(:,:), hi(:,:)
+      type(bucket_grid_t) :: grid
+      real(rk) :: xt(3,4), p(3), lam(4), s_lo(3), s_hi(3)
+      integer :: t, j, e, k, c, s
+      allocate(it%start_inside(size(it%slave)), source=.false.)
+      if (size(it%slave) == 0) return
+      allocate(in_body(size(cfg%parts)), source=.false.)
+      do t = 1, size(it%tri, 2)
+        do j = glob%nd_el_ptr(it%tri(1,t)), glob%nd_el_ptr(it%tri(1,t)+1) - 1
+          e = glob%nd_el(j)
+          if (any(glob%el_conn(e,:) == it%tri(2,t)) .and. any(glob%el_conn(e,:) == it%tri(3,t))) &
+            in_body(glob%el_part(e)) = .true.
+        end do
+      end do
+      ! only the tetrahedra that reach the slave nodes' box can hold one
+      s_lo = minval(glob%nd_x0(:, it%slave), dim=2)
+      s_hi = maxval(glob%nd_x0(:, it%slave), dim=2)
+      allocate(tets(glob%n_elems))
+      k = 0
+      do e = 1, glob%n_elems
+        if (.not. in_body(glob%el_part(e))) cycle
+        xt = glob%nd_x0(:, glob%el_conn(e,:))
+        if (any(maxval(xt, dim=2) < s_lo) .or. any(minval(xt, dim=2) > s_hi)) cycle
+        k = k + 1
+        tets(k) = e
+      end do
+      allocate(lo(3,k), hi(3,k))
+      do j = 1, k
+        xt = glob%nd_x0(:, glob%el_conn(tets(j),:))
+        lo(:,j) = minval(xt, dim=2)
+        hi(:,j) = maxval(xt, dim=2)
+      end do
+      call grid_build(grid, lo, hi)
+      do k = 1, size(it%slave)
+        p = glob%nd_x0(:, it%slave(k))
+        c = grid_cell(grid, p)
+        if (c == 0) cycle
+        do s = grid%start(c), grid%start(c+1) - 1
+          j = grid%items(s)
+          if (any(p < lo(:,j)) .or. any(p > hi(:,j))) cycle
+          e = tets(j)
+          if (any(glob%el_conn(e,:) == it%slave(k))) cycle
+          xt = glob%nd_x0(:, glob%el_conn(e,:))
+          call tetrahedron_coordinates(xt(:,1:3), xt(:,4), p, lam)
+          if (minval(lam) < -rounding) cycle
+          it%start_inside(k) = .true.
+          exit
+        end do
+      end do
     end subroutine
 
     !> Part ip if its material erodes (its boundary changes), else 0.

@@ -60,6 +60,9 @@ module udar_contact_model
     logical :: valleys = .false.
     real(rk) :: tolerance = 0
     logical :: move_overlaps = .false.     !< initial overlaps: move the slave nodes (else report only)
+    !> (slave nodes) the node starts inside a tetrahedron of the master
+    !> body: only these can be initial overlaps (freed after that pass)
+    logical, allocatable :: start_inside(:)
     real(rk) :: h_mean = 0                 !< m, mean master edge length
     type(bucket_grid_t) :: grid
     ! local tracking: each slave node's candidate triangles, found by a full

@@ -37,5 +37,21 @@ def above(name, measured, limit, unit=''):
     return ok
 
 
+def initial_overlaps(run_dir, interface):
+    """How many slave nodes of a contact interface the run's log (run.log,
+    written by run_tests.sh) reports as starting behind the master surface."""
+    prefix = f'contact {interface}: '
+    with open(os.path.join(run_dir, 'run.log')) as f:
+        for line in f:
+            if not line.startswith(prefix):
+                continue
+            rest = line[len(prefix):]
+            if rest.startswith('no initial overlap'):
+                return 0
+            if 'start behind the master surface' in rest:
+                return int(rest.split()[0])
+    raise ValueError(f'{run_dir}/run.log has no initial-overlap line for {interface}')
+
+
 def finish():
     sys.exit(1 if _failed else 0)

@@ -28,6 +28,8 @@ with h5py.File(os.path.join(out, 'deep_node.h5'), 'r') as f:
 print('MEASURED deepest rod node inside a plate element at each field step (of h): ' +
       ' '.join(f'{d / h:.3g}' for d in depth))
 checks.above('starts_inside_over_h', depth[0] / h, 0.1)
+# and the initial-overlap report names it (it is inside a plate element)
+checks.compare('initial_overlaps_reported', checks.initial_overlaps(sys.argv[1], 'rod_on_plate'), 1, 0.0)
 checks.below('inside_at_the_end_over_h', depth[-1] / h, 1e-6)
 hist = udar_results.read_history(os.path.join(out, 'deep_node_history.csv'))
 deep = hist['contact_deep_rod_on_plate']
