@@ -12,7 +12,7 @@ module udar_contact_model
   use udar_config, only: contact_weights_area
   implicit none
   private
-  public :: size_interface_work, on_symmetry_plane, self_neighbourhoods, feature_edges, assign_slaves, mark_returns, &
+  public :: size_interface_work, on_symmetry_plane, eroding_or_self, self_neighbourhoods, feature_edges, assign_slaves, mark_returns, &
             surface_neighbours, neighbour_across
 
   !> One direction of an interface: slave nodes against master triangles.
@@ -167,6 +167,18 @@ module udar_contact_model
     real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3, owned contact nodes) m/s: v(n-1/2), v(n+1/2) before the pass
   end type
 contains
+
+  !> Whether any interface is a self-contact or has an eroding surface: the
+  !> contacts that still ask for a dt_safety of 0.5 or less (doc/validation.md
+  !> 4t); the others run at the elements' own step.
+  pure logical function eroding_or_self(ct)
+    type(contact_t), intent(in) :: ct
+    integer :: i
+    eroding_or_self = .false.
+    do i = 1, ct%n_interfaces
+      if (ct%ifc(i)%self .or. ct%ifc(i)%master_part > 0 .or. ct%ifc(i)%slave_part > 0) eroding_or_self = .true.
+    end do
+  end function
 
   !> Whether triangle tri lies on a symmetry plane, given each node's bit
   !> set of planes (sym_planes, indexed like tri): the mirrored body
