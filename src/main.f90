@@ -19,7 +19,7 @@ program udar
   use udar_setup, only: build_domain, init_state, count_bodies
   use udar_run, only: run_simulation, run_result_t
   use udar_checkpoint, only: checkpoint_model_hash, checkpoint_mesh_hash, checkpoint_latest
-  use udar_contact_model, only: contact_t, eroding_or_self
+  use udar_contact_model, only: contact_t, any_eroding
   use udar_contact_setup, only: build_contact
   use udar_contact_erosion, only: contact_eroding_surfaces
   use udar_contact, only: contact_distribute
@@ -136,10 +136,10 @@ program udar
   end if
 
   if (wall_limit_arg > 0.0_rk) cfg%run%wall_limit = wall_limit_arg
-  if (eroding_or_self(contacts) .and. cfg%run%dt_safety > 0.5_rk) call log_warn('&run dt_safety > 0.5 with '// &
-    'eroding or self-&contact: on a 3 km/s eroding penetration at 0.7-0.9 slave nodes stay up to 0.02 of an element '// &
-    'inside the master for a few cycles (up to 0.008 at 0.33-0.5; doc/validation.md 4s), and self-contact loses '// &
-    'energy (4t); 0.5 or less is recommended there (contact without either runs at the elements'' own step)')
+  if (any_eroding(contacts) .and. cfg%run%dt_safety > 0.5_rk) call log_warn('&run dt_safety > 0.5 with an '// &
+    'eroding &contact surface: on a 3 km/s eroding penetration at 0.7-0.9 slave nodes stay up to 0.02 of an element '// &
+    'inside the master for a few cycles (up to 0.008 at 0.33-0.5; doc/validation.md 4s); 0.5 or less is recommended '// &
+    'with erosion (contact without it runs at the elements'' own step, 4t)')
   call log_info('udar '//program_version//': '//trim(cfg%run%title))
   model_hash = checkpoint_model_hash(cfg%resolved_text)
   mesh_hash = checkpoint_mesh_hash(dom)

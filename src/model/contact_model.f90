@@ -12,7 +12,7 @@ module udar_contact_model
   use udar_config, only: contact_weights_area
   implicit none
   private
-  public :: size_interface_work, on_symmetry_plane, eroding_or_self, self_neighbourhoods, feature_edges, assign_slaves, mark_returns, &
+  public :: size_interface_work, on_symmetry_plane, any_eroding, self_neighbourhoods, feature_edges, assign_slaves, mark_returns, &
             surface_neighbours, neighbour_across
 
   !> One direction of an interface: slave nodes against master triangles.
@@ -168,15 +168,15 @@ module udar_contact_model
   end type
 contains
 
-  !> Whether any interface is a self-contact or has an eroding surface: the
-  !> contacts that still ask for a dt_safety of 0.5 or less (doc/validation.md
-  !> 4t); the others run at the elements' own step.
-  pure logical function eroding_or_self(ct)
+  !> Whether any interface has an eroding surface: the contact that still
+  !> asks for a dt_safety of 0.5 or less (doc/validation.md 4s, 4t); the
+  !> others run at the elements' own step.
+  pure logical function any_eroding(ct)
     type(contact_t), intent(in) :: ct
     integer :: i
-    eroding_or_self = .false.
+    any_eroding = .false.
     do i = 1, ct%n_interfaces
-      if (ct%ifc(i)%self .or. ct%ifc(i)%master_part > 0 .or. ct%ifc(i)%slave_part > 0) eroding_or_self = .true.
+      if (ct%ifc(i)%master_part > 0 .or. ct%ifc(i)%slave_part > 0) any_eroding = .true.
     end do
   end function
 

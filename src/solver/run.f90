@@ -110,8 +110,14 @@ contains
     integer :: n_eroded_now(3), n_eroded_by(3)
     logical, allocatable :: owned_gone(:)                  !< owned elements already passed to the contact surfaces
     integer, allocatable :: new_gidx(:), all_gidx(:), erosion_counts(:)
-    logical :: ok, done, history_due, print_due, stopping, eroded_any, fracture_on, fields_due, ended
+    logical :: ok, done, history_due, print_due, stopping, eroded_any, fracture_on, fields_due, ended, last_step
     integer, parameter :: balance_interval = 10
+    ! the elements' energy (internal + eroded) at the end of a cycle, kept for
+    ! the next cycle's balance: the half-step velocities' kinetic energy
+    ! belongs to the middle of the step, so the balance takes the mean of
+    ! the step's two ends (theory.md 10)
+    real(rk) :: u_prev, e_mid
+    integer :: u_prev_cycle
     character(len=:), allocatable :: errmsg, base, why
     character(len=256) :: line
     character(len=300), allocatable :: overlap_lines(:)
@@ -177,6 +183,8 @@ contains
       walls%contact_work = 0
       if (comms_is_root()) walls%work = st%wall_work
       if (comms_is_root()) walls%contact_work = st%contact_work
+      u_prev = element_energy(dom)
+      u_prev_cycle = st%cycle
       write(line, '(a,i0,a,es12.5,a,i0,a)') 'restart from '//trim(restart_path)//' at cycle ', st%cycle, &
         ', t = ', st%t, ' s, on ', comms_size(), trim(merge(' rank ', ' ranks', comms_size() == 1))
       call log_info(line)
@@ -197,6 +205,8 @@ contains
       call compute_balance(dom, walls, ct, bal)
       st%e0 = bal%kinetic + bal%internal
       st%e_ref = max(abs(st%e0), tiny(1.0_rk))
+      u_prev = bal%internal + bal%eroded_energy
+      u_prev_cycle = st%cycle
       call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
       st%field_steps = st%field_steps + 1
       st%ke_peak = bal%kinetic
@@ -239,15 +249,8 @@ contains
     contact_seconds = 0.0_rk
     do while (.not. done)
       ! ---- time step: the stable one, or what is left to t_end
-      if (st%cycle == 0 .and. cfg%run%dt_initial > 0.0_rk) then
-        dt = cfg%run%dt_initial
-      else
-        dt = min(cfg%run%dt_safety*st%dt_stable, cfg%run%dt_max)
-      end if
-      if (st%t + dt >= cfg%run%t_end*(1.0_rk - 1.0e-12_rk)) then
-        dt = cfg%run%t_end - st%t
-        done = .true.
-      end if
+      call next_step(dt, last_step)
+      if (last_step) done = .true.
       dt_v = 0.5_rk*(st%dt_old + dt)
       ! ---- nodes: v(n+1/2), conditions, walls, x(n+1); then the ghosts' from their owners
       call contact_keep_velocities(ct, dom, 1)
@@ -322,10 +325,13 @@ contains
       ! the balance costs a pass over the mesh: every few cycles is enough to catch a blow-up
       if (history_due .or. print_due .or. mod(st%cycle, balance_interval) == 0) then
         call compute_balance(dom, walls, ct, bal)
+        e_mid = balance_energy(bal, u_prev, u_prev_cycle == st%cycle - 1)
         ! a deck that starts at rest (no energy) measures against the largest
         ! energy seen: energy from nothing then reads 1, not 1e303
-        if (st%e0 == 0.0_rk) st%e_ref = max(st%e_ref, abs(bal%total))
-        bal%error = (bal%total - bal%wall_work - bal%contact_work - st%e0)/max(st%e_ref, bal%kinetic)
+        if (st%e0 == 0.0_rk) st%e_ref = max(st%e_ref, abs(e_mid))
+        bal%error = (e_mid - bal%wall_work - bal%contact_work - st%e0)/max(st%e_ref, bal%kinetic)
+        u_prev = bal%internal + bal%eroded_energy
+        u_prev_cycle = st%cycle
       end if
       ! ---- end of the event: the kinetic energy below a share of its peak
       ! (looked at on the balance cycles only, so &run cycle_print cannot change the answer)
@@ -414,6 +420,13 @@ contains
             bal%contact_normal(k), ' N'
           call log_info(line)
         end do
+      end if
+      ! the next cycle's balance takes this cycle's end: kept when it is due
+      if (.not. done .and. u_prev_cycle /= st%cycle) then
+        if (balance_due_next()) then
+          u_prev = element_energy(dom)
+          u_prev_cycle = st%cycle
+        end if
       end if
     end do
     call fw_close(fw)
@@ -569,6 +582,31 @@ contains
     end subroutine
 
     !> A history row (rank 0 writes; every rank learns whether it could).
+    !> The step the next cycle takes: the stable one (dt_initial on the
+    !> first cycle), cut to what is left to t_end (last).
+    subroutine next_step(dt_next, last)
+      real(rk), intent(out) :: dt_next
+      logical, intent(out) :: last
+      if (st%cycle == 0 .and. cfg%run%dt_initial > 0.0_rk) then
+        dt_next = cfg%run%dt_initial
+      else
+        dt_next = min(cfg%run%dt_safety*st%dt_stable, cfg%run%dt_max)
+      end if
+      last = st%t + dt_next >= cfg%run%t_end*(1.0_rk - 1.0e-12_rk)
+      if (last) dt_next = cfg%run%t_end - st%t
+    end subroutine
+
+    !> Whether the next cycle computes the balance: the balance block's
+    !> conditions with the step that cycle takes (the run's end by the
+    !> kinetic energy or a stop falls on a balance_interval cycle).
+    logical function balance_due_next()
+      real(rk) :: dt_next
+      logical :: last
+      call next_step(dt_next, last)
+      balance_due_next = last .or. st%cycle + 1 >= cfg%run%max_cycles .or. mod(st%cycle + 1, balance_interval) == 0 &
+        .or. mod(st%cycle + 1, cfg%run%cycle_print) == 0 .or. st%t + dt_next >= st%t_next_hist*(1.0_rk - 1.0e-12_rk)
+    end function
+
     subroutine history_row(dt)
       real(rk), intent(in) :: dt
       ok = .true.
@@ -914,6 +952,58 @@ contains
 
   !> Global sums over the owned nodes and elements, exact (udar_exact_sum),
   !> hence the same for any partition. Collective.
+  !> The energy the balance weighs against the start: the kinetic energy of
+  !> the half-step velocities, which belongs to the middle of the step, and
+  !> the elements' energy there, the mean of the step's two ends (u_start,
+  !> the previous cycle's end, when known; else the end's alone). With the
+  !> end's, the balance runs ahead by half the energy the step moves between
+  !> kinetic and internal, and swings with it (theory.md 10).
+  pure real(rk) function balance_energy(bal, u_start, known)
+    type(balance_t), intent(in) :: bal
+    real(rk), intent(in) :: u_start
+    logical, intent(in) :: known
+    balance_energy = bal%kinetic + bal%internal + bal%eroded_energy
+    if (known) balance_energy = bal%kinetic + 0.5_rk*(u_start + (bal%internal + bal%eroded_energy))
+  end function
+
+  !> Adds this rank's owned elements' energies to exact accumulators:
+  !> internal energy of the elements left (acc_int) and of the eroded ones
+  !> (acc_ero, counted n_ero), and if asked the plastic work (acc_pla) and
+  !> the elements fractured or eroded (n_frac).
+  subroutine add_element_energies(dom, acc_int, acc_ero, n_ero, n_frac, acc_pla)
+    type(domain_t), intent(in) :: dom
+    integer(i8), intent(inout) :: acc_int(0:), acc_ero(0:)
+    integer, intent(out) :: n_ero, n_frac
+    integer(i8), intent(inout), optional :: acc_pla(0:)
+    integer :: i, e
+    n_frac = 0
+    n_ero = 0
+    do i = 1, size(dom%el_owned_list)
+      e = dom%el_owned_list(i)
+      if (dom%el_state(e) == el_eroded) then
+        call exact_add(acc_ero, dom%el_mass(e)*dom%el_e(e))
+        n_ero = n_ero + 1
+      else
+        call exact_add(acc_int, dom%el_mass(e)*dom%el_e(e))
+      end if
+      if (dom%el_state(e) /= el_intact) n_frac = n_frac + 1
+      if (present(acc_pla)) call exact_add(acc_pla, dom%el_mass(e)*dom%el_wp(e))
+    end do
+  end subroutine
+
+  !> The elements' energy, internal and eroded (global, the same on every
+  !> rank and bitwise equal to compute_balance's internal + eroded_energy):
+  !> what the next cycle's balance needs from this cycle's end.
+  real(rk) function element_energy(dom) result(u)
+    type(domain_t), intent(in) :: dom
+    integer(i8) :: acc(0:exact_limbs, 2)
+    integer :: n_ero, n_frac
+    acc = 0
+    call add_element_energies(dom, acc(:,1), acc(:,2), n_ero, n_frac)
+    call comms_sum_exact(acc)
+    u = exact_value(acc(:,1)) + exact_value(acc(:,2))
+  end function
+
   subroutine compute_balance(dom, walls, ct, bal)
     type(domain_t), intent(in) :: dom
     type(wall_sums_t), intent(in) :: walls
@@ -921,7 +1011,7 @@ contains
     type(balance_t), intent(inout) :: bal
     integer, parameter :: c_kin = 1, c_int = 2, c_pla = 3, c_mom = 4, c_work = 7, c_ero = 8, c_cwork = 9, &
                           c_ang = 10, c_mx = 13, c_m = 16, c_wall = 17
-    integer :: n, e, ip, i, np, nw, c_part, n_frac, n_ero
+    integer :: n, ip, i, np, nw, c_part, n_frac, n_ero
     real(rk) :: ke, mx(3), p(3), lo(3)
     np = dom%n_parts
     nw = size(dom%walls)
@@ -944,19 +1034,7 @@ contains
       call exact_add(bal%acc(:,ip+4), dom%nd_mass(n))
       call exact_add(bal%acc(:,c_m), dom%nd_mass(n))
     end do
-    n_frac = 0
-    n_ero = 0
-    do i = 1, size(dom%el_owned_list)
-      e = dom%el_owned_list(i)
-      if (dom%el_state(e) == el_eroded) then
-        call exact_add(bal%acc(:,c_ero), dom%el_mass(e)*dom%el_e(e))
-        n_ero = n_ero + 1
-      else
-        call exact_add(bal%acc(:,c_int), dom%el_mass(e)*dom%el_e(e))
-      end if
-      if (dom%el_state(e) /= el_intact) n_frac = n_frac + 1
-      call exact_add(bal%acc(:,c_pla), dom%el_mass(e)*dom%el_wp(e))
-    end do
+    call add_element_energies(dom, bal%acc(:,c_int), bal%acc(:,c_ero), n_ero, n_frac, bal%acc(:,c_pla))
     bal%n_fractured = int(comms_sum_int(int(n_frac, i8)))
     bal%n_eroded = int(comms_sum_int(int(n_ero, i8)))
     bal%acc(:,c_work) = walls%work
