@@ -581,7 +581,6 @@ contains
         'doc/user-guide.md, "When the time step collapses"')
     end subroutine
 
-    !> A history row (rank 0 writes; every rank learns whether it could).
     !> The step the next cycle takes: the stable one (dt_initial on the
     !> first cycle), cut to what is left to t_end (last).
     subroutine next_step(dt_next, last)
@@ -607,6 +606,7 @@ contains
         .or. mod(st%cycle + 1, cfg%run%cycle_print) == 0 .or. st%t + dt_next >= st%t_next_hist*(1.0_rk - 1.0e-12_rk)
     end function
 
+    !> A history row (rank 0 writes; every rank learns whether it could).
     subroutine history_row(dt)
       real(rk), intent(in) :: dt
       ok = .true.
@@ -950,8 +950,6 @@ contains
     call history_write(hist, row, ok, errmsg)
   end subroutine
 
-  !> Global sums over the owned nodes and elements, exact (udar_exact_sum),
-  !> hence the same for any partition. Collective.
   !> The energy the balance weighs against the start: the kinetic energy of
   !> the half-step velocities, which belongs to the middle of the step, and
   !> the elements' energy there, the mean of the step's two ends (u_start,
@@ -1004,6 +1002,8 @@ contains
     u = exact_value(acc(:,1)) + exact_value(acc(:,2))
   end function
 
+  !> Global sums over the owned nodes and elements, exact (udar_exact_sum),
+  !> hence the same for any partition. Collective.
   subroutine compute_balance(dom, walls, ct, bal)
     type(domain_t), intent(in) :: dom
     type(wall_sums_t), intent(in) :: walls
