@@ -5,7 +5,8 @@
 # committed meshes, at several dt_safety, with &contact valleys off and on
 # (and, for the penetration deck, sharp_edges on), fields every 0.05 us; the
 # block sliding towards a wedge's sharp edge (tests/regression/sharp_edge)
-# with sharp_edges on and off: over every frame, how often and how deep a slave
+# with sharp_edges on and off; the seed paper's Fig. 4 deck's first 20 us:
+# over every frame, how often and how deep a slave
 # node is inside a remaining master element (tests/tools/contact_depth.py).
 # The make check decks look at a few frames of one dt_safety, where a
 # node's stay inside for a few cycles can fall between frames; this is the
@@ -40,6 +41,15 @@ for deck in sharp_edge sharp_edge_off; do
   mkdir -p "$d"
   cp tests/regression/sharp_edge/sharp_edge.msh tests/regression/sharp_edge/$deck.nml "$d/"
 done
+# the seed paper's Fig. 4 deck (input/yawed_rod, eroding) at its own step,
+# its first 20 us with fields every 0.25 us (validation.md 4t)
+runs+=("yawed_rod yawed_rod 0.35 deck")
+d=$W/yawed_rod_0.35_deck
+mkdir -p "$d"
+cp input/yawed_rod/yawed_rod.msh "$d/"
+sed -e "s/t_end = [0-9.e-]*/t_end = 20.0e-6/" -e "s/dt_field = [0-9.e-]*/dt_field = 0.25e-6/" \
+    input/yawed_rod/yawed_rod.nml > "$d/yawed_rod.nml"
+grep -q "t_end = 20.0e-6" "$d/yawed_rod.nml" || { echo "stopped: t_end not set in $d/yawed_rod.nml"; exit 1; }
 export W
 printf '%s\n' "${runs[@]}" | awk '{print $2"_"$3"_"$4" "$2}' | \
   xargs -P "$JOBS" -L1 sh -c 'cd "$W/$0" && "$W/udar" "$1.nml" > run.log 2>&1 || echo "FAILED $0"'
