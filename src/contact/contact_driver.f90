@@ -553,10 +553,7 @@ contains
         cycle
       end if
       xa = ct%x(:, it%tri(:,best))
-      ! where the nodes were at the start of the step (dt = 0: where they are)
-      do a = 1, 3
-        xa0(:,a) = xa(:,a) - dt*ct%v(:,it%tri(a,best))
-      end do
+      xa0 = at_step_start(best)
       call master_shares(it%weights, xa, ct%x(:,ps), best_g, best_n, xa0, ct%x(:,ps) - dt*ct%v(:,ps), share)
       call add_record(k, best, kind_found, best_dist, best_n, best_g, share, ct%x(:,ps))
       ! in a valley of the master surface: the other face it is behind too
@@ -564,9 +561,7 @@ contains
       call valley_partner(ps, k, best, best_n, t, dist, n, g)
       if (t == 0) cycle
       xa = ct%x(:, it%tri(:,t))
-      do a = 1, 3
-        xa0(:,a) = xa(:,a) - dt*ct%v(:,it%tri(a,t))
-      end do
+      xa0 = at_step_start(t)
       call master_shares(it%weights, xa, ct%x(:,ps), g, n, xa0, ct%x(:,ps) - dt*ct%v(:,ps), share)
       call add_record(k, t, kind_valley, dist, n, g, share, ct%x(:,ps))
     end do
@@ -995,15 +990,22 @@ contains
     !> Not in a pass without a step (dt = 0).
     logical function crossed(ps, t)
       integer, intent(in) :: ps, t
-      real(rk) :: x0(3,3), n0(3), d0, g0(3)
-      integer :: a
+      real(rk) :: n0(3), d0, g0(3)
       crossed = .false.
       if (dt <= 0.0_rk) return
+      call triangle_projection(at_step_start(t), ct%x(:,ps) - dt*ct%v(:,ps), n0, d0, g0)
+      crossed = d0 >= 0.0_rk
+    end function
+
+    !> Where triangle t's corners were at the start of the step, x - dt v
+    !> (dt = 0: where they are).
+    function at_step_start(t) result(x0)
+      integer, intent(in) :: t
+      real(rk) :: x0(3,3)
+      integer :: a
       do a = 1, 3
         x0(:,a) = ct%x(:,it%tri(a,t)) - dt*ct%v(:,it%tri(a,t))
       end do
-      call triangle_projection(x0, ct%x(:,ps) - dt*ct%v(:,ps), n0, d0, g0)
-      crossed = d0 >= 0.0_rk
     end function
 
     !> The triangles across the three edges of triangle t (xb(:,:,a): across

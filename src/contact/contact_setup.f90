@@ -34,7 +34,7 @@ contains
     type(interface_t), allocatable :: ifc(:)
     integer :: k, n_err0, nf, n_ifc, i, mark_count, m_part, s_part, e
     logical, allocatable :: part_erodes(:)
-    logical, allocatable :: is_contact(:), face_used(:)
+    logical, allocatable :: is_contact(:), face_used(:), m_body(:), s_body(:)
     character(len=:), allocatable :: mname, sname
 
     ct%n_interfaces = 0
@@ -50,8 +50,8 @@ contains
     i = 0
     do k = 1, size(cfg%contacts)
       associate (c => cfg%contacts(k))
-        call surface(c%master, 'master', k, master, mname, m_part)
-        call surface(c%slave, 'slave', k, tri_all, sname, s_part)
+        call surface(c%master, 'master', k, master, mname, m_part, m_body)
+        call surface(c%slave, 'slave', k, tri_all, sname, s_part, s_body)
         if (errs%count() > n_err0) cycle
         if (to_lower(c%master) == to_lower(c%slave)) then
           ! self-contact: the surface without its faces on symmetry planes
@@ -67,11 +67,13 @@ contains
         slave = unique_nodes(tri_all)
         i = i + 1
         call make_interface(ifc(i), master, slave, tri_all, sname//'_on_'//mname)
+        call mark_start_inside(ifc(i), m_body)
         ifc(i)%master_part = eroding_part(m_part)
         ifc(i)%slave_part = eroding_part(s_part)
         if (c%symmetric) then
           i = i + 1
           call make_interface(ifc(i), tri_all, unique_nodes(master), master, mname//'_on_'//sname)
+          call mark_start_inside(ifc(i), s_body)
           ifc(i)%master_part = eroding_part(s_part)
           ! the two directions are matched together, in one set of passes
           ifc(i)%partner = i - 1
@@ -81,9 +83,6 @@ contains
       end associate
     end do
     if (errs%count() > n_err0) return
-    do i = 1, n_ifc
-      if (.not. ifc(i)%self) call mark_start_inside(ifc(i))
-    end do
 
     ! contact nodes: every node of a master triangle or a slave set, and
     ! every node of an eroding part (any may come to the surface)
@@ -149,12 +148,13 @@ contains
 
     !> The triangles of a part's boundary (name of a part) or of a physical
     !> surface group, in global node indices, oriented out of their body.
-    subroutine surface(name, role, k, tri, label, part)
+    subroutine surface(name, role, k, tri, label, part, body)
       character(len=*), intent(in) :: name, role
       integer, intent(in) :: k
       integer, allocatable, intent(out) :: tri(:,:)
       character(len=:), allocatable, intent(out) :: label
       integer, intent(out) :: part           !< the part whose boundary it is, 0 for a surface group
+      logical, allocatable, intent(out) :: body(:)   !< (parts) the parts whose boundary the triangles are
       integer :: ip, ig
       label = trim(name)
       part = 0
@@ -162,18 +162,19 @@ contains
         if (to_lower(trim(cfg%parts(ip)%group)) == to_lower(trim(name))) exit
       end do
       if (ip <= size(cfg%parts)) then
-        call take_faces(face_part(1:nf) == ip, tri)
+        call take_faces(face_part(1:nf) == ip, tri, body)
         part = ip
         return
       end if
       ig = find_group(mesh, trim(name), 2)
       if (ig > 0) then
-        call group_triangles(ig, tri)
+        call group_triangles(ig, tri, body)
         if (size(tri, 2) == 0) call errs%add(deck_where(cfg, 'contact', k, role)//": surface group '"// &
           trim(name)//"' has no triangle on the boundary of the mesh")
         return
       end if
       allocate(tri(3,0))
+      allocate(body(size(cfg%parts)), source=.false.)
       call errs%add(deck_where(cfg, 'contact', k, role)//": '"//trim(name)//"' is neither a part nor a "// &
         'physical surface group of '//trim(cfg%mesh%file)//' (parts: '//group_list(mesh, 3)// &
         '; surface groups: '//group_list(mesh, 2)//')')
@@ -181,9 +182,10 @@ contains
 
     !> The exterior faces (of any part) whose nodes are all nodes of the
     !> triangles of physical surface group ig.
-    subroutine group_triangles(ig, tri)
+    subroutine group_triangles(ig, tri, body)
       integer, intent(in) :: ig
       integer, allocatable, intent(out) :: tri(:,:)
+      logical, allocatable, intent(out) :: body(:)
       logical, allocatable :: in_group(:)
       integer, allocatable :: node_g(:)
       integer :: t, a
@@ -195,7 +197,7 @@ contains
           if (node_g(mesh%tri(t,a)) > 0) in_group(node_g(mesh%tri(t,a))) = .true.
         end do
       end do
-      call take_faces(in_group(face(1,1:nf)) .and. in_group(face(2,1:nf)) .and. in_group(face(3,1:nf)), tri)
+      call take_faces(in_group(face(1,1:nf)) .and. in_group(face(2,1:nf)) .and. in_group(face(3,1:nf)), tri, body)
     end subroutine
 
     !> Which slave nodes start inside the master body (a tetrahedron of the
@@ -203,26 +205,19 @@ contains
     !> corners): only these are initial overlaps. Behind a face's plane
     !> with the projection on it is not enough: ahead of a sharp edge or
     !> corner of a coarse master, a node in front of the body is behind the
-    !> planes of faces beyond it. Global node indices.
-    subroutine mark_start_inside(it)
+    !> planes of faces beyond it. Global node indices; in_body: the parts
+    !> whose boundary the master surface is.
+    subroutine mark_start_inside(it, in_body)
       type(interface_t), intent(inout) :: it
+      logical, intent(in) :: in_body(:)
       real(rk), parameter :: rounding = 1.0e-9_rk   ! of the area coordinates
-      logical, allocatable :: in_body(:)
       integer, allocatable :: tets(:)
       real(rk), allocatable :: lo(:,:), hi(:,:)
       type(bucket_grid_t) :: grid
       real(rk) :: xt(3,4), p(3), lam(4), s_lo(3), s_hi(3)
-      integer :: t, j, e, k, c, s
+      integer :: j, e, k, c, s
       allocate(it%start_inside(size(it%slave)), source=.false.)
       if (size(it%slave) == 0) return
-      allocate(in_body(size(cfg%parts)), source=.false.)
-      do t = 1, size(it%tri, 2)
-        do j = glob%nd_el_ptr(it%tri(1,t)), glob%nd_el_ptr(it%tri(1,t)+1) - 1
-          e = glob%nd_el(j)
-          if (any(glob%el_conn(e,:) == it%tri(2,t)) .and. any(glob%el_conn(e,:) == it%tri(3,t))) &
-            in_body(glob%el_part(e)) = .true.
-        end do
-      end do
       ! only the tetrahedra that reach the slave nodes' box can hold one
       s_lo = minval(glob%nd_x0(:, it%slave), dim=2)
       s_hi = maxval(glob%nd_x0(:, it%slave), dim=2)
@@ -268,13 +263,17 @@ contains
       if (glob%mat(glob%el_mat(findloc(glob%el_part, ip, dim=1)))%eps_erode > 0.0_rk) eroding_part = ip
     end function
 
-    !> The exterior faces selected, remembered as contact faces.
-    subroutine take_faces(selected, tri)
+    !> The exterior faces selected, remembered as contact faces, and the
+    !> parts they bound.
+    subroutine take_faces(selected, tri, body)
       logical, intent(in) :: selected(:)
       integer, allocatable, intent(out) :: tri(:,:)
+      logical, allocatable, intent(out) :: body(:)
       integer :: f
       tri = face(:, pack([(f, f = 1, nf)], selected))
       face_used = face_used .or. selected
+      allocate(body(size(cfg%parts)), source=.false.)
+      body(face_part(pack([(f, f = 1, nf)], selected))) = .true.
     end subroutine
 
     subroutine make_interface(it, tri, slave_nodes, slave_tri, label)

@@ -320,8 +320,8 @@ contains
       if (st%cycle >= cfg%run%max_cycles) done = .true.
 
       ! ---- balance, checks, output
-      history_due = done .or. st%t >= st%t_next_hist*(1.0_rk - 1.0e-12_rk)
-      print_due = mod(st%cycle, cfg%run%cycle_print) == 0 .or. done
+      history_due = history_due_at(st%t, done)
+      print_due = print_due_at(st%cycle, done)
       ! the balance costs a pass over the mesh: every few cycles is enough to catch a blow-up
       if (history_due .or. print_due .or. mod(st%cycle, balance_interval) == 0) then
         call compute_balance(dom, walls, ct, bal)
@@ -595,6 +595,20 @@ contains
       if (last) dt_next = cfg%run%t_end - st%t
     end subroutine
 
+    !> Whether a cycle ending at time t (the run's last: last) writes a history row.
+    logical function history_due_at(t, last)
+      real(rk), intent(in) :: t
+      logical, intent(in) :: last
+      history_due_at = last .or. t >= st%t_next_hist*(1.0_rk - 1.0e-12_rk)
+    end function
+
+    !> Whether cycle number c (the run's last: last) prints a progress line.
+    logical function print_due_at(c, last)
+      integer, intent(in) :: c
+      logical, intent(in) :: last
+      print_due_at = mod(c, cfg%run%cycle_print) == 0 .or. last
+    end function
+
     !> Whether the next cycle computes the balance: the balance block's
     !> conditions with the step that cycle takes (the run's end by the
     !> kinetic energy or a stop falls on a balance_interval cycle).
@@ -602,8 +616,9 @@ contains
       real(rk) :: dt_next
       logical :: last
       call next_step(dt_next, last)
-      balance_due_next = last .or. st%cycle + 1 >= cfg%run%max_cycles .or. mod(st%cycle + 1, balance_interval) == 0 &
-        .or. mod(st%cycle + 1, cfg%run%cycle_print) == 0 .or. st%t + dt_next >= st%t_next_hist*(1.0_rk - 1.0e-12_rk)
+      last = last .or. st%cycle + 1 >= cfg%run%max_cycles
+      balance_due_next = history_due_at(st%t + dt_next, last) .or. print_due_at(st%cycle + 1, last) &
+                         .or. mod(st%cycle + 1, balance_interval) == 0
     end function
 
     !> A history row (rank 0 writes; every rank learns whether it could).
