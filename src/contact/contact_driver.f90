@@ -13,6 +13,7 @@ module udar_contact
   use udar_contact_model, only: contact_t, interface_t, neighbour_across
   use udar_contact_search, only: grid_build, grid_cell, ensure
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_shares, &
+      solve_normal_lcp, normal_rows_matrix, &
                                   edge_crossing, behind_surface, beside_sharp_edge, closest_on_triangle, behind_not, behind_face, behind_seam
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, &
                         comms_max, comms_alltoall_counts, comms_alltoallv_real, comms_wtime
@@ -31,6 +32,9 @@ module udar_contact
   !> largest change a pass makes is this share of the first pass's: to
   !> round-off, so that the answer does not depend on the order of the nodes
   real(rk), parameter :: contact_relative_tolerance = 1.0e-10_rk
+  !> A joint pass (symmetric pair, self-contact) with at most this many
+  !> rows has its normal rows solved together before the sweeps
+  integer, parameter :: joint_solve_rows = 64
   !> a return to the surface moves a slave node by at most this fraction of
   !> the smallest altitude of its elements: no element loses more than this
   !> share of its volume to a jump that no velocity (and no work) goes with;
@@ -429,11 +433,26 @@ contains
     real(rk), intent(in) :: dt
     real(rk) :: dvs(3), dvm(3,3), dn, dtan(3), mismatch, first_change, vm(3,3), limit
     integer :: i, k, ps, t, a, pa, iter
-    logical :: closing
+    logical :: closing, joint
     if (dt <= 0.0_rk) return
     first_change = 0
+    ! both directions of a gap in one pass: rows that constrain one gap
+    ! from both sides converge slowly in sweeps (validation.md 4t), so such
+    ! a pass of up to joint_solve_rows rows is solved together first; as
+    ! those rows then trade impulse without changing a velocity, its sweeps
+    ! stop on the nodes' net velocity change (theory.md 11)
+    joint = .false.
+    if (last > first .or. ct%ifc(first)%self) call solve_joint_normals(ct, first, last, dt, first_change, joint)
+    if (joint) then
+      if (.not. allocated(ct%v_sweep)) allocate(ct%v_sweep(3, ct%n_nodes))
+      if (size(ct%v_sweep, 2) < ct%n_nodes) then
+        deallocate(ct%v_sweep)
+        allocate(ct%v_sweep(3, ct%n_nodes))
+      end if
+    end if
     do iter = 1, ct%ifc(first)%iterations
       mismatch = 0
+      if (joint) call keep_row_velocities()
       do i = first, last
         associate (it => ct%ifc(i))
           do k = 1, it%n_pass
@@ -460,7 +479,9 @@ contains
           it%sweeps = it%sweeps + 1
         end associate
       end do
-      if (iter == 1) first_change = mismatch
+      if (joint) mismatch = row_velocity_change()
+      ! the scale of the pass: its first sweep, or the joint solve before it
+      if (iter == 1) first_change = max(first_change, mismatch)
       ! converged: every node matched or released, its changes admissible
       limit = merge(ct%ifc(first)%tolerance, contact_relative_tolerance*first_change, ct%ifc(first)%tolerance > 0.0_rk)
       if (mismatch <= limit) exit
@@ -469,6 +490,103 @@ contains
           ct%ifc(i)%sweep_limit_hits = ct%ifc(i)%sweep_limit_hits + 1
         end do
       end if
+    end do
+  contains
+    !> The velocities of the pass's rows' nodes at the start of a sweep.
+    subroutine keep_row_velocities()
+      integer :: j, kk, tt
+      do j = first, last
+        do kk = 1, ct%ifc(j)%n_pass
+          tt = ct%ifc(j)%on_tri(kk)
+          ct%v_sweep(:, ct%ifc(j)%active(kk)) = ct%v(:, ct%ifc(j)%active(kk))
+          ct%v_sweep(:, ct%ifc(j)%tri(:,tt)) = ct%v(:, ct%ifc(j)%tri(:,tt))
+        end do
+      end do
+    end subroutine
+    !> The largest change of a row node's velocity over the sweep.
+    real(rk) function row_velocity_change() result(change)
+      integer :: j, kk, tt, aa, p
+      change = 0
+      do j = first, last
+        do kk = 1, ct%ifc(j)%n_pass
+          tt = ct%ifc(j)%on_tri(kk)
+          do aa = 0, 3
+            p = ct%ifc(j)%active(kk)
+            if (aa > 0) p = ct%ifc(j)%tri(aa,tt)
+            change = max(change, norm2(ct%v(:,p) - ct%v_sweep(:,p)))
+          end do
+        end do
+      end do
+    end function
+  end subroutine
+
+  !> The normal rows of a joint pass (at most joint_solve_rows) solved
+  !> together (solve_normal_lcp, normal_rows_matrix): row r is slave node
+  !> s_r against its triangle's nodes at weights gc_r (the contact point,
+  !> as in match_velocities) with shares R_r (momentum exact). The accumulated
+  !> changes so far (dn_sum) count: the solve is for the totals (>= 0).
+  !> The changes are applied as the sweeps apply theirs (velocities, and
+  !> positions by dt times them); the sweeps then add friction and what
+  !> rounding left. A pass the solve cannot settle is left to the sweeps.
+  !> change: the largest normal velocity change the solve made; solved:
+  !> whether it did (the pass had rows, not too many, and a solution).
+  subroutine solve_joint_normals(ct, first, last, dt, change, solved)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: first, last
+    real(rk), intent(in) :: dt
+    real(rk), intent(out) :: change
+    logical, intent(out) :: solved
+    integer, parameter :: nr = joint_solve_rows
+    integer :: node(0:3,nr), row_ifc(nr), row_k(nr), n, i, k, t, q, a, p
+    real(rk) :: w(0:3,nr), coef(0:3,nr), nrm(3,nr), m(nr,nr), b(nr), lam(nr), lam0(nr), work(nr,nr+1), &
+                gc(3), v_master(3), dl
+    logical :: free(nr)
+    change = 0
+    solved = .false.
+    n = 0
+    do i = first, last
+      n = n + ct%ifc(i)%n_pass
+    end do
+    if (n == 0 .or. n > nr) return
+    n = 0
+    do i = first, last
+      associate (it => ct%ifc(i))
+        do k = 1, it%n_pass
+          n = n + 1
+          row_ifc(n) = i
+          row_k(n) = k
+          t = it%on_tri(k)
+          node(0,n) = it%active(k)
+          node(1:3,n) = it%tri(:,t)
+          gc = max(it%area(:,k), 0.0_rk)
+          gc = gc/sum(gc)
+          w(0,n) = -1.0_rk
+          w(1:3,n) = gc
+          coef(0,n) = 1.0_rk
+          do a = 1, 3
+            coef(a,n) = -it%share(a,k)*ct%m(node(0,n))/ct%m(node(a,n))
+          end do
+          nrm(:,n) = it%normal(:,k)
+          lam0(n) = it%dn_sum(k)
+          v_master = gc(1)*ct%v(:,node(1,n)) + gc(2)*ct%v(:,node(2,n)) + gc(3)*ct%v(:,node(3,n))
+          b(n) = -dot_product(nrm(:,n), v_master - ct%v(:,node(0,n)))
+        end do
+      end associate
+    end do
+    call normal_rows_matrix(n, nr, node(:,1:n), w(:,1:n), coef(:,1:n), nrm(:,1:n), m)
+    ! for the totals: s = (b - M lam0) + M lam
+    b(1:n) = b(1:n) - matmul(m(1:n,1:n), lam0(1:n))
+    call solve_normal_lcp(n, nr, m, b(1:n), lam(1:n), solved, work, free)
+    if (.not. solved) return
+    do q = 1, n
+      dl = lam(q) - lam0(q)
+      if (dl == 0.0_rk) cycle
+      change = max(change, abs(dl))
+      do p = 0, 3
+        ct%v(:,node(p,q)) = ct%v(:,node(p,q)) + (coef(p,q)*dl)*nrm(:,q)
+        ct%x(:,node(p,q)) = ct%x(:,node(p,q)) + dt*(coef(p,q)*dl)*nrm(:,q)
+      end do
+      ct%ifc(row_ifc(q))%dn_sum(row_k(q)) = lam(q)
     end do
   end subroutine
 

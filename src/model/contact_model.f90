@@ -130,6 +130,7 @@ module udar_contact_model
     real(rk), allocatable :: impulse(:)    !< N s, normal contact impulse on each contact node in the last pass
     real(rk), allocatable :: pressure(:)   !< Pa, work array: contact pressure of each contact node
     real(rk), allocatable :: work_area(:)  !< m2, work array of contact_pressure
+    real(rk), allocatable :: v_sweep(:,:)  !< (3,n) m/s, work array: velocities at the start of a joint pass's sweep
     real(rk) :: dt_last = 0                !< s, the step of the last pass
     ! eroding surfaces: every tetrahedron of the parts whose boundary changes
     ! as elements erode (all their nodes are contact nodes)

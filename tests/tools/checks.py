@@ -53,5 +53,17 @@ def initial_overlaps(run_dir, interface):
     raise ValueError(f'{run_dir}/run.log has no initial-overlap line for {interface}')
 
 
+def unconverged_passes(run_dir, interface):
+    """How many contact passes of an interface ended at &contact iterations
+    unconverged, from the run's log (run.log, written by run_tests.sh)."""
+    prefix = f'contact {interface}: velocity matching '
+    with open(os.path.join(run_dir, 'run.log')) as f:
+        for line in f:
+            line = line.strip()
+            if line.startswith(prefix) and 'unconverged' in line:
+                return int(line.split(';')[1].split()[0])
+    raise ValueError(f'{run_dir}/run.log has no velocity-matching line for {interface}')
+
+
 def finish():
     sys.exit(1 if _failed else 0)

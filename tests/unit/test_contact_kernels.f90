@@ -10,7 +10,7 @@ program test_contact_kernels
   use udar_vectors, only: cross
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, edge_crossing, edge_shares, &
                                   tetrahedron_coordinates, behind_surface, beside_sharp_edge, closest_on_triangle, behind_not, behind_face, &
-                                  behind_seam
+                                  behind_seam, solve_normal_lcp, normal_rows_matrix
   use udar_contact_model, only: interface_t, surface_neighbours, neighbour_across
   use unit_checks, only: check, check_summary
   implicit none
@@ -50,6 +50,7 @@ program test_contact_kernels
   worst = maxval(abs(v_fwd - v_rev))
   write(detail, '(a,es9.2,a)') 'friction 0.3: largest velocity difference between the orders ', worst, ' m/s (bound 1e-9)'
   call check('contact_friction_order_independent', worst < 1.0e-9_rk, trim(detail))
+  call test_normal_lcp()
   call test_single_correction()
   call test_moving_correction()
   call test_moving_edges()
@@ -343,6 +344,51 @@ contains
   !> Passes of match_velocities over the slave nodes in the given order;
   !> v: the slave velocities (1..ns) then the master nodes' (ns+1..ns+3);
   !> dn: each slave node's accumulated normal change.
+  !> solve_normal_lcp on problems solved by hand, and on the four-node
+  !> strike (normal_rows_matrix from its rows): the same normal changes as
+  !> the converged sweeps.
+  subroutine test_normal_lcp()
+    real(rk) :: m(ns,ns), b(ns), lam(ns), work(ns,ns+1), sep(2), v(3,ns+3), dn_sum(ns), xs(3), n(3), dist, &
+                g(3), share(3), w(0:3,ns), coef(0:3,ns), nrm(3,ns), err
+    integer :: node(0:3,ns), k
+    logical :: free(ns), ok
+    ! one row in contact, one not: lam = (0.5, 0), s = (0, 1.5)
+    ! (within the solve's regularisation, 1e-10 of the largest diagonal)
+    m(1:2,1:2) = reshape([2.0_rk, 1.0_rk, 1.0_rk, 2.0_rk], [2, 2])
+    call solve_normal_lcp(2, ns, m, [-1.0_rk, 1.0_rk], lam(1:2), ok, work, free)
+    call check('normal_lcp_one_row_by_hand', ok .and. maxval(abs(lam(1:2) - [0.5_rk, 0.0_rk])) < 1.0e-9_rk, &
+               'lam '//s(lam(1))//' '//s(lam(2)))
+    ! the first guess (row 2 alone) leaves row 1 approaching: one pivot,
+    ! lam = (1/3, 5/3)
+    m(1:2,1:2) = reshape([2.0_rk, -1.0_rk, -1.0_rk, 2.0_rk], [2, 2])
+    call solve_normal_lcp(2, ns, m, [1.0_rk, -3.0_rk], lam(1:2), ok, work, free)
+    call check('normal_lcp_pivot_by_hand', ok .and. maxval(abs(lam(1:2) - [1.0_rk/3, 5.0_rk/3])) < 1.0e-9_rk, &
+               'lam '//s(lam(1))//' '//s(lam(2)))
+    ! two rows on one gap (singular): any split with s = 0, none negative
+    m(1:2,1:2) = 1.0_rk
+    call solve_normal_lcp(2, ns, m, [-1.0_rk, -1.0_rk], lam(1:2), ok, work, free)
+    sep = [-1.0_rk, -1.0_rk] + matmul(m(1:2,1:2), lam(1:2))
+    call check('normal_lcp_one_gap_twice', ok .and. all(lam(1:2) >= 0.0_rk) .and. maxval(abs(sep)) < 1.0e-9_rk, &
+               'separation rates '//s(sep(1))//' '//s(sep(2)))
+    ! the four-node strike: rows 1-4, the triangle's nodes 5-7, unit masses
+    call strike([1, 2, 3, 4], 400, 0.0_rk, v, dn_sum)
+    do k = 1, ns
+      xs = matmul(xm, gs(:,k)) + [0.0_rk, 0.0_rk, -1.0e-6_rk]
+      call triangle_projection(xm, xs, n, dist, g)
+      call master_shares(contact_weights_area, xm, xs, g, n, xm, xs, share)
+      node(:,k) = [k, ns + 1, ns + 2, ns + 3]
+      w(:,k) = [-1.0_rk, max(g, 0.0_rk)/sum(max(g, 0.0_rk))]
+      coef(:,k) = [1.0_rk, -share]
+      nrm(:,k) = n
+      b(k) = -dot_product(n, -[0.0_rk, 0.0_rk, -1.0_rk])     ! the slave nodes strike at 1 m/s, the master at rest
+    end do
+    call normal_rows_matrix(ns, ns, node, w, coef, nrm, m)
+    call solve_normal_lcp(ns, ns, m, b, lam, ok, work, free)
+    err = maxval(abs(lam - dn_sum))
+    call check('normal_lcp_equals_converged_sweeps', ok .and. err < 1.0e-9_rk, &
+               'largest difference from 400 sweeps '//s(err)//' m/s')
+  end subroutine
+
   subroutine strike(order, passes, friction, v, dn_sum)
     integer, intent(in) :: order(ns), passes
     real(rk), intent(in) :: friction
