@@ -1,0 +1,93 @@
+!> The 2D three-node triangle (issue 14, in progress: not yet driven by a
+!> 2D solver): geometry, strain rate and internal nodal forces, plane
+!> strain or axisymmetric, block-wise (element index innermost) like the
+!> 3D tet4 kernels. Coordinates (r, z) with r >= 0 the radius and z the
+!> axis (axisymmetric), or (x, y) (plane strain). Axisymmetric quantities
+!> are per radian: the element's volume is rbar A, rbar the mean radius of
+!> its corners and A its area (doc/theory.md section 14). Pure kernels:
+!> no state, no I/O.
+module udar_tri3
+  use udar_kinds, only: rk
+  implicit none
+  private
+  public :: tri_geometry, tri_velocity_gradient, tri_internal_forces
+
+contains
+
+  !> Area (positive for corners counter-clockwise in the (r, z) plane),
+  !> mean radius rbar, volume vol (axisymmetric: rbar A per radian; plane
+  !> strain: A per unit thickness) and the gradients dN_a/dr, dN_a/dz of
+  !> the first nb elements of a block, x(ld,3,2) their corners' coordinates.
+  pure subroutine tri_geometry(ld, nb, axisymmetric, x, area, rbar, vol, grad)
+    integer, intent(in) :: ld, nb
+    logical, intent(in) :: axisymmetric
+    real(rk), intent(in) :: x(ld,3,2)
+    real(rk), intent(inout) :: area(nb), rbar(nb), vol(nb), grad(ld,3,2)
+    real(rk) :: two_a, r
+    integer :: i
+    do i = 1, nb
+      two_a = (x(i,2,1) - x(i,1,1))*(x(i,3,2) - x(i,1,2)) - (x(i,3,1) - x(i,1,1))*(x(i,2,2) - x(i,1,2))
+      area(i) = 0.5_rk*two_a
+      rbar(i) = (x(i,1,1) + x(i,2,1) + x(i,3,1))/3.0_rk
+      vol(i) = merge(rbar(i)*area(i), area(i), axisymmetric)
+      ! an inverted element keeps finite numbers; a driver stops on area <= 0
+      r = 1.0_rk/merge(two_a, 1.0_rk, two_a /= 0.0_rk)
+      grad(i,1,1) = (x(i,2,2) - x(i,3,2))*r; grad(i,1,2) = (x(i,3,1) - x(i,2,1))*r
+      grad(i,2,1) = (x(i,3,2) - x(i,1,2))*r; grad(i,2,2) = (x(i,1,1) - x(i,3,1))*r
+      grad(i,3,1) = (x(i,1,2) - x(i,2,2))*r; grad(i,3,2) = (x(i,2,1) - x(i,1,1))*r
+    end do
+  end subroutine
+
+  !> Strain rate d = (rr, zz, hoop, rz) and spin w = (dv_r/dz - dv_z/dr)/2
+  !> of the first nb elements from the corner velocities v(ld,3,2). The
+  !> hoop rate is the mean radial velocity over the mean radius (the
+  !> centroid's v_r / r: exact for v_r linear in r, so a uniform radial
+  !> expansion v_r = a r gives d_rr = d_hoop = a); 0 in plane strain.
+  pure subroutine tri_velocity_gradient(ld, nb, axisymmetric, v, grad, rbar, d, w)
+    integer, intent(in) :: ld, nb
+    logical, intent(in) :: axisymmetric
+    real(rk), intent(in) :: v(ld,3,2), grad(ld,3,2), rbar(nb)
+    real(rk), intent(inout) :: d(ld,4), w(nb)
+    real(rk) :: lrr, lrz, lzr, lzz
+    integer :: i
+    do i = 1, nb
+      lrr = v(i,1,1)*grad(i,1,1) + v(i,2,1)*grad(i,2,1) + v(i,3,1)*grad(i,3,1)
+      lrz = v(i,1,1)*grad(i,1,2) + v(i,2,1)*grad(i,2,2) + v(i,3,1)*grad(i,3,2)
+      lzr = v(i,1,2)*grad(i,1,1) + v(i,2,2)*grad(i,2,1) + v(i,3,2)*grad(i,3,1)
+      lzz = v(i,1,2)*grad(i,1,2) + v(i,2,2)*grad(i,2,2) + v(i,3,2)*grad(i,3,2)
+      d(i,1) = lrr
+      d(i,2) = lzz
+      d(i,3) = 0.0_rk
+      if (axisymmetric) d(i,3) = (v(i,1,1) + v(i,2,1) + v(i,3,1))/(3.0_rk*rbar(i))
+      d(i,4) = 0.5_rk*(lrz + lzr)
+      w(i) = 0.5_rk*(lrz - lzr)
+    end do
+  end subroutine
+
+  !> Internal nodal forces f(ld,3,2) of the stress sigma = s - p I, s the
+  !> deviator (rr, zz, hoop, rz), p the pressure:
+  !>   f_a,r = -vol (sigma_rr dN_a/dr + sigma_rz dN_a/dz) - A sigma_hoop / 3,
+  !>   f_a,z = -vol (sigma_rz dN_a/dr + sigma_zz dN_a/dz),
+  !> the hoop term only axisymmetric. The transpose of
+  !> tri_velocity_gradient: sum_a f_a . v_a = -vol sigma : d exactly, so the
+  !> forces' work is the stress power (energy conservation), and a uniform
+  !> stress with sigma_rr = sigma_hoop, sigma_rz = 0 (in equilibrium) leaves
+  !> every interior node without force.
+  pure subroutine tri_internal_forces(ld, nb, axisymmetric, vol, area, grad, s, p, f)
+    integer, intent(in) :: ld, nb
+    logical, intent(in) :: axisymmetric
+    real(rk), intent(in) :: vol(nb), area(nb), grad(ld,3,2), s(ld,4), p(nb)
+    real(rk), intent(inout) :: f(ld,3,2)
+    real(rk) :: srr, szz, shoop, hoop
+    integer :: i, a
+    do a = 1, 3
+      do i = 1, nb
+        srr = s(i,1) - p(i); szz = s(i,2) - p(i); shoop = s(i,3) - p(i)
+        hoop = 0.0_rk
+        if (axisymmetric) hoop = area(i)*shoop/3.0_rk
+        f(i,a,1) = -vol(i)*(srr*grad(i,a,1) + s(i,4)*grad(i,a,2)) - hoop
+        f(i,a,2) = -vol(i)*(s(i,4)*grad(i,a,1) + szz*grad(i,a,2))
+      end do
+    end do
+  end subroutine
+end module udar_tri3
