@@ -4,7 +4,8 @@ program udar
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use udar_kinds, only: rk, i8, max_path_len
   use udar_comms, only: comms_init, comms_finalize, comms_is_root, comms_size, comms_rank, comms_bcast_int, &
-      halo_t, comms_max_int, comms_max_i8, comms_sum_int
+      halo_t, comms_max_int, comms_max_i8, comms_sum_int, comms_allgather_count, comms_allgatherv_int, comms_wtime, &
+      comms_allgatherv_real
   use udar_distribution, only: distribute_domain
   use udar_fatal, only: fatal_all, exit_input
   use udar_log, only: log_info, log_warn, log_to_stderr
@@ -18,6 +19,7 @@ program udar
   use udar_memory, only: peak_rss_bytes, rss_bytes
   use udar_setup, only: build_domain, init_state, count_bodies
   use udar_run, only: run_simulation, run_result_t
+  use udar_element_driver, only: element_costs
   use udar_checkpoint, only: checkpoint_model_hash, checkpoint_mesh_hash, checkpoint_latest
   use udar_contact_model, only: contact_t, any_eroding
   use udar_contact_setup, only: build_contact
@@ -46,10 +48,14 @@ program udar
   real(rk) :: wall_limit_arg = 0.0_rk               !< --wall-limit S: overrides &run wall_limit
   character(len=:), allocatable :: pending, restart_path
   integer(i8) :: model_hash, mesh_hash, glob_bytes
+  integer, allocatable :: weights(:)   !< cost weight of each global element, for a rebalance's partition
+  integer :: rebalances, cycles_run
+  real(rk) :: loop_seconds, wall_seconds, job_start
 
   ! first: a batch system's signal during set-up is kept, not fatal
   call signals_install()
   call comms_init()
+  job_start = comms_wtime()
   check_only = .false.
   deck_path = ''
   pending = ''
@@ -101,25 +107,12 @@ program udar
   ! ---- input: every mistake in the deck and its mesh reported at once
   call deck_read(trim(deck_path), cfg, errs)
   if (errs%count() == 0) call check_output_directory()
-  if (errs%count() == 0) then
-    call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg)
-    if (.not. ok) then
-      call errs%add(deck_where(cfg, 'mesh', 1, 'file')//': '//msg)
-    else
-      call build_domain(cfg, mesh, dom, errs)
-      if (errs%count() == 0) call build_contact(cfg, mesh, dom, contacts, errs)
-      ! the eroding surfaces with each face's element (its fourth corner)
-      if (errs%count() == 0) call contact_eroding_surfaces(contacts)
-    end if
-  end if
+  if (errs%count() == 0) call read_model()
   if (errs%count() > 0) then
     if (comms_is_root()) call input_errors_report(errs, error_unit)
     call fatal_all(exit_input, 'input deck '//trim(deck_path)//' has errors; nothing was run or written')
   end if
-  write(line, '(a,i0,a,i0,a,i0,a)') 'mesh '//trim(cfg%mesh%file)//': ', mesh%n_nodes, ' nodes, ', mesh%n_tets, &
-    ' tetrahedra, ', mesh%n_inverted, ' reoriented at read time'
   call log_info(line)
-  mesh = gmsh_mesh_t()     ! the domain and the contact surfaces hold all that is needed of it
   n_bodies = count_bodies(dom)
   if (n_bodies > 1 .and. contacts%n_interfaces == 0) then
     write(line, '(a,i0,a)') 'the mesh holds ', n_bodies, ' separate bodies and the deck no &contact: '// &
@@ -151,15 +144,42 @@ program udar
     if (len(restart_path) == 0) call log_info('--restart auto: no checkpoint of this case yet; starting at t = 0')
   end if
   glob_bytes = domain_bytes(dom)
-  call decompose(dom, local, halo)
-  call contact_distribute(contacts, local)
-  call log_memory('start-up', local)
-  call run_simulation(cfg, local, halo, contacts, restart_path, model_hash, mesh_hash, res)
+  ! a run is one segment, or several when &run rebalance_imbalance asks for
+  ! a new partition: each ends with a checkpoint that the next, on a
+  ! partition weighted by the elements' cost, restarts from (the results are
+  ! those of one segment: they do not depend on the partition)
+  rebalances = 0
+  cycles_run = 0
+  loop_seconds = 0.0_rk
+  wall_seconds = 0.0_rk
+  do
+    call decompose(dom, local, halo, weights)
+    local%time_blocks = cfg%run%rebalance_imbalance > 0.0_rk .and. comms_size() > 1
+    call contact_distribute(contacts, local)
+    if (rebalances == 0) call log_memory('start-up', local)
+    call run_simulation(cfg, local, halo, contacts, restart_path, model_hash, mesh_hash, res, &
+                        rebalances_before=rebalances, job_start=job_start)
+    cycles_run = cycles_run + res%cycles_run
+    loop_seconds = loop_seconds + res%loop_seconds
+    wall_seconds = wall_seconds + res%wall_seconds
+    if (.not. res%rebalance) exit
+    rebalances = rebalances + 1
+    call gather_cost_weights(local, weights)
+    restart_path = trim(res%checkpoint)
+    ! the global mesh domain and the contact surfaces again, as at the start
+    call read_model()
+    if (errs%count() > 0) call fatal_all(exit_input, 'rebalance: the mesh could not be read again; the run '// &
+                                         'goes on with: udar --restart '//trim(res%checkpoint)//' DECK')
+    if (checkpoint_mesh_hash(dom) /= mesh_hash) call fatal_all(exit_input, 'rebalance: the mesh file '// &
+      trim(cfg%mesh%file)//' changed during the run; the run goes on with its own mesh and: udar --restart '// &
+      trim(res%checkpoint)//' DECK')
+  end do
   call log_memory('run', local)
   write(line, '(a,i0,a,es12.5,a,es10.3,a)') 'udar: done: ', res%cycles, ' cycles to t = ', &
-    res%time, ' s, energy error ', res%energy_error, ', '//fixed(res%wall_seconds, 2)//' s wall ('// &
-    fixed(res%ns_per_element_cycle, 1)//' ns per element-cycle); fields '// &
-    trim(res%field_file)//', history '//trim(res%history_file)
+    res%time, ' s, energy error ', res%energy_error, ', '//fixed(wall_seconds, 2)//' s wall ('// &
+    fixed(1.0e9_rk*loop_seconds/(real(local%n_global_elems, rk)*max(cycles_run, 1)), 1)// &
+    ' ns per element-cycle); fields '//trim(res%field_file)//', history '//trim(res%history_file)
+  if (rebalances > 0) line = trim(line)//'; '//itoa(rebalances)//' rebalance'//trim(merge('s', ' ', rebalances > 1))
   call log_info(line)
   call comms_finalize()
 
@@ -168,10 +188,11 @@ contains
   !> METIS partition on rank 0 (one answer for all), the local domain and
   !> halo of this rank, and the partition report. The global domain is freed
   !> before the local state is allocated (the start-up peak).
-  subroutine decompose(glob, loc, halo)
+  subroutine decompose(glob, loc, halo, weights)
     type(domain_t), intent(inout) :: glob
     type(domain_t), intent(out) :: loc
     type(halo_t), intent(out) :: halo
+    integer, allocatable, intent(in) :: weights(:)   !< if allocated: the elements' cost weights
     integer, allocatable :: part(:)
     type(partition_stats_t) :: stats
     integer :: n, bad
@@ -181,12 +202,21 @@ contains
     bad = 0
     if (n > 1) then
       if (comms_is_root()) then
-        call partition_elements(glob%n_nodes, glob%el_conn, n, part, stats, ok, msg)
+        if (allocated(weights)) then
+          call partition_elements(glob%n_nodes, glob%el_conn, n, part, stats, ok, msg, weights)
+        else
+          call partition_elements(glob%n_nodes, glob%el_conn, n, part, stats, ok, msg)
+        end if
         if (.not. ok) bad = 1
       end if
       if (comms_max_int(bad) /= 0) call fatal_all(exit_input, 'partition for '//itoa(n)//' ranks: '//msg)
       call comms_bcast_int(part)
       if (comms_is_root()) call log_partition(glob, part, n, stats)
+      if (comms_is_root() .and. allocated(weights)) then
+        write(line, '(a,f0.2,a,f6.3,a)') 'partition weighted by the elements'' measured cost (the dearest ', &
+          maxval(weights)/10.0_rk, ' times the mean): weighted load imbalance ', stats%weighted_imbalance
+        call log_info(line)
+      end if
     end if
     call distribute_domain(glob, part, comms_rank(), loc, halo)
     deallocate(part)
@@ -219,6 +249,53 @@ contains
         nint(peak/ne), ' bytes per element (largest rank)'
     end if
     call log_info(line)
+  end subroutine
+
+  !> The deck's mesh read into the global mesh domain dom and the contact
+  !> surfaces (errors into errs); line: what the log says of the mesh.
+  subroutine read_model()
+    call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg)
+    if (.not. ok) then
+      call errs%add(deck_where(cfg, 'mesh', 1, 'file')//': '//msg)
+    else
+      dom = domain_t()
+      contacts = contact_t()
+      call build_domain(cfg, mesh, dom, errs)
+      if (errs%count() == 0) call build_contact(cfg, mesh, dom, contacts, errs)
+      ! the eroding surfaces with each face's element (its fourth corner)
+      if (errs%count() == 0) call contact_eroding_surfaces(contacts)
+      write(line, '(a,i0,a,i0,a,i0,a)') 'mesh '//trim(cfg%mesh%file)//': ', mesh%n_nodes, ' nodes, ', &
+        mesh%n_tets, ' tetrahedra, ', mesh%n_inverted, ' reoriented at read time'
+    end if
+    mesh = gmsh_mesh_t()     ! the domain and the contact surfaces hold all that is needed of it
+  end subroutine
+
+  !> The cost weight of every global element: its measured cost
+  !> (element_costs of the owned elements, gathered to every rank by global
+  !> index) in tenths of the mean element's, at least 1 (the sum fits METIS's 32-bit
+  !> weights up to 200 million elements).
+  subroutine gather_cost_weights(loc, w)
+    type(domain_t), intent(in) :: loc
+    integer, allocatable, intent(inout) :: w(:)
+    real(rk), allocatable :: cost(:), own_c(:), all_c(:), c(:)
+    integer, allocatable :: own_g(:), all_g(:), counts(:)
+    integer :: no
+    real(rk) :: mean
+    allocate(cost(loc%n_elems))
+    call element_costs(loc, cost)
+    no = size(loc%el_owned_list)
+    own_c = cost(loc%el_owned_list)
+    own_g = loc%el_gidx(loc%el_owned_list)
+    allocate(counts(0:comms_size()-1))
+    call comms_allgather_count(no, counts)
+    allocate(all_c(sum(counts)), all_g(sum(counts)))
+    call comms_allgatherv_real(own_c, counts, all_c)
+    call comms_allgatherv_int(own_g, counts, all_g)
+    allocate(c(loc%n_global_elems), source=0.0_rk)
+    c(all_g) = all_c
+    mean = max(sum(c)/max(size(c), 1), tiny(1.0_rk))
+    if (allocated(w)) deallocate(w)
+    w = max(1, nint(10.0_rk*c/mean))
   end subroutine
 
   !> udar --check --ranks N: the partition a run on N ranks would get.

@@ -101,6 +101,9 @@ run_test "cli/contact_mirrored" tests/cli/contact_mirrored.sh bin/udar
 run_test "cli/ranks_taylor_ofhc" tests/cli/rank_invariance.sh bin/udar taylor_ofhc_baseline 30.0e-6
 run_test "cli/ranks_taylor_wg_stabilised" tests/cli/rank_invariance.sh bin/udar taylor_wg 20.0e-6 stabilised
 run_test "cli/restart" tests/cli/restart.sh bin/udar
+# repartitioning during a run (&run rebalance_imbalance): bitwise the 1-rank run
+run_test "cli/rebalance" tests/cli/rebalance.sh bin/udar taylor_ofhc_baseline 20.0e-6 2
+run_test "cli/rebalance_erosion" tests/cli/rebalance.sh bin/udar penetration 2.0e-6 1
 run_test "cli/hard_kill" tests/cli/hard_kill.sh bin/udar 8
 run_test "cli/damaged_checkpoint" tests/cli/damaged_checkpoint.sh bin/udar
 run_test "cli/run_control" tests/cli/run_control.sh bin/udar

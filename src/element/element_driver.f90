@@ -7,7 +7,7 @@
 !> every local element (owned and ghost); nodal sums the owned nodes,
 !> whose element lists are complete.
 module udar_element_driver
-  use udar_kinds, only: rk
+  use udar_kinds, only: rk, i8
   use udar_domain, only: domain_t, block_size
   use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_pressure_forces, tet_volumes, &
       tet_stiffness_bound
@@ -20,7 +20,8 @@ module udar_element_driver
   implicit none
   private
   public :: element_volumes, element_update, nodal_pressures, element_forces_averaged, element_stiffness_bounds, &
-            nodal_stable_dt, element_time_steps, nodal_reference_volumes, element_altitudes, current_volume
+            nodal_stable_dt, element_time_steps, nodal_reference_volumes, element_altitudes, current_volume, &
+            element_costs
 
 contains
 
@@ -35,8 +36,10 @@ contains
     type(domain_t), intent(inout) :: dom
     real(rk) :: xe(block_size,4,3), vol(block_size)
     integer :: b, k, n, i, c, first, nb
+    integer(i8) :: tick0, tick1
     dom%nd_j(1:dom%n_owned_nodes) = 0.0_rk
     do b = 1, dom%n_blocks
+      if (dom%time_blocks) call system_clock(tick0)
       first = dom%blk_first(b)
       nb = dom%blk_last(b) - first + 1
       call gather_block(dom, dom%nd_x, first, nb, xe)
@@ -57,6 +60,10 @@ contains
           dom%nd_j(n) = 1.0_rk
         end if
       end do
+      if (dom%time_blocks) then
+        call system_clock(tick1)
+        dom%blk_ticks(b) = dom%blk_ticks(b) + (tick1 - tick0)
+      end if
     end do
   end subroutine
 
@@ -182,6 +189,7 @@ contains
     logical :: gone(ld), no_shear(ld), erodible, fracturing, fractured, stab, geo
     real(rk) :: t_old, d_eps, jbar(ld), je(ld), share(ld), r_min
     integer :: b, i, e, nb, first, last, k, n
+    integer(i8) :: tick0, tick1
     r_min = huge(1.0_rk)
     dt_node = 0
     dom%nd_k(1:dom%n_owned_nodes) = 0.0_rk
@@ -194,6 +202,7 @@ contains
     dom%nd_f(:,1:dom%n_owned_nodes) = 0.0_rk
     if (dom%anti_locking) dom%nd_p(1:dom%n_owned_nodes) = 0.0_rk
     do b = 1, dom%n_blocks
+      if (dom%time_blocks) call system_clock(tick0)
       call block_geometry(dom, b, first, last, nb, vol, grad, h)
       call gather_block(dom, dom%nd_v, first, nb, ve)
       h(1:nb) = 1.0_rk/sqrt(h(1:nb))      ! smallest altitude
@@ -378,6 +387,10 @@ contains
         n = dom%blk_nd(k)
         call keep_stiffest(n, dom%nd_mass(n), dom%nd_k(n), r_min, dt_node)
       end do
+      if (dom%time_blocks) then
+        call system_clock(tick1)
+        dom%blk_ticks(b) = dom%blk_ticks(b) + (tick1 - tick0)
+      end if
     end do
     dt_stable = huge(1.0_rk)
     if (dt_node > 0) dt_stable = 2.0_rk*sqrt(r_min)
@@ -461,6 +474,20 @@ contains
     if (k > 0.0_rk) dt = 2.0_rk*sqrt(0.25_rk*mass/k)
   end function
 
+  !> The measured cost of every local element for a partition (&run
+  !> rebalance_imbalance): its block's time in the element passes since the
+  !> run or the last repartition over the block's elements, in clock ticks (an
+  !> element flowing plastically costs up to about twice an elastic one,
+  !> its radial return: performance.md, "Where the 2-rank speedup goes").
+  subroutine element_costs(dom, cost)
+    type(domain_t), intent(in) :: dom
+    real(rk), intent(out) :: cost(:)
+    integer :: b
+    do b = 1, dom%n_blocks
+      cost(dom%blk_first(b):dom%blk_last(b)) = real(dom%blk_ticks(b), rk)/(dom%blk_last(b) - dom%blk_first(b) + 1)
+    end do
+  end subroutine
+
   !> Every element's own stable step (own_step of its last stiffness
   !> bound; huge for eroded elements), for output.
   subroutine element_time_steps(dom, dt_el)
@@ -479,7 +506,9 @@ contains
     integer, parameter :: ld = block_size
     real(rk) :: p_bar(ld), fe(ld,4,3), xe(ld,4,3)
     integer :: b, i, e, nb, first
+    integer(i8) :: tick0, tick1
     do b = 1, dom%n_blocks
+      if (dom%time_blocks) call system_clock(tick0)
       first = dom%blk_first(b)
       nb = dom%blk_last(b) - first + 1
       call gather_block(dom, dom%nd_x, first, nb, xe)
@@ -493,6 +522,10 @@ contains
       end do
       call tet_pressure_forces(ld, nb, xe, p_bar, fe)
       call add_forces(dom, first, nb, fe)
+      if (dom%time_blocks) then
+        call system_clock(tick1)
+        dom%blk_ticks(b) = dom%blk_ticks(b) + (tick1 - tick0)
+      end if
     end do
   end subroutine
 

@@ -114,6 +114,7 @@ module udar_deck
        var_t('run', 'wall_limit', 'r', 1, 0, 's', '>= 0'), &
        var_t('run', 'end_kinetic_fraction', 'r', 1, 0, '-', 'in [0, 1)'), &
        var_t('run', 'dt_warn_ratio', 'r', 1, 0, '-', 'in [0, 1)'), &
+       var_t('run', 'rebalance_imbalance', 'r', 1, 0, '-', '>= 0'), &
        var_t('mesh', 'file', 'c', 1, max_path_len, '', ''), &
        var_t('mesh', 'scale', 'r', 1, 0, '-', '> 0'), &
        var_t('material', 'name', 'c', 1, max_name_len, '', ''), &
@@ -610,7 +611,8 @@ contains
     case ('run')
       associate(r => v%run)
         call run_nml(r%title, r%t_end, r%dt_safety, r%dt_initial, r%dt_max, r%max_cycles, &
-                     r%cycle_print, r%energy_error_limit, r%wall_limit, r%end_kinetic_fraction, r%dt_warn_ratio)
+                     r%cycle_print, r%energy_error_limit, r%wall_limit, r%end_kinetic_fraction, r%dt_warn_ratio, &
+                     r%rebalance_imbalance)
       end associate
     case ('mesh')
       call mesh_nml(v%mesh%file, v%mesh%scale)
@@ -645,13 +647,13 @@ contains
     ! named as in the deck.
 
     subroutine run_nml(title, t_end, dt_safety, dt_initial, dt_max, max_cycles, cycle_print, &
-                       energy_error_limit, wall_limit, end_kinetic_fraction, dt_warn_ratio)
+                       energy_error_limit, wall_limit, end_kinetic_fraction, dt_warn_ratio, rebalance_imbalance)
       character(len=*), intent(inout) :: title
       real(rk), intent(inout) :: t_end, dt_safety, dt_initial, dt_max, energy_error_limit, wall_limit, &
-                                 end_kinetic_fraction, dt_warn_ratio
+                                 end_kinetic_fraction, dt_warn_ratio, rebalance_imbalance
       integer, intent(inout) :: max_cycles, cycle_print
       namelist /run/ title, t_end, dt_safety, dt_initial, dt_max, max_cycles, cycle_print, &
-                     energy_error_limit, wall_limit, end_kinetic_fraction, dt_warn_ratio
+                     energy_error_limit, wall_limit, end_kinetic_fraction, dt_warn_ratio, rebalance_imbalance
       read(text, nml=run, iostat=ios, iomsg=msg)
     end subroutine run_nml
 
@@ -1477,7 +1479,8 @@ contains
       associate(r => cfg%run)
         vals = [val_t(c=r%title), val(r%t_end), val(r%dt_safety), val(r%dt_initial), &
                 val(r%dt_max), val_t(i=r%max_cycles), val_t(i=r%cycle_print), &
-                val(r%energy_error_limit), val(r%wall_limit), val(r%end_kinetic_fraction), val(r%dt_warn_ratio)]
+                val(r%energy_error_limit), val(r%wall_limit), val(r%end_kinetic_fraction), val(r%dt_warn_ratio), &
+                val(r%rebalance_imbalance)]
       end associate
     case (g_mesh)
       vals = [val_t(c=cfg%mesh%file), val(cfg%mesh%scale)]

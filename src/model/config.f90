@@ -39,6 +39,10 @@ module udar_config
     real(rk) :: wall_limit = 0.0_rk        !< s of wall time, 0 = none: checkpoint and stop before it
     real(rk) :: end_kinetic_fraction = 0.0_rk !< -, end when the kinetic energy falls below this share of its peak (0 = never)
     real(rk) :: dt_warn_ratio = 0.1_rk     !< -, warn when the stable step falls below this share of the first one (0 = never)
+    !> -, on more than one rank: repartition (through a checkpoint) when the
+    !> slowest rank's element work exceeds the mean by more than this share
+    !> (0 = never)
+    real(rk) :: rebalance_imbalance = 0.0_rk
   end type
 
   type :: mesh_cfg_t

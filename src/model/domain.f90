@@ -61,6 +61,11 @@ module udar_domain
     ! vectorized blocks: runs of consecutive elements of one material
     integer :: n_blocks = 0
     integer, allocatable :: blk_first(:), blk_last(:)
+    !> clock ticks (system_clock) each block's stress update took, summed
+    !> since the run or its last repartition: the elements' measured cost
+    !> (&run rebalance_imbalance)
+    integer(i8), allocatable :: blk_ticks(:)
+    logical :: time_blocks = .false.         !< measure blk_ticks (only a run that may repartition)
     !> owned nodes by the block holding their last (highest-id) incident
     !> element: blk_nd(blk_nd_ptr(b):blk_nd_ptr(b+1)-1), ascending, are the
     !> nodes whose element lists are complete once block b is done, so an
@@ -104,7 +109,7 @@ contains
              bytes(d%el_k), bytes(d%el_j), bytes(d%el_e), bytes(d%el_wp), bytes(d%el_p), bytes(d%el_q), &
              bytes(d%el_pavg), bytes(d%el_s), bytes(d%el_eps_p), bytes(d%el_temp), bytes(d%el_hard), &
              bytes(d%el_soft), bytes(d%el_state), bytes(d%el_damage), bytes(d%el_eps_tot), &
-             bytes(d%blk_first), bytes(d%blk_last), bytes(d%blk_nd_ptr), bytes(d%blk_nd), &
+             bytes(d%blk_first), bytes(d%blk_last), bytes(d%blk_nd_ptr), bytes(d%blk_nd), bytes(d%blk_ticks), &
              bytes(d%fixed_nodes), bytes(d%sym_nodes), bytes(d%sym_normal)])
   contains
     !> Bytes of an array, 0 when it is not allocated (then it is absent).

@@ -25,6 +25,7 @@ module udar_partition
   type, public :: partition_stats_t
     integer :: n_parts = 0, edge_cut = 0
     real(rk) :: imbalance = 0      !< max part size / mean part size
+    real(rk) :: weighted_imbalance = 0   !< the same of the parts' summed weights (with weights)
     integer, allocatable :: part_size(:)
   end type
 
@@ -70,16 +71,19 @@ module udar_partition
 contains
 
   !> Partitions the elements of conn(n_elems,4) into n_parts face-connected,
-  !> balanced parts (part(e) in 0..n_parts-1). n_parts >= n_elems puts one
-  !> element in each of the first n_elems parts and leaves the rest empty
-  !> (METIS is not called: that is the optimum and METIS misbehaves there).
-  subroutine partition_elements(n_nodes, conn, n_parts, part, stats, ok, errmsg)
+  !> balanced parts (part(e) in 0..n_parts-1): balanced in element count,
+  !> or with weights (>= 1 each) in their sums (METIS vertex weights: the
+  !> elements' costs). n_parts >= n_elems puts one element in each of the
+  !> first n_elems parts and leaves the rest empty (METIS is not called:
+  !> that is the optimum and METIS misbehaves there).
+  subroutine partition_elements(n_nodes, conn, n_parts, part, stats, ok, errmsg, weights)
     integer, intent(in) :: n_nodes, conn(:,:)
     integer, intent(in) :: n_parts
     integer, intent(out) :: part(:)
     type(partition_stats_t), intent(out) :: stats
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
+    integer, intent(in), optional :: weights(:)
     integer, allocatable :: xadj(:), adjncy(:), comp_first(:)
     integer :: n_elems, e, k, n_comp
     character(len=160) :: buf
@@ -98,6 +102,17 @@ contains
     if (size(part) /= n_elems) then
       write (buf, '(a,i0,a,i0)') 'partition: part has size ', size(part), ', expected ', n_elems
       errmsg = trim(buf); return
+    end if
+    if (present(weights)) then
+      if (size(weights) /= n_elems) then
+        write (buf, '(a,i0,a,i0)') 'partition: weights has size ', size(weights), ', expected ', n_elems
+        errmsg = trim(buf); return
+      end if
+      if (n_elems > 0) then
+        if (minval(weights) < 1) then
+          errmsg = 'partition: element weights must be >= 1'; return
+        end if
+      end if
     end if
     ! 4 faces per element and 2 directed entries per edge must fit in int32
     if (4_i8*n_elems > huge(n_elems)) then
@@ -124,7 +139,7 @@ contains
         return
       end if
       call components(xadj, adjncy, n_comp, comp_first)
-      call metis_kway(xadj, adjncy, comp_first(1:n_comp), n_parts, part, errmsg)
+      call metis_kway(xadj, adjncy, comp_first(1:n_comp), n_parts, part, errmsg, weights)
       if (len(errmsg) > 0) return
     end if
 
@@ -144,6 +159,17 @@ contains
       stats%imbalance = real(maxval(stats%part_size), rk)*real(n_parts, rk)/real(n_elems, rk)
     else
       stats%imbalance = 0   ! nothing to balance
+    end if
+    stats%weighted_imbalance = stats%imbalance
+    if (present(weights) .and. n_elems > 0) then
+      block
+        integer(i8) :: sums(0:n_parts-1)
+        sums = 0
+        do e = 1, n_elems
+          sums(part(e)) = sums(part(e)) + weights(e)
+        end do
+        stats%weighted_imbalance = real(maxval(sums), rk)*real(n_parts, rk)/real(sum(sums), rk)
+      end block
     end if
     ok = .true.
   end subroutine
@@ -300,13 +326,16 @@ contains
 
   !> METIS_PartGraphKway on the dual graph plus bridges between consecutive
   !> components, edge-cut objective, fixed seed, CONTIG, default ufactor (1.03).
-  subroutine metis_kway(xadj, adjncy, comp_first, n_parts, part, errmsg)
+  subroutine metis_kway(xadj, adjncy, comp_first, n_parts, part, errmsg, weights)
     integer, intent(in) :: xadj(:), adjncy(:), comp_first(:)
     integer, intent(in) :: n_parts
     integer, intent(inout) :: part(:)
     character(len=:), allocatable, intent(inout) :: errmsg
+    integer, intent(in), optional :: weights(:)
     integer, allocatable :: ea(:), eb(:), bx(:), badj(:)
     integer(idx_t), allocatable :: m_xadj(:), m_adjncy(:), m_part(:)
+    integer(idx_t), allocatable, target :: m_vwgt(:)
+    type(c_ptr) :: vwgt
     integer(idx_t) :: options(metis_noptions), nvtxs, ncon, nparts, objval
     integer(c_int) :: rc
     integer :: n, v, k, m, nb
@@ -351,7 +380,12 @@ contains
     ncon = 1
     nparts = int(n_parts, idx_t)
     allocate(m_part(n), source=0_idx_t)
-    rc = c_metis_part_graph_kway(nvtxs, ncon, m_xadj, m_adjncy, c_null_ptr, c_null_ptr, c_null_ptr, &
+    vwgt = c_null_ptr
+    if (present(weights)) then
+      allocate(m_vwgt, source=int(weights, idx_t))
+      vwgt = c_loc(m_vwgt)
+    end if
+    rc = c_metis_part_graph_kway(nvtxs, ncon, m_xadj, m_adjncy, vwgt, c_null_ptr, c_null_ptr, &
                                  nparts, c_null_ptr, c_null_ptr, options, objval, m_part)
     if (rc /= metis_ok) then
       write (buf, '(a,i0)') 'partition: METIS_PartGraphKway failed with status ', rc

@@ -55,6 +55,12 @@ module udar_run
     real(rk) :: time = 0.0_rk, energy_error = 0.0_rk, wall_seconds = 0.0_rk
     real(rk) :: ns_per_element_cycle = 0.0_rk   !< wall time of the cycle loop per element and cycle
     logical :: stopped = .false.                !< stopped early (wall limit, signal) after a checkpoint
+    !> stopped after a checkpoint to be repartitioned (&run rebalance_imbalance):
+    !> the caller restarts from checkpoint on a partition weighted by cost
+    logical :: rebalance = .false.
+    character(len=max_path_len) :: checkpoint = ''   !< the last checkpoint written
+    integer :: cycles_run = 0                   !< cycles of this call (a restart's: since the checkpoint)
+    real(rk) :: loop_seconds = 0.0_rk           !< wall time of this call's cycle loop
     character(len=max_path_len) :: field_file = '', history_file = ''
   end type
 
@@ -88,7 +94,13 @@ contains
 
   !> Runs the deck from t = 0, or from a checkpoint (restart_path not empty).
   !> model_hash, mesh_hash: what a checkpoint must match to be accepted.
-  subroutine run_simulation(cfg, dom, halo, ct, restart_path, model_hash, mesh_hash, res)
+  !> rebalances_before: rebalances earlier in this process; each doubles
+  !> the cycles a segment runs before its balance is judged (a partition
+  !> whose weights miss the cost is not redone every few cycles).
+  !> job_start: comms_wtime() when the job started (&run wall_limit counts
+  !> from it; default: from this call).
+  subroutine run_simulation(cfg, dom, halo, ct, restart_path, model_hash, mesh_hash, res, rebalances_before, &
+                            job_start)
     type(config_t), intent(in) :: cfg
     type(domain_t), intent(inout) :: dom
     type(halo_t), intent(inout) :: halo
@@ -96,6 +108,8 @@ contains
     character(len=*), intent(in) :: restart_path
     integer(i8), intent(in) :: model_hash, mesh_hash
     type(run_result_t), intent(out) :: res
+    integer, intent(in), optional :: rebalances_before
+    real(rk), intent(in), optional :: job_start
     type(field_writer_t) :: fw
     type(history_t) :: hist
     type(balance_t) :: bal
@@ -104,7 +118,7 @@ contains
     real(rk), allocatable :: work_svm(:), work_rho(:), row(:), work_node(:,:), work_elem(:), work_step(:)
     real(rk), allocatable :: x_constrained(:,:)   !< positions of the constrained nodes before the contact pass
     real(rk) :: dt, dt_v, wall0, elapsed, loop0, last_print_wall, left, ckpt_seconds, cycle_seconds, &
-                contact_seconds, dt_local
+                contact_seconds, dt_local, work_seconds, imbalance, work_start, job0
     integer :: bad, bad_avg, bad_gidx, bad_tag, bad_part, last_print_cycle, no, k, stop_code, cycles_run, n_slave, &
                dt_node, dt_warn_level
     integer :: n_eroded_now(3), n_eroded_by(3)
@@ -112,6 +126,8 @@ contains
     integer, allocatable :: new_gidx(:), all_gidx(:), erosion_counts(:)
     logical :: ok, done, history_due, print_due, stopping, eroded_any, fracture_on, fields_due, ended, last_step
     integer, parameter :: balance_interval = 10
+    !> a rebalance is judged on at least this many cycles of measured work
+    integer, parameter :: rebalance_cycles = 100
     ! the elements' energy (internal + eroded) at the end of a cycle, kept for
     ! the next cycle's balance: the half-step velocities' kinetic energy
     ! belongs to the middle of the step, so the balance takes the mean of
@@ -123,6 +139,8 @@ contains
     character(len=300), allocatable :: overlap_lines(:)
 
     wall0 = comms_wtime()
+    job0 = wall0
+    if (present(job_start)) job0 = job_start
     fracture_on = any_fracture(dom)
     no = size(dom%el_owned_list)
     base = trim(cfg%output%directory)//'/'//trim(cfg%output%case_name)
@@ -247,6 +265,7 @@ contains
     cycles_run = 0
     ckpt_seconds = -1.0_rk      ! until measured: twice a field step's cost
     contact_seconds = 0.0_rk
+    work_seconds = 0.0_rk
     do while (.not. done)
       ! ---- time step: the stable one, or what is left to t_end
       call next_step(dt, last_step)
@@ -278,11 +297,17 @@ contains
       st%dt_old = dt
       ! ---- elements: stress(n+1), forces(n+1); the nodal sums (J, p, f) in the
       ! element passes, each node as soon as its last element is done
+      ! the element passes' own time (no waiting for other ranks): the
+      ! work whose balance between ranks &run rebalance_imbalance watches
+      work_start = comms_wtime()
       if (dom%anti_locking) then
         call element_volumes(dom)
+        work_seconds = work_seconds + (comms_wtime() - work_start)
         call comms_halo_exchange_scalar(halo, dom%nd_j)
+        work_start = comms_wtime()
       end if
       call element_update(dom, dt, bad, bad_avg, n_eroded_now, eroded_any, st%dt_stable, dt_node)
+      work_seconds = work_seconds + (comms_wtime() - work_start)
       n_eroded_by = n_eroded_by + n_eroded_now
       if (eroded_any) then
         call nodal_reference_volumes(dom, rebase=dom%anti_locking)
@@ -310,7 +335,9 @@ contains
       end if
       if (dom%anti_locking) then
         call comms_halo_exchange_scalar(halo, dom%nd_p)
+        work_start = comms_wtime()
         call element_forces_averaged(dom)
+        work_seconds = work_seconds + (comms_wtime() - work_start)
       end if
       dt_local = st%dt_stable
       st%dt_stable = comms_min(st%dt_stable)
@@ -374,7 +401,7 @@ contains
         if (signal_received() /= 0) stop_code = 1
         if (cfg%run%wall_limit > 0.0_rk) then
           ! stop while there is time for the checkpoint and a few more cycles
-          if (comms_wtime() - wall0 + max(ckpt_seconds, 0.0_rk) + (balance_interval + 1)*cycle_seconds &
+          if (comms_wtime() - job0 + max(ckpt_seconds, 0.0_rk) + (balance_interval + 1)*cycle_seconds &
               + 1.0_rk >= cfg%run%wall_limit) stop_code = max(stop_code, 2)
         end if
         stop_code = comms_max_int(stop_code)
@@ -382,6 +409,18 @@ contains
           stopping = .true.
           done = .true.
           why = merge('a termination signal', 'the wall-time limit ', stop_code == 1)
+        else if (cfg%run%rebalance_imbalance > 0.0_rk .and. comms_size() > 1 .and. &
+                 cycles_run >= rebalance_cycles*2**min(rebalances_done(), 20)) then
+          ! the slowest rank's element work over the mean (the same
+          ! verdict on every rank: from two reductions)
+          imbalance = comms_max(work_seconds)/max(1.0e-6_rk*real(comms_sum_int(int(1.0e6_rk*work_seconds, i8)), rk) &
+                                                  /comms_size(), tiny(1.0_rk)) - 1.0_rk
+          if (imbalance > cfg%run%rebalance_imbalance) then
+            stopping = .true.
+            done = .true.
+            res%rebalance = .true.
+            why = 'a rebalance'
+          end if
         end if
       end if
       ! ---- checkpoints: at their interval, at the end and when stopping early
@@ -431,7 +470,13 @@ contains
     end do
     call fw_close(fw)
     call history_close(hist)
-    if (stopping) then
+    if (res%rebalance) then
+      write(line, '(a,i0,a,es12.5,a)') 'rebalance at cycle ', st%cycle, ', t = ', st%t, &
+        ' s: the slowest rank''s element work exceeds the mean by '//fixed(imbalance, 3)// &
+        ' (&run rebalance_imbalance '//real_text(cfg%run%rebalance_imbalance, 3)//'); repartitioning through '// &
+        checkpoint_path(st%checkpoints_written)
+      call log_info(line)
+    else if (stopping) then
       write(line, '(a,i0,a,es12.5,a)') 'stopped by '//trim(why)//' at cycle ', st%cycle, ', t = ', st%t, &
         ' s; continue with: udar --restart '//checkpoint_path(st%checkpoints_written)//' DECK'
       call log_info(line)
@@ -504,12 +549,20 @@ contains
       end do
     end if
     res%stopped = stopping
+    if (st%checkpoints_written > 0) res%checkpoint = checkpoint_path(st%checkpoints_written)
+    res%cycles_run = cycles_run
+    res%loop_seconds = comms_wtime() - loop0
     res%cycles = st%cycle
     res%time = st%t
     res%energy_error = bal%error
     res%wall_seconds = comms_wtime() - wall0
     res%ns_per_element_cycle = 1.0e9_rk*(comms_wtime() - loop0)/(real(dom%n_global_elems, rk)*max(cycles_run, 1))
   contains
+    integer function rebalances_done()
+      rebalances_done = 0
+      if (present(rebalances_before)) rebalances_done = rebalances_before
+    end function
+
     !> The owned elements eroded since the last call, to every rank, and
     !> the contact surfaces rebuilt from them (collective).
     subroutine share_erosion(look, settle)

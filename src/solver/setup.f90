@@ -262,6 +262,7 @@ contains
     dom%n_blocks = nb
     dom%blk_first = f(1:nb)
     dom%blk_last = l(1:nb)
+    allocate(dom%blk_ticks(nb), source=0_i8)
   end subroutine
 
   !> The owned nodes grouped by the block of their last incident element

@@ -19,6 +19,7 @@ program test_partition
   call check_mesh('cube8', n_cube_nodes, cube, 1, .true.)
   call check_mesh('two_body', n_two_nodes, two, 2, .true.)
   call check_single_part()
+  call check_weights()
   call check_many_parts()
   call check_small_sweep()
   call check_isolated()
@@ -236,6 +237,36 @@ contains
     call check(ok .and. all(part == 0) .and. st%n_parts == 1 .and. st%edge_cut == 0 .and. &
                all(st%part_size == [size(cube, 1)]) .and. abs(st%imbalance - 1) < 1.0e-12_rk, &
                'n_parts=1', 'not a single part with zero cut')
+  end subroutine
+
+  !> Vertex weights (the elements' cost): the first half of the cube's
+  !> elements weighs 3, the rest 1. Two parts then balance the weights, not
+  !> the counts: the part holding more heavy elements holds fewer elements.
+  !> Weights < 1 are refused.
+  subroutine check_weights()
+    integer, allocatable :: part(:), w(:)
+    type(partition_stats_t) :: st
+    logical :: ok
+    character(len=:), allocatable :: msg
+    character(len=200) :: detail
+    integer :: ne, heavy_part
+    ne = size(cube, 1)
+    allocate(part(ne), w(ne))
+    w = 1
+    w(1:ne/2) = 3
+    call partition_elements(n_cube_nodes, cube, 2, part, st, ok, msg, w)
+    call check(ok, 'weights ok', msg)
+    if (.not. ok) return
+    ! the part holding more of the heavy elements
+    heavy_part = merge(0, 1, count(part == 0 .and. w == 3) > count(part == 1 .and. w == 3))
+    write (detail, '(a,f6.3,a,f6.3,a,2i6)') 'weighted imbalance ', st%weighted_imbalance, ', count imbalance ', &
+      st%imbalance, ', part sizes ', st%part_size
+    call check(st%weighted_imbalance < 1.05_rk .and. st%imbalance > 1.15_rk .and. &
+               st%part_size(heavy_part) < st%part_size(1 - heavy_part), 'weights balanced', trim(detail))
+    write (*, '(a)') 'MEASURED '//trim(detail)
+    w(1) = 0
+    call partition_elements(n_cube_nodes, cube, 2, part, st, ok, msg, w)
+    call check(.not. ok .and. index(msg, 'weights must be >= 1') > 0, 'weights below 1 refused', msg)
   end subroutine
 
   !> More parts than elements: one element per part, the rest empty.
