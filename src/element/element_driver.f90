@@ -36,7 +36,7 @@ contains
     type(domain_t), intent(inout) :: dom
     real(rk) :: xe(block_size,4,3), vol(block_size)
     integer :: b, k, n, i, c, first, nb
-    integer(i8) :: tick0, tick1
+    integer(i8) :: tick0
     dom%nd_j(1:dom%n_owned_nodes) = 0.0_rk
     do b = 1, dom%n_blocks
       if (dom%time_blocks) call system_clock(tick0)
@@ -60,10 +60,7 @@ contains
           dom%nd_j(n) = 1.0_rk
         end if
       end do
-      if (dom%time_blocks) then
-        call system_clock(tick1)
-        dom%blk_ticks(b) = dom%blk_ticks(b) + (tick1 - tick0)
-      end if
+      if (dom%time_blocks) call add_block_ticks(dom, b, tick0)
     end do
   end subroutine
 
@@ -189,7 +186,7 @@ contains
     logical :: gone(ld), no_shear(ld), erodible, fracturing, fractured, stab, geo
     real(rk) :: t_old, d_eps, jbar(ld), je(ld), share(ld), r_min
     integer :: b, i, e, nb, first, last, k, n
-    integer(i8) :: tick0, tick1
+    integer(i8) :: tick0
     r_min = huge(1.0_rk)
     dt_node = 0
     dom%nd_k(1:dom%n_owned_nodes) = 0.0_rk
@@ -387,10 +384,7 @@ contains
         n = dom%blk_nd(k)
         call keep_stiffest(n, dom%nd_mass(n), dom%nd_k(n), r_min, dt_node)
       end do
-      if (dom%time_blocks) then
-        call system_clock(tick1)
-        dom%blk_ticks(b) = dom%blk_ticks(b) + (tick1 - tick0)
-      end if
+      if (dom%time_blocks) call add_block_ticks(dom, b, tick0)
     end do
     dt_stable = huge(1.0_rk)
     if (dt_node > 0) dt_stable = 2.0_rk*sqrt(r_min)
@@ -474,6 +468,16 @@ contains
     if (k > 0.0_rk) dt = 2.0_rk*sqrt(0.25_rk*mass/k)
   end function
 
+  !> Block b's measured time (blk_ticks) grows by the clock ticks since tick0.
+  subroutine add_block_ticks(dom, b, tick0)
+    type(domain_t), intent(inout) :: dom
+    integer, intent(in) :: b
+    integer(i8), intent(in) :: tick0
+    integer(i8) :: tick1
+    call system_clock(tick1)
+    dom%blk_ticks(b) = dom%blk_ticks(b) + (tick1 - tick0)
+  end subroutine
+
   !> The measured cost of every local element for a partition (&run
   !> rebalance_imbalance): its block's time in the element passes since the
   !> run or the last repartition over the block's elements, in clock ticks (an
@@ -506,7 +510,7 @@ contains
     integer, parameter :: ld = block_size
     real(rk) :: p_bar(ld), fe(ld,4,3), xe(ld,4,3)
     integer :: b, i, e, nb, first
-    integer(i8) :: tick0, tick1
+    integer(i8) :: tick0
     do b = 1, dom%n_blocks
       if (dom%time_blocks) call system_clock(tick0)
       first = dom%blk_first(b)
@@ -522,10 +526,7 @@ contains
       end do
       call tet_pressure_forces(ld, nb, xe, p_bar, fe)
       call add_forces(dom, first, nb, fe)
-      if (dom%time_blocks) then
-        call system_clock(tick1)
-        dom%blk_ticks(b) = dom%blk_ticks(b) + (tick1 - tick0)
-      end if
+      if (dom%time_blocks) call add_block_ticks(dom, b, tick0)
     end do
   end subroutine
 
