@@ -7,7 +7,7 @@
 program test_tri3
   use udar_kinds, only: rk
   use udar_strings, only: r2s
-  use udar_tri3, only: tri_geometry, tri_velocity_gradient, tri_internal_forces
+  use udar_tri3, only: tri_geometry, tri_velocity_gradient, tri_internal_forces, tri_stiffness_bound
   use unit_checks, only: check, check_summary
   implicit none
   integer, parameter :: nfan = 7           ! triangles around the patch's interior node
@@ -70,6 +70,12 @@ program test_tri3
 
   call patch_equilibrium(.true.)
   call patch_equilibrium(.false.)
+  ! the stiffness bound against the element's stiffness matrix, assembled
+  ! column by column from the kernels: off the axis, with a corner on it,
+  ! and in plane strain
+  call stiffness_bound_holds('axisymmetric_off_axis', .true., [0.3_rk, 1.1_rk, 0.6_rk], [0.2_rk, 0.5_rk, 1.3_rk])
+  call stiffness_bound_holds('axisymmetric_on_axis', .true., [0.0_rk, 0.4_rk, 0.1_rk], [0.0_rk, 0.1_rk, 0.5_rk])
+  call stiffness_bound_holds('plane_strain', .false., [0.3_rk, 1.1_rk, 0.6_rk], [0.2_rk, 0.5_rk, 1.3_rk])
   call check_summary()
 
 contains
@@ -106,5 +112,43 @@ contains
                maxval(abs(total)) < 1e-13_rk*scale .and. maxval(abs(rim_force)) > 1e-3_rk*scale, &
                'interior node force '//r2s(maxval(abs(total)))//' N against a rim node''s '// &
                r2s(maxval(abs(rim_force)))//' N')
+  end subroutine
+
+  !> K(:,j) = -(forces of the elastic stress of the unit corner velocity j)
+  !> (the forces are -K u); its largest eigenvalue by power iteration (K is
+  !> symmetric: the forces are the strain rate's transpose) must be at most
+  !> the bound, and the bound within a factor 3 of it.
+  subroutine stiffness_bound_holds(name, axisymmetric, r, z)
+    character(len=*), intent(in) :: name
+    logical, intent(in) :: axisymmetric
+    real(rk), intent(in) :: r(3), z(3)
+    real(rk), parameter :: bulk = 140.0e9_rk, shear = 45.0e9_rk
+    real(rk) :: xe(1,3,2), ue(1,3,2), ge(1,3,2), de(1,4), we(1), ae(1), re(1), ve(1), se(1,4), pe(1), fe(1,3,2), &
+                kmat(6,6), u(6), ku(6), lam_max, bound(1), asym
+    integer :: j, it
+    xe(1,:,1) = r
+    xe(1,:,2) = z
+    call tri_geometry(1, 1, axisymmetric, xe, ae, re, ve, ge)
+    do j = 1, 6
+      ue = 0.0_rk
+      ue(1, mod(j - 1, 3) + 1, (j - 1)/3 + 1) = 1.0_rk
+      call tri_velocity_gradient(1, 1, axisymmetric, ue, ge, re, de, we)
+      pe(1) = -bulk*(de(1,1) + de(1,2) + de(1,3))
+      se(1,1:3) = 2.0_rk*shear*(de(1,1:3) - (de(1,1) + de(1,2) + de(1,3))/3.0_rk)
+      se(1,4) = 2.0_rk*shear*de(1,4)
+      call tri_internal_forces(1, 1, axisymmetric, ve, ae, ge, se, pe, fe)
+      kmat(:,j) = -[fe(1,:,1), fe(1,:,2)]
+    end do
+    asym = maxval(abs(kmat - transpose(kmat)))/maxval(abs(kmat))
+    u = [1.0_rk, 0.3_rk, -0.7_rk, 0.2_rk, 0.9_rk, -0.4_rk]
+    do it = 1, 2000
+      ku = matmul(kmat, u)
+      u = ku/norm2(ku)
+    end do
+    lam_max = dot_product(u, matmul(kmat, u))
+    call tri_stiffness_bound(1, 1, axisymmetric, ve, re, ge, [bulk], shear, bound)
+    call check('tri_stiffness_bound_'//name, asym < 1e-12_rk .and. bound(1) >= lam_max*(1.0_rk - 1e-12_rk) .and. &
+               bound(1) <= 3.0_rk*lam_max, 'bound '//r2s(bound(1))//' N/m against the largest eigenvalue '// &
+               r2s(lam_max)//' N/m (ratio '//r2s(bound(1)/lam_max)//'), K symmetric to '//r2s(asym))
   end subroutine
 end program test_tri3
