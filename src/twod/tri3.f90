@@ -10,7 +10,7 @@ module udar_tri3
   use udar_kinds, only: rk
   implicit none
   private
-  public :: tri_geometry, tri_velocity_gradient, tri_internal_forces, tri_stiffness_bound
+  public :: tri_geometry, tri_smallest_altitude, tri_velocity_gradient, tri_internal_forces, tri_stiffness_bound
 
 contains
 
@@ -35,6 +35,20 @@ contains
       grad(i,1,1) = (x(i,2,2) - x(i,3,2))*r; grad(i,1,2) = (x(i,3,1) - x(i,2,1))*r
       grad(i,2,1) = (x(i,3,2) - x(i,1,2))*r; grad(i,2,2) = (x(i,1,1) - x(i,3,1))*r
       grad(i,3,1) = (x(i,1,2) - x(i,2,2))*r; grad(i,3,2) = (x(i,2,1) - x(i,1,1))*r
+    end do
+  end subroutine
+
+  !> Smallest altitude of the first nb elements from their gradients: the
+  !> altitude over the edge opposite corner a is 1/|grad N_a| (the length
+  !> the artificial viscosity and the element's own step take, as in 3D).
+  pure subroutine tri_smallest_altitude(ld, nb, grad, h)
+    integer, intent(in) :: ld, nb
+    real(rk), intent(in) :: grad(ld,3,2)
+    real(rk), intent(inout) :: h(nb)
+    integer :: i
+    do i = 1, nb
+      h(i) = 1.0_rk/sqrt(max(grad(i,1,1)**2 + grad(i,1,2)**2, grad(i,2,1)**2 + grad(i,2,2)**2, &
+                             grad(i,3,1)**2 + grad(i,3,2)**2, tiny(1.0_rk)))
     end do
   end subroutine
 

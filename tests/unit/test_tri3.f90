@@ -7,12 +7,12 @@
 program test_tri3
   use udar_kinds, only: rk
   use udar_strings, only: r2s
-  use udar_tri3, only: tri_geometry, tri_velocity_gradient, tri_internal_forces, tri_stiffness_bound
+  use udar_tri3, only: tri_geometry, tri_smallest_altitude, tri_velocity_gradient, tri_internal_forces, tri_stiffness_bound
   use unit_checks, only: check, check_summary
   implicit none
   integer, parameter :: nfan = 7           ! triangles around the patch's interior node
   real(rk) :: x(1,3,2), v(1,3,2), grad(1,3,2), d(1,4), w(1), area(1), rbar(1), vol(1), f(1,3,2), s(1,4), p(1)
-  real(rk) :: id(2,2), err, power, stress_power
+  real(rk) :: id(2,2), err, power, stress_power, h(1)
   integer :: k, m
 
   ! a skewed triangle off the axis, counter-clockwise
@@ -30,6 +30,16 @@ program test_tri3
   end do
   err = maxval(abs(id - reshape([1.0_rk, 0.0_rk, 0.0_rk, 1.0_rk], [2, 2]))) + maxval(abs(sum(grad(1,:,:), dim=1)))
   call check('tri_linear_completeness', err < 1e-14_rk, 'error '//r2s(err))
+  ! smallest altitude: the right triangle (0,0), (2,0), (0,1): 2 / sqrt(5) over the hypotenuse
+  x(1,:,1) = [0.0_rk, 2.0_rk, 0.0_rk]
+  x(1,:,2) = [0.0_rk, 0.0_rk, 1.0_rk]
+  call tri_geometry(1, 1, .false., x, area, rbar, vol, grad)
+  call tri_smallest_altitude(1, 1, grad, h)
+  call check('tri_smallest_altitude_by_hand', abs(h(1) - 2.0_rk/sqrt(5.0_rk)) < 1e-15_rk, &
+             'h = '//r2s(h(1))//' (2/sqrt 5 = '//r2s(2.0_rk/sqrt(5.0_rk))//')')
+  x(1,:,1) = [0.3_rk, 1.1_rk, 0.6_rk]
+  x(1,:,2) = [0.2_rk, 0.5_rk, 1.3_rk]
+  call tri_geometry(1, 1, .true., x, area, rbar, vol, grad)
 
   ! rigid translation along the axis: no strain rate, no spin
   v(1,:,1) = 0.0_rk
