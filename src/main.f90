@@ -157,8 +157,7 @@ program udar
     local%time_blocks = cfg%run%rebalance_imbalance > 0.0_rk .and. comms_size() > 1
     call contact_distribute(contacts, local)
     if (rebalances == 0) call log_memory('start-up', local)
-    call run_simulation(cfg, local, halo, contacts, restart_path, model_hash, mesh_hash, res, &
-                        rebalances_before=rebalances, job_start=job_start)
+    call run_simulation(cfg, local, halo, contacts, restart_path, model_hash, mesh_hash, res, rebalances, job_start)
     cycles_run = cycles_run + res%cycles_run
     loop_seconds = loop_seconds + res%loop_seconds
     wall_seconds = wall_seconds + res%wall_seconds

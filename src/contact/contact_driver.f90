@@ -13,7 +13,7 @@ module udar_contact
   use udar_contact_model, only: contact_t, interface_t, neighbour_across
   use udar_contact_search, only: grid_build, grid_cell, ensure
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_shares, &
-      solve_normal_lcp, normal_rows_matrix, &
+      solve_normal_lcp, normal_rows_matrix, contact_point, &
                                   edge_crossing, behind_surface, beside_sharp_edge, closest_on_triangle, behind_not, behind_face, behind_seam
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, &
                         comms_max, comms_alltoall_counts, comms_alltoallv_real, comms_wtime
@@ -443,13 +443,6 @@ contains
     ! stop on the nodes' net velocity change (theory.md 11)
     joint = .false.
     if (last > first .or. ct%ifc(first)%self) call solve_joint_normals(ct, first, last, dt, first_change, joint)
-    if (joint) then
-      if (.not. allocated(ct%v_sweep)) allocate(ct%v_sweep(3, ct%n_nodes))
-      if (size(ct%v_sweep, 2) < ct%n_nodes) then
-        deallocate(ct%v_sweep)
-        allocate(ct%v_sweep(3, ct%n_nodes))
-      end if
-    end if
     do iter = 1, ct%ifc(first)%iterations
       mismatch = 0
       if (joint) call keep_row_velocities()
@@ -522,8 +515,8 @@ contains
 
   !> The normal rows of a joint pass (at most joint_solve_rows) solved
   !> together (solve_normal_lcp, normal_rows_matrix): row r is slave node
-  !> s_r against its triangle's nodes at weights gc_r (the contact point,
-  !> as in match_velocities) with shares R_r (momentum exact). The accumulated
+  !> s_r against its triangle's nodes at weights gc_r (contact_point, as
+  !> match_velocities takes them) with shares R_r (momentum exact). The accumulated
   !> changes so far (dn_sum) count: the solve is for the totals (>= 0).
   !> The changes are applied as the sweeps apply theirs (velocities, and
   !> positions by dt times them); the sweeps then add friction and what
@@ -558,8 +551,7 @@ contains
           t = it%on_tri(k)
           node(0,n) = it%active(k)
           node(1:3,n) = it%tri(:,t)
-          gc = max(it%area(:,k), 0.0_rk)
-          gc = gc/sum(gc)
+          gc = contact_point(it%area(:,k))
           w(0,n) = -1.0_rk
           w(1:3,n) = gc
           coef(0,n) = 1.0_rk

@@ -9,7 +9,7 @@ module udar_contact_kernels
   private
   public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_crossing, edge_shares, &
             behind_surface, beside_sharp_edge, closest_on_triangle, behind_not, behind_face, behind_seam, &
-            solve_normal_lcp, normal_rows_matrix
+            solve_normal_lcp, normal_rows_matrix, contact_point
 
   !> behind_surface's verdicts: not behind the surface; behind this face;
   !> behind the surface beyond one of its concave edges (the contact point
@@ -247,8 +247,7 @@ contains
     dn = 0.0_rk
     dtv = 0.0_rk
     acted = .false.
-    gc = max(g, 0.0_rk)                     ! the contact point inside the triangle
-    gc = gc/sum(gc)
+    gc = contact_point(g)
     v_master = gc(1)*vm(:,1) + gc(2)*vm(:,2) + gc(3)*vm(:,3)
     ! eq. 17: the denominator that makes the normal velocities equal afterwards
     denom = 1.0_rk + ms*(gc(1)*r_share(1)/mm(1) + gc(2)*r_share(2)/mm(2) + gc(3)*r_share(3)/mm(3))
@@ -383,6 +382,15 @@ contains
     end do
     lam = max(lam, 0.0_rk)
   end subroutine
+
+  !> The contact point's weights on the triangle's nodes: the area
+  !> coordinates g of the projection, clipped into the triangle.
+  pure function contact_point(g) result(gc)
+    real(rk), intent(in) :: g(3)
+    real(rk) :: gc(3)
+    gc = max(g, 0.0_rk)
+    gc = gc/sum(gc)
+  end function
 
   !> Whether slave edge (p, q) crossed master edge (a, b) during the step dt
   !> (positions x at its end, velocities v over it): the closest points of

@@ -132,7 +132,7 @@ contains
     ct%n_interfaces = n_ifc
     call move_alloc(ifc, ct%ifc)
     ct%m = glob%nd_mass(ct%gidx)
-    allocate(ct%x(3, ct%n_nodes), ct%v(3, ct%n_nodes))
+    allocate(ct%x(3, ct%n_nodes), ct%v(3, ct%n_nodes), ct%v_sweep(3, ct%n_nodes))
     allocate(ct%h(ct%n_nodes), source=huge(1.0_rk))
     ct%x = glob%nd_x0(:, ct%gidx)
     ct%x0 = ct%x

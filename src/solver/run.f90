@@ -12,7 +12,7 @@ module udar_run
   use udar_domain, only: domain_t
   use udar_kinds, only: i8
   use udar_vectors, only: cross
-  use udar_comms, only: comms_barrier, comms_wtime, comms_size, comms_min, comms_max, comms_min_int, comms_max_int, comms_is_root, &
+  use udar_comms, only: comms_barrier, comms_wtime, comms_size, comms_min, comms_max, comms_min_int, comms_max_int, comms_max_i8, comms_is_root, &
       comms_sum_int, comms_allgather_count, comms_allgatherv_int, &
       comms_sum_exact, halo_t, comms_halo_exchange, comms_halo_exchange_scalar
   use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_value
@@ -53,7 +53,6 @@ module udar_run
   type :: run_result_t
     integer :: cycles = 0
     real(rk) :: time = 0.0_rk, energy_error = 0.0_rk, wall_seconds = 0.0_rk
-    real(rk) :: ns_per_element_cycle = 0.0_rk   !< wall time of the cycle loop per element and cycle
     logical :: stopped = .false.                !< stopped early (wall limit, signal) after a checkpoint
     !> stopped after a checkpoint to be repartitioned (&run rebalance_imbalance):
     !> the caller restarts from checkpoint on a partition weighted by cost
@@ -98,7 +97,7 @@ contains
   !> the cycles a segment runs before its balance is judged (a partition
   !> whose weights miss the cost is not redone every few cycles).
   !> job_start: comms_wtime() when the job started (&run wall_limit counts
-  !> from it; default: from this call).
+  !> from it).
   subroutine run_simulation(cfg, dom, halo, ct, restart_path, model_hash, mesh_hash, res, rebalances_before, &
                             job_start)
     type(config_t), intent(in) :: cfg
@@ -108,8 +107,8 @@ contains
     character(len=*), intent(in) :: restart_path
     integer(i8), intent(in) :: model_hash, mesh_hash
     type(run_result_t), intent(out) :: res
-    integer, intent(in), optional :: rebalances_before
-    real(rk), intent(in), optional :: job_start
+    integer, intent(in) :: rebalances_before
+    real(rk), intent(in) :: job_start
     type(field_writer_t) :: fw
     type(history_t) :: hist
     type(balance_t) :: bal
@@ -118,7 +117,7 @@ contains
     real(rk), allocatable :: work_svm(:), work_rho(:), row(:), work_node(:,:), work_elem(:), work_step(:)
     real(rk), allocatable :: x_constrained(:,:)   !< positions of the constrained nodes before the contact pass
     real(rk) :: dt, dt_v, wall0, elapsed, loop0, last_print_wall, left, ckpt_seconds, cycle_seconds, &
-                contact_seconds, dt_local, work_seconds, imbalance, work_start, job0
+                contact_seconds, dt_local, imbalance
     integer :: bad, bad_avg, bad_gidx, bad_tag, bad_part, last_print_cycle, no, k, stop_code, cycles_run, n_slave, &
                dt_node, dt_warn_level
     integer :: n_eroded_now(3), n_eroded_by(3)
@@ -139,8 +138,6 @@ contains
     character(len=300), allocatable :: overlap_lines(:)
 
     wall0 = comms_wtime()
-    job0 = wall0
-    if (present(job_start)) job0 = job_start
     fracture_on = any_fracture(dom)
     no = size(dom%el_owned_list)
     base = trim(cfg%output%directory)//'/'//trim(cfg%output%case_name)
@@ -265,7 +262,6 @@ contains
     cycles_run = 0
     ckpt_seconds = -1.0_rk      ! until measured: twice a field step's cost
     contact_seconds = 0.0_rk
-    work_seconds = 0.0_rk
     do while (.not. done)
       ! ---- time step: the stable one, or what is left to t_end
       call next_step(dt, last_step)
@@ -297,17 +293,11 @@ contains
       st%dt_old = dt
       ! ---- elements: stress(n+1), forces(n+1); the nodal sums (J, p, f) in the
       ! element passes, each node as soon as its last element is done
-      ! the element passes' own time (no waiting for other ranks): the
-      ! work whose balance between ranks &run rebalance_imbalance watches
-      work_start = comms_wtime()
       if (dom%anti_locking) then
         call element_volumes(dom)
-        work_seconds = work_seconds + (comms_wtime() - work_start)
         call comms_halo_exchange_scalar(halo, dom%nd_j)
-        work_start = comms_wtime()
       end if
       call element_update(dom, dt, bad, bad_avg, n_eroded_now, eroded_any, st%dt_stable, dt_node)
-      work_seconds = work_seconds + (comms_wtime() - work_start)
       n_eroded_by = n_eroded_by + n_eroded_now
       if (eroded_any) then
         call nodal_reference_volumes(dom, rebase=dom%anti_locking)
@@ -335,9 +325,7 @@ contains
       end if
       if (dom%anti_locking) then
         call comms_halo_exchange_scalar(halo, dom%nd_p)
-        work_start = comms_wtime()
         call element_forces_averaged(dom)
-        work_seconds = work_seconds + (comms_wtime() - work_start)
       end if
       dt_local = st%dt_stable
       st%dt_stable = comms_min(st%dt_stable)
@@ -401,7 +389,7 @@ contains
         if (signal_received() /= 0) stop_code = 1
         if (cfg%run%wall_limit > 0.0_rk) then
           ! stop while there is time for the checkpoint and a few more cycles
-          if (comms_wtime() - job0 + max(ckpt_seconds, 0.0_rk) + (balance_interval + 1)*cycle_seconds &
+          if (comms_wtime() - job_start + max(ckpt_seconds, 0.0_rk) + (balance_interval + 1)*cycle_seconds &
               + 1.0_rk >= cfg%run%wall_limit) stop_code = max(stop_code, 2)
         end if
         stop_code = comms_max_int(stop_code)
@@ -410,11 +398,12 @@ contains
           done = .true.
           why = merge('a termination signal', 'the wall-time limit ', stop_code == 1)
         else if (cfg%run%rebalance_imbalance > 0.0_rk .and. comms_size() > 1 .and. &
-                 cycles_run >= rebalance_cycles*2**min(rebalances_done(), 20)) then
-          ! the slowest rank's element work over the mean (the same
-          ! verdict on every rank: from two reductions)
-          imbalance = comms_max(work_seconds)/max(1.0e-6_rk*real(comms_sum_int(int(1.0e6_rk*work_seconds, i8)), rk) &
-                                                  /comms_size(), tiny(1.0_rk)) - 1.0_rk
+                 cycles_run >= rebalance_cycles*2**min(rebalances_before, 20)) then
+          ! the slowest rank's element work (its blocks' measured time, no
+          ! waiting for other ranks) over the mean: the same verdict on
+          ! every rank, from two reductions
+          imbalance = real(comms_max_i8(sum(dom%blk_ticks)), rk)*comms_size()/ &
+                      max(real(comms_sum_int(sum(dom%blk_ticks)), rk), 1.0_rk) - 1.0_rk
           if (imbalance > cfg%run%rebalance_imbalance) then
             stopping = .true.
             done = .true.
@@ -556,13 +545,7 @@ contains
     res%time = st%t
     res%energy_error = bal%error
     res%wall_seconds = comms_wtime() - wall0
-    res%ns_per_element_cycle = 1.0e9_rk*(comms_wtime() - loop0)/(real(dom%n_global_elems, rk)*max(cycles_run, 1))
   contains
-    integer function rebalances_done()
-      rebalances_done = 0
-      if (present(rebalances_before)) rebalances_done = rebalances_before
-    end function
-
     !> The owned elements eroded since the last call, to every rank, and
     !> the contact surfaces rebuilt from them (collective).
     subroutine share_erosion(look, settle)
