@@ -264,7 +264,7 @@ contains
       ! the eroding surfaces with each face's element (its fourth corner)
       if (errs%count() == 0) call contact_eroding_surfaces(contacts)
       write(line, '(a,i0,a,i0,a,i0,a)') 'mesh '//trim(cfg%mesh%file)//': ', mesh%n_nodes, ' nodes, ', &
-        mesh%n_tets, ' tetrahedra, ', mesh%n_inverted, ' reoriented at read time'
+        mesh%n_cells, ' tetrahedra, ', mesh%n_inverted, ' reoriented at read time'
     end if
     mesh = gmsh_mesh_t()     ! the domain and the contact surfaces hold all that is needed of it
   end subroutine

@@ -191,10 +191,10 @@ contains
       integer :: t, a
       call mesh_to_global(mesh, glob, node_g)
       allocate(in_group(glob%n_nodes), source=.false.)
-      do t = 1, mesh%n_tris
-        if (mesh%tri_group(t) /= ig) cycle
+      do t = 1, mesh%n_facets
+        if (mesh%facet_group(t) /= ig) cycle
         do a = 1, 3
-          if (node_g(mesh%tri(t,a)) > 0) in_group(node_g(mesh%tri(t,a))) = .true.
+          if (node_g(mesh%facet(t,a)) > 0) in_group(node_g(mesh%facet(t,a))) = .true.
         end do
       end do
       call take_faces(in_group(face(1,1:nf)) .and. in_group(face(2,1:nf)) .and. in_group(face(3,1:nf)), tri, body)

@@ -21,17 +21,23 @@ module udar_gmsh
     character(len=max_name_len) :: name = ''
   end type gmsh_group_t
 
+  !> The mesh of one dimension dim (3: solid, 2: planar or axisymmetric):
+  !> its cells (4-node tetrahedra in physical volume groups, or 3-node
+  !> triangles in physical surface groups) and its boundary facets
+  !> (triangles in physical surface groups, or 2-node lines in physical curve
+  !> groups), one row per (facet, group).
   type, public :: gmsh_mesh_t
-    integer :: n_nodes = 0, n_tets = 0, n_tris = 0, n_groups = 0
+    integer :: dim = 3
+    integer :: n_nodes = 0, n_cells = 0, n_facets = 0, n_groups = 0
     integer, allocatable :: node_tag(:)     !< (n_nodes) gmsh node tags, ascending
     real(rk), allocatable :: x(:,:)         !< (n_nodes,3) coordinates * scale
-    integer, allocatable :: tet_tag(:)      !< (n_tets) gmsh element tags, ascending
-    integer, allocatable :: tet(:,:)        !< (n_tets,4) node indices, positively oriented
-    integer, allocatable :: tet_group(:)    !< (n_tets) index into groups(:) (dim 3)
-    integer, allocatable :: tri(:,:)        !< (n_tris,3) node indices of physical-surface triangles
-    integer, allocatable :: tri_group(:)    !< (n_tris) index into groups(:) (dim 2)
-    type(gmsh_group_t), allocatable :: groups(:)  !< physical groups of dims 2 and 3
-    integer :: n_inverted = 0               !< tets reoriented at read time
+    integer, allocatable :: cell_tag(:)     !< (n_cells) gmsh element tags, ascending
+    integer, allocatable :: cell(:,:)       !< (n_cells,dim+1) node indices, positively oriented
+    integer, allocatable :: cell_group(:)   !< (n_cells) index into groups(:) (of dimension dim)
+    integer, allocatable :: facet(:,:)      !< (n_facets,dim) node indices of the physical groups' facets
+    integer, allocatable :: facet_group(:)  !< (n_facets) index into groups(:) (of dimension dim-1)
+    type(gmsh_group_t), allocatable :: groups(:)  !< physical groups of dims dim-1 and dim
+    integer :: n_inverted = 0               !< cells reoriented at read time
   end type gmsh_mesh_t
 
   integer, parameter :: fmt_v22 = 22, fmt_v41 = 41
@@ -775,12 +781,12 @@ contains
     allocate(key(nkeep), perm(nkeep))
     key = int(raw%tets%tag(keep(1:nkeep)), i8)
     call sort_unique(key, perm, m)
-    mesh%n_tets = m
-    allocate(mesh%tet_tag(m), mesh%tet(m, 4), mesh%tet_group(m))
+    mesh%n_cells = m
+    allocate(mesh%cell_tag(m), mesh%cell(m, 4), mesh%cell_group(m))
     do i = 1, m
-      mesh%tet_tag(i) = raw%tets%tag(keep(perm(i)))
-      mesh%tet_group(i) = kgrp(perm(i))
-      mesh%tet(i, :) = raw%tets%node(:, keep(perm(i)))   ! node tags for now
+      mesh%cell_tag(i) = raw%tets%tag(keep(perm(i)))
+      mesh%cell_group(i) = kgrp(perm(i))
+      mesh%cell(i, :) = raw%tets%node(:, keep(perm(i)))   ! node tags for now
     end do
     deallocate(key, perm, keep, kgrp, raw%tets%tag, raw%tets%ref, raw%tets%node)
 
@@ -796,12 +802,12 @@ contains
       key(i) = int(raw%tris%tag(rows(i)), i8) * int(ng + 1, i8) + rgrp(i)
     end do
     call sort_unique(key, perm, m)
-    mesh%n_tris = m
-    allocate(mesh%tri(m, 3), mesh%tri_group(m), ttag(m))
+    mesh%n_facets = m
+    allocate(mesh%facet(m, 3), mesh%facet_group(m), ttag(m))
     do i = 1, m
       ttag(i) = raw%tris%tag(rows(perm(i)))     ! kept only for error messages
-      mesh%tri(i, :) = raw%tris%node(:, rows(perm(i)))
-      mesh%tri_group(i) = rgrp(perm(i))
+      mesh%facet(i, :) = raw%tris%node(:, rows(perm(i)))
+      mesh%facet_group(i) = rgrp(perm(i))
     end do
     deallocate(key, perm, rows, rgrp)
 
@@ -853,14 +859,14 @@ contains
       call hash_build(mesh%node_tag, hkey, hval, hbits)
     end if
     nbad = 0
-    do i = 1, mesh%n_tets
+    do i = 1, mesh%n_cells
       do j = 1, 4
-        call translate(mesh%tet(i, j), mesh%tet_tag(i))
+        call translate(mesh%cell(i, j), mesh%cell_tag(i))
       end do
     end do
-    do i = 1, mesh%n_tris
+    do i = 1, mesh%n_facets
       do j = 1, 3
-        call translate(mesh%tri(i, j), ttag(i))
+        call translate(mesh%facet(i, j), ttag(i))
       end do
     end do
     if (nbad > 0) return
@@ -1048,9 +1054,9 @@ contains
 
     nbad = 0
     tags = ''
-    do i = 1, mesh%n_tets
+    do i = 1, mesh%n_cells
       do k = 1, 4
-        p(:, k) = mesh%x(mesh%tet(i, k), :)
+        p(:, k) = mesh%x(mesh%cell(i, k), :)
       end do
       a = p(:, 2) - p(:, 1)
       b = p(:, 3) - p(:, 1)
@@ -1065,11 +1071,11 @@ contains
       end do
       if (abs(v6) <= degenerate_tol * l2 * sqrt(l2)) then
         nbad = nbad + 1
-        if (nbad <= max_listed) tags = tags//' '//itoa(mesh%tet_tag(i))
+        if (nbad <= max_listed) tags = tags//' '//itoa(mesh%cell_tag(i))
       else if (v6 < 0.0_rk) then
-        t = mesh%tet(i, 2)
-        mesh%tet(i, 2) = mesh%tet(i, 3)
-        mesh%tet(i, 3) = t
+        t = mesh%cell(i, 2)
+        mesh%cell(i, 2) = mesh%cell(i, 3)
+        mesh%cell(i, 3) = t
         mesh%n_inverted = mesh%n_inverted + 1
       end if
     end do
@@ -1687,15 +1693,15 @@ contains
     type(gmsh_mesh_t), intent(inout) :: mesh
     if (allocated(mesh%node_tag)) deallocate(mesh%node_tag)
     if (allocated(mesh%x)) deallocate(mesh%x)
-    if (allocated(mesh%tet_tag)) deallocate(mesh%tet_tag)
-    if (allocated(mesh%tet)) deallocate(mesh%tet)
-    if (allocated(mesh%tet_group)) deallocate(mesh%tet_group)
-    if (allocated(mesh%tri)) deallocate(mesh%tri)
-    if (allocated(mesh%tri_group)) deallocate(mesh%tri_group)
+    if (allocated(mesh%cell_tag)) deallocate(mesh%cell_tag)
+    if (allocated(mesh%cell)) deallocate(mesh%cell)
+    if (allocated(mesh%cell_group)) deallocate(mesh%cell_group)
+    if (allocated(mesh%facet)) deallocate(mesh%facet)
+    if (allocated(mesh%facet_group)) deallocate(mesh%facet_group)
     if (allocated(mesh%groups)) deallocate(mesh%groups)
     mesh%n_nodes = 0
-    mesh%n_tets = 0
-    mesh%n_tris = 0
+    mesh%n_cells = 0
+    mesh%n_facets = 0
     mesh%n_groups = 0
     mesh%n_inverted = 0
   end subroutine clear_mesh

@@ -57,14 +57,14 @@ contains
       else
         group_part(ig) = ip
         ! a part without elements is a wrong group name or a mesh saved without it
-        if (.not. any(mesh%tet_group == ig)) call errs%add(deck_where(cfg, 'part', ip, 'group')// &
+        if (.not. any(mesh%cell_group == ig)) call errs%add(deck_where(cfg, 'part', ip, 'group')// &
           ': the physical volume group has no 4-node tetrahedra in '//trim(cfg%mesh%file)// &
           ' (volume groups: '//group_list(mesh, 3)//')')
       end if
     end do
     do ig = 1, mesh%n_groups
       if (mesh%groups(ig)%dim == 3 .and. group_part(ig) == 0 .and. find_group(mesh, mesh%groups(ig)%name, 3) == ig) then
-        if (any(mesh%tet_group == ig)) call errs%add(deck_where(cfg, 'mesh', 1, 'file')//": physical volume group '" &
+        if (any(mesh%cell_group == ig)) call errs%add(deck_where(cfg, 'mesh', 1, 'file')//": physical volume group '" &
           //trim(mesh%groups(ig)%name)//"' of "//trim(cfg%mesh%file)//' has elements but no &part gives it a material')
       end if
     end do
@@ -78,11 +78,11 @@ contains
     ! are kept as the ids.
     allocate(node_new(mesh%n_nodes), source=0)
     do a = 1, 4
-      node_new(mesh%tet(:,a)) = 1
+      node_new(mesh%cell(:,a)) = 1
     end do
     used = pack([(n, n = 1, mesh%n_nodes)], node_new /= 0)
     dom%n_nodes = size(used)
-    dom%n_elems = mesh%n_tets
+    dom%n_elems = mesh%n_cells
     allocate(keys(dom%n_nodes), perm(dom%n_nodes))
     call morton_keys(mesh%x(used,:), keys)
     call stable_sort_permutation(keys, perm)
@@ -96,24 +96,24 @@ contains
     deallocate(keys, perm)
     allocate(keys(dom%n_elems), perm(dom%n_elems), centroid(dom%n_elems,3), elem_order(dom%n_elems))
     do k = 1, 3
-      centroid(:,k) = 0.25_rk*(mesh%x(mesh%tet(:,1),k) + mesh%x(mesh%tet(:,2),k) &
-                             + mesh%x(mesh%tet(:,3),k) + mesh%x(mesh%tet(:,4),k))
+      centroid(:,k) = 0.25_rk*(mesh%x(mesh%cell(:,1),k) + mesh%x(mesh%cell(:,2),k) &
+                             + mesh%x(mesh%cell(:,3),k) + mesh%x(mesh%cell(:,4),k))
     end do
     call morton_keys(centroid, keys)
     deallocate(centroid)
     call stable_sort_permutation(keys, perm)
     ! then by material, keeping the curve order inside each material
     do e = 1, dom%n_elems
-      keys(e) = int(material_index(cfg, cfg%parts(group_part(mesh%tet_group(perm(e))))%material), i8)
+      keys(e) = int(material_index(cfg, cfg%parts(group_part(mesh%cell_group(perm(e))))%material), i8)
     end do
     call stable_sort_permutation(keys, elem_order)
     elem_order = perm(elem_order)
     deallocate(keys, perm)
-    dom%el_id = mesh%tet_tag(elem_order)
+    dom%el_id = mesh%cell_tag(elem_order)
     do a = 1, 4
-      dom%el_conn(:,a) = node_new(mesh%tet(elem_order,a))
+      dom%el_conn(:,a) = node_new(mesh%cell(elem_order,a))
     end do
-    deallocate(mesh%tet, mesh%tet_tag)
+    deallocate(mesh%cell, mesh%cell_tag)
 
     ! materials and parts
     dom%mat = cfg%materials
@@ -124,7 +124,7 @@ contains
     end do
     allocate(el_mass(dom%n_elems))
     do e = 1, dom%n_elems
-      dom%el_part(e) = group_part(mesh%tet_group(elem_order(e)))
+      dom%el_part(e) = group_part(mesh%cell_group(elem_order(e)))
       dom%el_mat(e) = material_index(cfg, cfg%parts(dom%el_part(e))%material)
       do a = 1, 4
         xe(a,:) = dom%nd_x0(:,dom%el_conn(e,a))
@@ -132,7 +132,7 @@ contains
       dom%el_vol0(e) = tet_volume(xe)
       el_mass(e) = dom%mat(dom%el_mat(e))%rho0*dom%el_vol0(e)   ! as init_state computes it
     end do
-    deallocate(mesh%tet_group, elem_order)
+    deallocate(mesh%cell_group, elem_order)
 
     ! (the corners are for the local domains' assembly only)
     call build_incidence(dom, corners=.false.)
@@ -369,10 +369,10 @@ contains
     logical, allocatable :: mark(:)
     integer :: t, a
     allocate(mark(mesh%n_nodes), source=.false.)
-    do t = 1, mesh%n_tris
-      if (mesh%tri_group(t) /= ig) cycle
+    do t = 1, mesh%n_facets
+      if (mesh%facet_group(t) /= ig) cycle
       do a = 1, 3
-        mark(mesh%tri(t,a)) = .true.
+        mark(mesh%facet(t,a)) = .true.
       end do
     end do
     ! a surface node that no tetrahedron uses has no mass: drop it
@@ -390,17 +390,17 @@ contains
     integer :: t, k, cnt
     normal = 0.0_rk; x0 = 0.0_rk; cnt = 0
     lo = huge(1.0_rk); hi = -huge(1.0_rk)
-    do t = 1, mesh%n_tris
-      if (mesh%tri_group(t) /= ig) cycle
-      a = mesh%x(mesh%tri(t,2),:) - mesh%x(mesh%tri(t,1),:)
-      b = mesh%x(mesh%tri(t,3),:) - mesh%x(mesh%tri(t,1),:)
+    do t = 1, mesh%n_facets
+      if (mesh%facet_group(t) /= ig) cycle
+      a = mesh%x(mesh%facet(t,2),:) - mesh%x(mesh%facet(t,1),:)
+      b = mesh%x(mesh%facet(t,3),:) - mesh%x(mesh%facet(t,1),:)
       c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
       ! orient consistently with the first triangle before summing
       if (dot_product(c, normal) < 0.0_rk) c = -c
       normal = normal + c
       do k = 1, 3
-        x0 = x0 + mesh%x(mesh%tri(t,k),:)
-        lo = min(lo, mesh%x(mesh%tri(t,k),:)); hi = max(hi, mesh%x(mesh%tri(t,k),:))
+        x0 = x0 + mesh%x(mesh%facet(t,k),:)
+        lo = min(lo, mesh%x(mesh%facet(t,k),:)); hi = max(hi, mesh%x(mesh%facet(t,k),:))
       end do
       cnt = cnt + 3
     end do
@@ -412,10 +412,10 @@ contains
     normal = normal/norm2(normal)
     x0 = x0/cnt
     ext = max(norm2(hi - lo), tiny(1.0_rk))
-    do t = 1, mesh%n_tris
-      if (mesh%tri_group(t) /= ig) cycle
+    do t = 1, mesh%n_facets
+      if (mesh%facet_group(t) /= ig) cycle
       do k = 1, 3
-        dev = max(dev, abs(dot_product(mesh%x(mesh%tri(t,k),:) - x0, normal))/ext)
+        dev = max(dev, abs(dot_product(mesh%x(mesh%facet(t,k),:) - x0, normal))/ext)
       end do
     end do
   end subroutine

@@ -76,9 +76,9 @@ contains
     type(gmsh_mesh_t), intent(in) :: m
     integer, intent(in) :: i
     real(rk) :: a(3), b(3), d(3)
-    a = m%x(m%tet(i, 2), :) - m%x(m%tet(i, 1), :)
-    b = m%x(m%tet(i, 3), :) - m%x(m%tet(i, 1), :)
-    d = m%x(m%tet(i, 4), :) - m%x(m%tet(i, 1), :)
+    a = m%x(m%cell(i, 2), :) - m%x(m%cell(i, 1), :)
+    b = m%x(m%cell(i, 3), :) - m%x(m%cell(i, 1), :)
+    d = m%x(m%cell(i, 4), :) - m%x(m%cell(i, 1), :)
     v = (a(1) * (b(2) * d(3) - b(3) * d(2)) - a(2) * (b(1) * d(3) - b(3) * d(1)) &
        + a(3) * (b(1) * d(2) - b(2) * d(1))) / 6.0_rk
   end function tet_volume
@@ -134,9 +134,9 @@ contains
     call check(t//'read', ok, err)
     if (.not. ok) return
 
-    call check(t//'counts', m%n_nodes == 5 .and. m%n_tets == 2 .and. m%n_tris == 4 &
-               .and. m%n_groups == 4, 'nodes '//itoa(m%n_nodes)//' tets '//itoa(m%n_tets)// &
-               ' tris '//itoa(m%n_tris)//' groups '//itoa(m%n_groups))
+    call check(t//'counts', m%n_nodes == 5 .and. m%n_cells == 2 .and. m%n_facets == 4 &
+               .and. m%n_groups == 4, 'nodes '//itoa(m%n_nodes)//' tets '//itoa(m%n_cells)// &
+               ' tris '//itoa(m%n_facets)//' groups '//itoa(m%n_groups))
     call check(t//'node_order', all(m%node_tag == [5, 7, 10, 20, 99]), ivec(m%node_tag))
     ! rows follow node_tag: 5, 7, 10, 20, 99
     xr(1, :) = [0, 1, 0]
@@ -145,18 +145,18 @@ contains
     xr(4, :) = [1, 0, 0]
     xr(5, :) = [1, 1, 1]
     call check(t//'coordinates', all(m%x == xr), 'coordinates do not follow sorted tags')
-    call check(t//'tet_order', all(m%tet_tag == [42, 101]), ivec(m%tet_tag))
+    call check(t//'tet_order', all(m%cell_tag == [42, 101]), ivec(m%cell_tag))
     ! tet 42 was written as 20 7 5 99 (inverted): expect 20 5 7 99
-    call check(t//'tet42_nodes', all(m%tet(1, :) == [4, 1, 2, 5]), ivec(m%tet(1, :)))
-    call check(t//'tet42_coords', all(m%x(m%tet(1, 1), :) == [1.0_rk, 0.0_rk, 0.0_rk]) .and. &
-               all(m%x(m%tet(1, 2), :) == [0.0_rk, 1.0_rk, 0.0_rk]) .and. &
-               all(m%x(m%tet(1, 3), :) == [0.0_rk, 0.0_rk, 1.0_rk]) .and. &
-               all(m%x(m%tet(1, 4), :) == [1.0_rk, 1.0_rk, 1.0_rk]), &
+    call check(t//'tet42_nodes', all(m%cell(1, :) == [4, 1, 2, 5]), ivec(m%cell(1, :)))
+    call check(t//'tet42_coords', all(m%x(m%cell(1, 1), :) == [1.0_rk, 0.0_rk, 0.0_rk]) .and. &
+               all(m%x(m%cell(1, 2), :) == [0.0_rk, 1.0_rk, 0.0_rk]) .and. &
+               all(m%x(m%cell(1, 3), :) == [0.0_rk, 0.0_rk, 1.0_rk]) .and. &
+               all(m%x(m%cell(1, 4), :) == [1.0_rk, 1.0_rk, 1.0_rk]), &
                'node coordinates of tet 42 wrong')
-    call check(t//'tet101_nodes', all(m%tet(2, :) == [3, 4, 1, 2]), ivec(m%tet(2, :)))
+    call check(t//'tet101_nodes', all(m%cell(2, :) == [3, 4, 1, 2]), ivec(m%cell(2, :)))
     call check(t//'n_inverted', m%n_inverted == 1, 'n_inverted = '//itoa(m%n_inverted))
     vol = 0.0_rk
-    do i = 1, m%n_tets
+    do i = 1, m%n_cells
       vol = vol + tet_volume(m, i)
     end do
     call check(t//'volumes_positive', tet_volume(m, 1) > 0.0_rk .and. tet_volume(m, 2) > 0.0_rk, &
@@ -172,12 +172,12 @@ contains
     if (gv > 0 .and. gb > 0 .and. g5 > 0) then
       call check(t//'group_tags', m%groups(gv)%tag == 1 .and. m%groups(gb)%tag == 2 .and. &
                  m%groups(g5)%tag == 5, 'physical tags wrong')
-      call check(t//'tet_group', all(m%tet_group == gv), ivec(m%tet_group))
-      call check(t//'tri_groups', count(m%tri_group == gb) == 2 .and. count(m%tri_group == g5) == 2, &
-                 ivec(m%tri_group))
+      call check(t//'tet_group', all(m%cell_group == gv), ivec(m%cell_group))
+      call check(t//'tri_groups', count(m%facet_group == gb) == 2 .and. count(m%facet_group == g5) == 2, &
+                 ivec(m%facet_group))
       ! rows ordered by (element tag, group): tri 3 = nodes 10 20 5 in "bottom"
-      call check(t//'tri_first_row', all(m%tri(1, :) == [3, 4, 1]) .and. m%tri_group(1) == gb, &
-                 ivec(m%tri(1, :))//' group '//itoa(m%tri_group(1)))
+      call check(t//'tri_first_row', all(m%facet(1, :) == [3, 4, 1]) .and. m%facet_group(1) == gb, &
+                 ivec(m%facet(1, :))//' group '//itoa(m%facet_group(1)))
     end if
   end subroutine test_two_tets
 
@@ -205,8 +205,8 @@ contains
       return
     end if
     call check('two_tets_v41_equals_v22', all(a%node_tag == b%node_tag) .and. all(a%x == b%x) &
-               .and. all(a%tet == b%tet) .and. all(a%tet_tag == b%tet_tag) .and. &
-               all(a%tri == b%tri) .and. all(a%tri_group == b%tri_group) .and. &
+               .and. all(a%cell == b%cell) .and. all(a%cell_tag == b%cell_tag) .and. &
+               all(a%facet == b%facet) .and. all(a%facet_group == b%facet_group) .and. &
                all(a%groups%tag == b%groups%tag) .and. all(a%groups%name == b%groups%name), &
                'v41 and v22 readings differ')
   end subroutine test_formats_agree
@@ -221,7 +221,7 @@ contains
     call check('scale_applied', all(b%x == a%x * 1.0e-3_rk) .and. &
                all(b%x(5, :) == [1.0e-3_rk, 1.0e-3_rk, 1.0e-3_rk]), &
                'x(99) = '//r2s(b%x(5, 1)))
-    call check('scale_orientation', b%n_inverted == 1 .and. all(b%tet == a%tet), &
+    call check('scale_orientation', b%n_inverted == 1 .and. all(b%cell == a%cell), &
                'orientation changed with scale')
   end subroutine test_scale
 
@@ -234,7 +234,7 @@ contains
     call check('zero_volume_message', contains_text(err, 'element tags: 17') .and. &
                contains_text(err, 'zero_volume.msh') .and. .not. contains_text(err, ' 3 '), &
                'message: '//err)
-    call check('zero_volume_mesh_empty', m%n_tets == 0 .and. .not. allocated(m%x), &
+    call check('zero_volume_mesh_empty', m%n_cells == 0 .and. .not. allocated(m%x), &
                'mesh not cleared on failure')
   end subroutine test_zero_volume
 
@@ -353,7 +353,7 @@ contains
     path = trim(tmp_dir)//'/two_groups.msh'
     call write_text(path, msh22(nodes, [character(len=40) :: tet, '1 4 2 2 1 1 2 3 4', '2 4 2 2 1 2 3 4 8']))
     call gmsh_read(path, 1.0_rk, m, ok, err)
-    call check('same_tet_in_two_groups_read', ok .and. m%n_tets == 2, 'message: '//err)
+    call check('same_tet_in_two_groups_read', ok .and. m%n_cells == 2, 'message: '//err)
   end subroutine test_lost_elements
 
   !> A directory or a FIFO is refused before it is opened (a FIFO would
@@ -424,7 +424,7 @@ contains
       call check('cube_read_'//trim(names(k)), ok(k), err)
       if (.not. ok(k)) return
       vol(k) = 0.0_rk
-      do i = 1, m(k)%n_tets
+      do i = 1, m(k)%n_cells
         vol(k) = vol(k) + tet_volume(m(k), i)
       end do
       call check('cube_volume_'//trim(names(k)), abs(vol(k) - 1.0_rk) < 1.0e-12_rk, r2s(vol(k)))
@@ -433,14 +433,14 @@ contains
       call check('cube_groups_'//trim(names(k)), gz0 > 0 .and. gz1 > 0 .and. &
                  group_index(m(k), 3, 'cube') > 0, 'zmin/zmax/cube not all found')
       if (gz0 == 0 .or. gz1 == 0) return
-      nz0(k) = count(m(k)%tri_group == gz0)
-      nz1(k) = count(m(k)%tri_group == gz1)
+      nz0(k) = count(m(k)%facet_group == gz0)
+      nz1(k) = count(m(k)%facet_group == gz1)
       ! every zmin triangle lies on z = 0 and every zmax one on z = 1
       zerr = 0.0_rk
-      do i = 1, m(k)%n_tris
-        if (m(k)%tri_group(i) == gz0) zerr = max(zerr, maxval(abs(m(k)%x(m(k)%tri(i, :), 3))))
-        if (m(k)%tri_group(i) == gz1) &
-          zerr = max(zerr, maxval(abs(m(k)%x(m(k)%tri(i, :), 3) - 1.0_rk)))
+      do i = 1, m(k)%n_facets
+        if (m(k)%facet_group(i) == gz0) zerr = max(zerr, maxval(abs(m(k)%x(m(k)%facet(i, :), 3))))
+        if (m(k)%facet_group(i) == gz1) &
+          zerr = max(zerr, maxval(abs(m(k)%x(m(k)%facet(i, :), 3) - 1.0_rk)))
       end do
       call check('cube_surface_nodes_'//trim(names(k)), nz0(k) > 0 .and. nz1(k) > 0 .and. &
                  zerr < 1.0e-12_rk, 'zmin '//itoa(nz0(k))//' zmax '//itoa(nz1(k))// &
@@ -448,16 +448,16 @@ contains
     end do
     same = .true.
     nn = [(m(k)%n_nodes, k = 1, 3)]
-    nt = [(m(k)%n_tets, k = 1, 3)]
+    nt = [(m(k)%n_cells, k = 1, 3)]
     do k = 2, 3
-      same = same .and. m(k)%n_nodes == m(1)%n_nodes .and. m(k)%n_tets == m(1)%n_tets .and. &
+      same = same .and. m(k)%n_nodes == m(1)%n_nodes .and. m(k)%n_cells == m(1)%n_cells .and. &
              nz0(k) == nz0(1) .and. nz1(k) == nz1(1) .and. abs(vol(k) - vol(1)) < 1.0e-12_rk
     end do
     call check('cube_formats_agree', same, 'nodes '//ivec(nn)//' tets '//ivec(nt)// &
                ' zmin '//ivec(nz0)//' zmax '//ivec(nz1))
     if (same) then
-      call check('cube_connectivity_agree', all(m(1)%tet == m(2)%tet) .and. &
-                 all(m(1)%tet == m(3)%tet) .and. all(m(1)%node_tag == m(3)%node_tag) .and. &
+      call check('cube_connectivity_agree', all(m(1)%cell == m(2)%cell) .and. &
+                 all(m(1)%cell == m(3)%cell) .and. all(m(1)%node_tag == m(3)%node_tag) .and. &
                  maxval(abs(m(1)%x - m(2)%x)) < 1.0e-15_rk, 'connectivity or coordinates differ')
     end if
 

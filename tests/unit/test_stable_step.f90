@@ -104,8 +104,8 @@ contains
     call check('mesh_read '//path, ok, msg)
     if (.not. ok) call check_summary()
     n = mesh%n_nodes
-    ne = mesh%n_tets
-    tet = mesh%tet
+    ne = mesh%n_cells
+    tet = mesh%cell
     x0 = mesh%x
     x = mesh%x
   end subroutine
