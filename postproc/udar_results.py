@@ -25,7 +25,7 @@ Field file layout (written by the solver; SI units throughout):
 
 * root attributes ``program`` ("udar"), ``version``, ``title``, ``deck``, ``n_nodes``, ``n_elems``
 * ``/mesh/node_id`` (n_nodes) int32, ``/mesh/elem_id`` (n_elems) int32,
-  ``/mesh/part_id`` (n_elems) int32, ``/mesh/connectivity`` (n_elems, 4) int32 0-based node
+  ``/mesh/part_id`` (n_elems) int32, ``/mesh/connectivity`` (n_elems, 4) (2D: (n_elems, 3) triangles) int32 0-based node
   indices, ``/mesh/x0`` (n_nodes, 3) float64
 * ``/steps/000000``, ``/steps/000001``, ... with attributes ``time`` (s) and ``cycle``;
   dataset ``coordinates`` (n_nodes, 3) and field datasets: node vectors such as ``velocity``
@@ -440,8 +440,9 @@ class FieldFile:
         if conn.ndim == 2 and conn.shape[0] == 4 and conn.shape[1] != 4:
             warnings.warn("%s: /mesh/connectivity stored transposed; using its transpose" % self.path)
             conn = conn.T.copy()
-        if conn.ndim != 2 or conn.shape[1] != 4:
-            self._fail("/mesh/connectivity has shape %s, expected (n_elems, 4)" % (conn.shape,))
+        if conn.ndim != 2 or conn.shape[1] not in (3, 4):
+            self._fail("/mesh/connectivity has shape %s, expected (n_elems, 4) or, 2D, (n_elems, 3)"
+                       % (conn.shape,))
         if conn.dtype.kind not in "iu":
             self._fail("/mesh/connectivity has type %s, expected integers" % conn.dtype)
         self.n_nodes = int(self.attrs.get("n_nodes", x0.shape[0]))

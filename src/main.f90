@@ -11,7 +11,7 @@ program udar
   use udar_log, only: log_info, log_warn, log_to_stderr
   use udar_files, only: is_directory, can_write_into, nearest_existing_parent
   use udar_version, only: program_version
-  use udar_config, only: config_t
+  use udar_config, only: config_t, geometry_solid
   use udar_input_errors, only: input_errors_t, input_errors_report
   use udar_deck, only: deck_read, deck_where
   use udar_gmsh, only: gmsh_mesh_t, gmsh_read
@@ -19,7 +19,7 @@ program udar
   use udar_memory, only: peak_rss_bytes, rss_bytes
   use udar_setup, only: build_domain, init_state, count_bodies
   use udar_run, only: run_simulation, run_result_t
-  use udar_element_driver, only: element_costs
+  use udar_element_passes, only: element_costs
   use udar_checkpoint, only: checkpoint_model_hash, checkpoint_mesh_hash, checkpoint_latest
   use udar_contact_model, only: contact_t, any_eroding
   use udar_contact_setup, only: build_contact
@@ -253,18 +253,22 @@ contains
   !> The deck's mesh read into the global mesh domain dom and the contact
   !> surfaces (errors into errs); line: what the log says of the mesh.
   subroutine read_model()
-    call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg)
+    ! a 2D calculation reads triangles in surface groups and lines in curve groups
+    call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg, dim=merge(3, 2, cfg%mesh%geometry == geometry_solid))
     if (.not. ok) then
       call errs%add(deck_where(cfg, 'mesh', 1, 'file')//': '//msg)
     else
       dom = domain_t()
       contacts = contact_t()
       call build_domain(cfg, mesh, dom, errs)
-      if (errs%count() == 0) call build_contact(cfg, mesh, dom, contacts, errs)
-      ! the eroding surfaces with each face's element (its fourth corner)
-      if (errs%count() == 0) call contact_eroding_surfaces(contacts)
+      if (mesh%dim == 3) then
+        if (errs%count() == 0) call build_contact(cfg, mesh, dom, contacts, errs)
+        ! the eroding surfaces with each face's element (its fourth corner)
+        if (errs%count() == 0) call contact_eroding_surfaces(contacts)
+      end if
       write(line, '(a,i0,a,i0,a,i0,a)') 'mesh '//trim(cfg%mesh%file)//': ', mesh%n_nodes, ' nodes, ', &
-        mesh%n_cells, ' tetrahedra, ', mesh%n_inverted, ' reoriented at read time'
+        mesh%n_cells, trim(merge(' tetrahedra', ' triangles ', mesh%dim == 3))//', ', mesh%n_inverted, &
+        ' reoriented at read time'
     end if
     mesh = gmsh_mesh_t()     ! the domain and the contact surfaces hold all that is needed of it
   end subroutine

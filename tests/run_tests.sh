@@ -80,6 +80,7 @@ run_test "cli/validation_meshes" tests/cli/validation_meshes.sh
 run_test "unit/test_distribution_mpi_np3" mpirun -np 3 build/debug/tests/test_distribution_mpi "$ROOT/tests/unit" "$WORK"
 run_test "cli/field_output_ranks" tests/cli/field_output_ranks.sh build/debug/tests/test_field_output_mpi "$WORK/field_output_ranks"
 run_test "cli/ranks_elastic_bar" tests/cli/rank_invariance.sh bin/udar elastic_bar
+run_test "cli/ranks_elastic_bar_2d" tests/cli/rank_invariance.sh bin/udar elastic_bar_2d
 run_test "cli/ranks_coulomb_wall" tests/cli/rank_invariance.sh bin/udar-debug coulomb_wall
 run_test "cli/more_ranks_than_elements" tests/cli/more_ranks_than_elements.sh bin/udar-debug
 run_test "cli/ranks_plate_impact" tests/cli/rank_invariance.sh bin/udar plate_impact
@@ -114,6 +115,7 @@ run_test "cli/slurm_chain" tests/cli/slurm_chain.sh bin/udar
 run_test "cli/slurm_real" tests/cli/slurm_real.sh bin/udar
 # ---- regressions against analytic and experimental references
 run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
+run_test "regression/elastic_bar_2d" regression elastic_bar_2d bin/udar-debug
 run_test "regression/plate_impact" regression plate_impact bin/udar-debug
 run_test "regression/coulomb_wall" regression coulomb_wall bin/udar-debug
 run_test "regression/blocks_head_on" regression blocks_head_on bin/udar-debug

@@ -29,7 +29,8 @@ module udar_deck
        strength_johnson_cook, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
        wall_coulomb, &
        jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
-       overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook
+       overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook, &
+       geometry_solid, geometry_axisymmetric, geometry_plane_strain
   use udar_input_errors, only: input_errors_t
   use udar_file_kind, only: not_regular_file
   use udar_log, only: log_warn
@@ -87,6 +88,8 @@ module udar_deck
   character(len=20), parameter :: fracture_words(3) = [character(len=20) :: 'none', 'plastic_strain', &
        'johnson_cook']
   integer, parameter :: fracture_codes(3) = [fracture_none, fracture_plastic_strain, fracture_johnson_cook]
+  character(len=20), parameter :: geometry_words(3) = [character(len=20) :: 'solid', 'axisymmetric', 'plane_strain']
+  integer, parameter :: geometry_codes(3) = [geometry_solid, geometry_axisymmetric, geometry_plane_strain]
 
   ! ------------------------------------------------------ the variable table
   !> One deck variable: for unknown-name suggestions, read-failure
@@ -117,6 +120,7 @@ module udar_deck
        var_t('run', 'rebalance_imbalance', 'r', 1, 0, '-', '>= 0'), &
        var_t('mesh', 'file', 'c', 1, max_path_len, '', ''), &
        var_t('mesh', 'scale', 'r', 1, 0, '-', '> 0'), &
+       var_t('mesh', 'geometry', 'c', 1, code_len, '', ''), &
        var_t('material', 'name', 'c', 1, max_name_len, '', ''), &
        var_t('material', 'rho0', 'r', 1, 0, 'kg/m3', '> 0'), &
        var_t('material', 'eos', 'c', 1, code_len, '', ''), &
@@ -226,6 +230,7 @@ module udar_deck
     character(len=code_len) :: initial_overlap = 'report'
     character(len=code_len) :: fracture = 'none'
     character(len=code_len) :: tet_formulation = 'stabilised'
+    character(len=code_len) :: geometry = 'solid'
   end type
 
   !> One assignment as the deck wrote it.
@@ -315,12 +320,13 @@ contains
     character(len=:), allocatable :: text
     character(len=code_len), allocatable :: eos_txt(:), str_txt(:), kind_txt(:), wall_txt(:), rate_txt(:), &
                                             weights_txt(:), overlap_txt(:), frac_txt(:)
-    character(len=code_len) :: tet_txt
+    character(len=code_len) :: tet_txt, geometry_txt
     integer :: ios, k, j, ig, gk, first(n_group_kinds), cnt(n_group_kinds), nread(n_group_kinds)
     logical :: misspelled(n_group_kinds)
 
     cfg%deck_file = path
     tet_txt = v%tet_formulation     ! the default, when the deck has no &numerics
+    geometry_txt = v%geometry
     ctx%path = trim(path)
     allocate(ctx%d(0))
 
@@ -400,6 +406,7 @@ contains
         cfg%run = v%run
       case (g_mesh)
         cfg%mesh = v%mesh
+        geometry_txt = v%geometry
       case (g_material)
         cfg%materials(k) = v%mat
         eos_txt(k) = v%eos
@@ -429,7 +436,7 @@ contains
     associate (runs => tr%g(g_run)%i, meshes => tr%g(g_mesh)%i, mats => tr%g(g_material)%i, &
                parts => tr%g(g_part)%i, bnds => tr%g(g_boundary)%i, cons => tr%g(g_contact)%i)
       if (runs(1)%line > 0) call check_run(ctx, runs(1), cfg)
-      if (meshes(1)%line > 0) call check_mesh(ctx, meshes(1), cfg%mesh, trim(path))
+      if (meshes(1)%line > 0) call check_mesh(ctx, meshes(1), cfg%mesh, trim(path), geometry_txt)
       do k = 1, size(mats)
         call check_material(ctx, mats(k), cfg, k, eos_txt(k), str_txt(k), rate_txt(k), frac_txt(k), &
                             mats(1:k-1))
@@ -615,7 +622,7 @@ contains
                      r%rebalance_imbalance)
       end associate
     case ('mesh')
-      call mesh_nml(v%mesh%file, v%mesh%scale)
+      call mesh_nml(v%mesh%file, v%mesh%scale, v%geometry)
     case ('material')
       associate(m => v%mat)
         call material_nml(m%name, m%rho0, v%eos, m%bulk_modulus, m%c0, m%s, m%gamma0, &
@@ -657,10 +664,10 @@ contains
       read(text, nml=run, iostat=ios, iomsg=msg)
     end subroutine run_nml
 
-    subroutine mesh_nml(file, scale)
-      character(len=*), intent(inout) :: file
+    subroutine mesh_nml(file, scale, geometry)
+      character(len=*), intent(inout) :: file, geometry
       real(rk), intent(inout) :: scale
-      namelist /mesh/ file, scale
+      namelist /mesh/ file, scale, geometry
       read(text, nml=mesh, iostat=ios, iomsg=msg)
     end subroutine mesh_nml
 
@@ -744,16 +751,17 @@ contains
     end associate
   end subroutine check_run
 
-  !> Besides the ranges: the mesh file must exist; a relative name is taken
+  !> Besides the ranges: the geometry is one of the words; the mesh file must exist; a relative name is taken
   !> from the deck's folder, and the absolute path is stored in m%file.
-  subroutine check_mesh(ctx, inst, m, deck_path)
+  subroutine check_mesh(ctx, inst, m, deck_path, geometry_txt)
     type(ctx_t), intent(inout) :: ctx
     type(inst_t), intent(in) :: inst
     type(mesh_cfg_t), intent(inout) :: m
-    character(len=*), intent(in) :: deck_path
+    character(len=*), intent(in) :: deck_path, geometry_txt
     character(len=:), allocatable :: f
-    logical :: exists
+    logical :: exists, ok
 
+    ok = choice(ctx, inst, 'geometry', geometry_txt, geometry_words, geometry_codes, m%geometry)
     call need(ctx, inst, 'scale', positive(m%scale), '> 0 (e.g. 0.001 for a mesh in mm)')
     if (is_bad(inst, 'file')) return
     if (len_trim(m%file) == 0) then
@@ -1483,7 +1491,7 @@ contains
                 val(r%rebalance_imbalance)]
       end associate
     case (g_mesh)
-      vals = [val_t(c=cfg%mesh%file), val(cfg%mesh%scale)]
+      vals = [val_t(c=cfg%mesh%file), val(cfg%mesh%scale), choice_val(cfg%mesh%geometry, geometry_words, geometry_codes)]
     case (g_material)
       associate(m => cfg%materials(k))
         ! where a bulk modulus the deck did not give comes from

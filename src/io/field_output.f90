@@ -85,6 +85,7 @@ module udar_field_output
     character(len=:), allocatable :: h5_ref ! h5 base name, as referenced from the .xmf
     character(len=:), allocatable :: title
     integer(ik) :: n_nodes = 0, n_elems = 0 ! global
+    integer :: corners = 4                  ! nodes per element: 4 tetrahedra, 3 triangles (2D)
     type(rows_t) :: node_rows, elem_rows    ! this rank's part
     integer :: n_steps = 0                  ! committed steps
     type(step_rec_t), allocatable :: steps(:)
@@ -152,8 +153,8 @@ contains
       errmsg = 'field_output: node_id must have size(node_gidx) rows'
     else if (size(elem_id) /= ne) then
       errmsg = 'field_output: elem_id must have size(elem_gidx) rows'
-    else if (any(shape(conn) /= [ne, 4])) then
-      errmsg = 'field_output: conn must have shape (size(elem_gidx),4)'
+    else if (size(conn, 1) /= ne .or. (size(conn, 2) /= 4 .and. size(conn, 2) /= 3)) then
+      errmsg = 'field_output: conn must have shape (size(elem_gidx),4) or (size(elem_gidx),3)'
     else if (size(part_id) /= ne) then
       errmsg = 'field_output: part_id must have size(elem_gidx) rows'
     else if (any(shape(x0) /= [nn, 3])) then
@@ -164,6 +165,7 @@ contains
     if (len(errmsg) > 0) return
 
     call init_writer(w, h5_path, xmf_path, title, n_nodes_global, n_elems_global, nrows, erows)
+    w%corners = size(conn, 2)
 
     call open_file(w, .true., ok, errmsg)
     if (.not. ok) return
@@ -197,14 +199,14 @@ contains
       if (ok) call write_data(w, gid, 'elem_id', on_elems, 0, ok, errmsg, ints=elem_id)
       if (ok) call write_data(w, gid, 'part_id', on_elems, 0, ok, errmsg, ints=part_id)
       if (ok) then
-        ! 0-based and transposed: C-order (n_elems,4) is what XDMF reads.
-        allocate(ibuf(4, ne))
-        do j = 1, 4
+        ! 0-based and transposed: C-order (n_elems,corners) is what XDMF reads.
+        allocate(ibuf(w%corners, ne))
+        do j = 1, w%corners
           do i = 1, ne
             ibuf(j, i) = conn(i, j) - 1_ik
           end do
         end do
-        call write_data(w, gid, 'connectivity', on_elems, 4, ok, errmsg, ints=ibuf)
+        call write_data(w, gid, 'connectivity', on_elems, w%corners, ok, errmsg, ints=ibuf)
         deallocate(ibuf)
       end if
       if (ok) call write_vector(w, gid, 'x0', x0, ok, errmsg)
@@ -231,7 +233,7 @@ contains
   !> /provenance are left as they are.  The mesh sizes in the file must be
   !> n_nodes_global and n_elems_global; node_gidx/elem_gidx as for fw_open.
   subroutine fw_reopen(w, h5_path, xmf_path, n_nodes_global, n_elems_global, node_gidx, elem_gidx, &
-                       keep_steps, title, ok, errmsg)
+                       keep_steps, title, ok, errmsg, corners)
     type(field_writer_t), intent(inout) :: w
     character(len=*), intent(in) :: h5_path, xmf_path
     integer(ik), intent(in) :: n_nodes_global, n_elems_global
@@ -240,6 +242,7 @@ contains
     character(len=*), intent(in) :: title
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
+    integer, intent(in), optional :: corners   !< nodes per element (default 4), as fw_open had them
 
     type(rows_t) :: nrows, erows
     type(step_rec_t) :: rec
@@ -263,6 +266,7 @@ contains
     end if
 
     call init_writer(w, h5_path, xmf_path, title, n_nodes_global, n_elems_global, nrows, erows)
+    if (present(corners)) w%corners = corners
     call open_file(w, .false., ok, errmsg)
     if (.not. ok) return
 
@@ -1041,10 +1045,11 @@ contains
         if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
           '        <Time Value="'//trim(adjustl(st))//'"/>'
         if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
-          '        <Topology TopologyType="Tetrahedron" NumberOfElements="'//trim(se)// &
-          '" NodesPerElement="4">'
+          '        <Topology TopologyType="'//trim(merge('Tetrahedron', 'Triangle   ', w%corners == 4))// &
+          '" NumberOfElements="'//trim(se)//'" NodesPerElement="'//itoa(w%corners)//'">'
         if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
-          '          <DataItem Dimensions="'//trim(se)//' 4" NumberType="Int" Precision="4" Format="HDF">'// &
+          '          <DataItem Dimensions="'//trim(se)//' '//itoa(w%corners)// &
+          '" NumberType="Int" Precision="4" Format="HDF">'// &
           h5//':/mesh/connectivity</DataItem>'
         if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '        </Topology>'
         if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '        <Geometry GeometryType="XYZ">'

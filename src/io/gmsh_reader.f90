@@ -3,8 +3,10 @@
 !> The whole file is read into memory once and parsed with a byte cursor.
 !> This is much faster than formatted I/O on large meshes and lets the ASCII
 !> and binary variants share the section logic.  Only what the solver needs
-!> is kept: linear tetrahedra in physical volume groups and linear triangles
-!> in physical surface groups.  Errors are returned, never printed.
+!> is kept: for a 3D mesh, linear tetrahedra in physical volume groups and
+!> linear triangles in physical surface groups; for a 2D one (plane z = 0),
+!> linear triangles in physical surface groups and 2-node lines in physical
+!> curve groups.  Errors are returned, never printed.
 module udar_gmsh
   use, intrinsic :: iso_fortran_env, only: int32, int64
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -41,7 +43,18 @@ module udar_gmsh
   end type gmsh_mesh_t
 
   integer, parameter :: fmt_v22 = 22, fmt_v41 = 41
-  integer, parameter :: type_tri3 = 2, type_tet4 = 4
+  ! By dimension k = 1, 2, 3: the linear simplex kept (gmsh type), its name,
+  ! the entity it meshes and its measure, for messages (simplex_plural(k)(8:)
+  ! is the plural without the node count).
+  integer, parameter :: linear_type(3) = [1, 2, 4]
+  character(len=*), parameter :: simplex_name(3) = [character(len=11) :: &
+       'line', 'triangle', 'tetrahedron']
+  character(len=*), parameter :: simplex_plural(3) = [character(len=17) :: &
+       '2-node lines', '3-node triangles', '4-node tetrahedra']
+  character(len=*), parameter :: entity_name(3) = [character(len=7) :: 'curve', 'surface', 'volume']
+  character(len=*), parameter :: physical_cmd(3) = [character(len=16) :: &
+       'Physical Curve', 'Physical Surface', 'Physical Volume']
+  character(len=*), parameter :: measure_name(3) = [character(len=6) :: 'length', 'area', 'volume']
   integer, parameter :: max_listed = 20     ! element tags listed in an error message
   ! sizes of binary MSH 4.1 values
   integer(i8), parameter :: int_bytes = 4, size_bytes = 8, real_bytes = 8
@@ -67,7 +80,7 @@ module udar_gmsh
     character(len=:), allocatable :: msg
   end type cursor_t
 
-  !> Surfaces or volumes of a MSH 4.1 $Entities section.
+  !> Curves, surfaces or volumes of a MSH 4.1 $Entities section.
   type :: entity_list_t
     integer :: n = 0
     integer, allocatable :: tag(:)
@@ -77,7 +90,7 @@ module udar_gmsh
     integer, allocatable :: sidx(:)
   end type entity_list_t
 
-  !> Elements of one kind (tets or triangles) as read, before tags are resolved.
+  !> Elements of one kind (lines, triangles or tets) as read, before tags are resolved.
   type :: elem_list_t
     integer :: nv = 0                         ! nodes per element
     integer :: n = 0
@@ -92,11 +105,13 @@ module udar_gmsh
     integer :: n_names = 0
     integer, allocatable :: name_dim(:), name_tag(:)
     character(len=max_name_len), allocatable :: name_str(:)
-    type(entity_list_t) :: surf, vol
+    integer :: dim = 3                        ! of the mesh asked for (2 or 3)
+    type(entity_list_t) :: ents(3)            ! curves, surfaces, volumes
     integer :: nn = 0
     integer, allocatable :: ntag(:)
     real(rk), allocatable :: nx(:,:)          ! (3,nn) as in the file
-    type(elem_list_t) :: tets = elem_list_t(nv=4), tris = elem_list_t(nv=3)
+    ! lines, triangles, tets: those of dimensions dim-1 and dim are kept
+    type(elem_list_t) :: elems(3) = [elem_list_t(nv=2), elem_list_t(nv=3), elem_list_t(nv=4)]
     ! MSH 2.2: groups used by elements of other types, so that the group list
     ! does not depend on the format (4.1 gets them from $Entities)
     integer :: n_keys = 0
@@ -109,14 +124,16 @@ contains
   !  Public entry point
   ! ==========================================================================
 
-  !> Read a gmsh mesh file.  On failure ok is .false., mesh is empty and
-  !> errmsg names the file and the problem.
-  subroutine gmsh_read(path, scale, mesh, ok, errmsg)
+  !> Read a gmsh mesh file as a mesh of dimension dim (3, the default:
+  !> tetrahedra; 2: triangles in the plane z = 0).  On failure ok is .false.,
+  !> mesh is empty and errmsg names the file and the problem.
+  subroutine gmsh_read(path, scale, mesh, ok, errmsg, dim)
     character(len=*), intent(in) :: path
     real(rk), intent(in) :: scale
     type(gmsh_mesh_t), intent(out) :: mesh
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
+    integer, intent(in), optional :: dim
 
     type(cursor_t) :: c
     type(raw_t) :: raw
@@ -128,6 +145,12 @@ contains
       errmsg = 'gmsh_read: '//trim(path)//': scale factor must be positive and finite'
       return
     end if
+    if (present(dim)) raw%dim = dim
+    if (raw%dim /= 2 .and. raw%dim /= 3) then
+      errmsg = 'gmsh_read: '//trim(path)//': mesh dimension '//itoa(raw%dim)//' asked for (must be 2 or 3)'
+      return
+    end if
+    mesh%dim = raw%dim
 
     call load_file(path, c)
     if (.not. c%bad) call parse_file(c, raw)
@@ -401,7 +424,6 @@ contains
     integer(i8) :: cnt(4), np
     integer(i8) :: i
     integer :: k
-    type(entity_list_t) :: curves
 
     do k = 1, 4
       call rd_size(c, cnt(k), 'entity counts')
@@ -419,9 +441,9 @@ contains
       if (c%bad) return
       call skip_values(c, np, int_bytes, 'point entity physical tags')
     end do
-    call read_entity_list(c, cnt(2), curves)
-    call read_entity_list(c, cnt(3), raw%surf)
-    call read_entity_list(c, cnt(4), raw%vol)
+    do k = 1, 3
+      call read_entity_list(c, cnt(k+1), raw%ents(k))
+    end do
   end subroutine parse_entities
 
   !> Curves, surfaces or volumes: tag, bounding box, physical tags, bounding entities.
@@ -516,7 +538,7 @@ contains
     type(cursor_t), intent(inout) :: c
     type(raw_t), intent(inout) :: raw
     integer(i8) :: nblocks, nelem, nb, b, i
-    integer :: edim, etag, etype, nn, tdim, i1
+    integer :: edim, etag, etype, nn, tdim, i1, k
 
     call rd_counts(c, 'element', nblocks, nelem)
     if (c%bad) return
@@ -532,17 +554,14 @@ contains
         return
       end if
       call element_info(etype, nn, tdim)
-      if (etype == type_tet4 .and. edim == 3) then
-        call read_block(raw%tets)
-      else if (etype == type_tri3 .and. edim == 2) then
-        call read_block(raw%tris)
-      else if (nb > 0 .and. (tdim == 3 .or. tdim < 0 .or. edim == 3)) then
-        ! a volume element that is not a linear tet, or a type gmsh does not
-        ! have: skipping it would lose part of the body without a word
+      k = element_fate(etype, tdim, edim, raw%dim)
+      if (k > 0) then
+        call read_block(raw%elems(k))
+      else if (k < 0 .and. nb > 0) then
         call rd_tag(c, i1, 'element tag')
-        if (.not. c%bad) call fail(c, bad_element_text(i1, etype, tdim))
+        if (.not. c%bad) call fail(c, bad_element_text(i1, etype, tdim, edim, raw%dim))
       else
-        ! points, lines and other surface elements: not needed
+        ! points and other lower-dimensional elements: not needed
         if (nn > 0) then
           call skip_values(c, nb * (1 + nn), size_bytes, 'element data')
         else if (.not. c%binary) then
@@ -608,7 +627,7 @@ contains
     type(cursor_t), intent(inout) :: c
     type(raw_t), intent(inout) :: raw
     integer(i8) :: nelem, i
-    integer :: etag, etype, ntags, phys, v, j, nn, tdim
+    integer :: etag, etype, ntags, phys, v, j, nn, tdim, k
 
     call get_i8(c, nelem, 'number of elements')
     if (c%bad) return
@@ -631,19 +650,15 @@ contains
         if (j == 1) phys = abs(v)
       end do
       if (c%bad) return
-      if (etype == type_tet4) then
-        call add_element(raw%tets)
-      else if (etype == type_tri3) then
-        call add_element(raw%tris)
+      call element_info(etype, nn, tdim)
+      k = element_fate(etype, tdim, tdim, raw%dim)
+      if (k > 0) then
+        call add_element(raw%elems(k))
+      else if (k < 0) then
+        call fail(c, bad_element_text(etag, etype, tdim, tdim, raw%dim))
+        return
       else
-        call element_info(etype, nn, tdim)
-        if (tdim == 3 .or. tdim < 0) then
-          ! a volume element that is not a linear tet, or a type gmsh does
-          ! not have: skipping it would lose part of the body without a word
-          call fail(c, bad_element_text(etag, etype, tdim))
-          return
-        end if
-        if (phys /= 0 .and. tdim >= 2) then
+        if (phys /= 0 .and. tdim == raw%dim - 1) then
           if (.not. allocated(raw%keys)) allocate(raw%keys(16))
           if (raw%n_keys == 0) then
             call push_key(raw%keys, raw%n_keys, tdim, phys)
@@ -676,6 +691,9 @@ contains
   !  Building the mesh from the raw data
   ! ==========================================================================
 
+  !> The mesh of dimension raw%dim: its cells are the elements of
+  !> raw%elems(dim) in physical groups of that dimension, its facets those of
+  !> raw%elems(dim-1) in physical groups of dimension dim-1.
   subroutine build_mesh(raw, scale, mesh, msg)
     type(raw_t), intent(inout) :: raw
     real(rk), intent(in) :: scale
@@ -686,41 +704,44 @@ contains
     integer, allocatable :: perm(:), keep(:), kgrp(:), rows(:), rgrp(:), map(:), ttag(:)
     integer, allocatable :: hkey(:), hval(:)
     integer :: hbits
-    integer :: i, j, m, ng, e, phys, g, nkeep, nbad, nrows
+    integer :: i, j, k, m, ng, e, phys, g, nkeep, nbad, nrows, dim, kf
     integer :: last_ref, last_g
     integer(i8) :: tmin, tmax
+    real(rk) :: extent
     logical :: dense
     character(len=:), allocatable :: tags
 
     msg = ''
+    dim = raw%dim
+    kf = dim - 1                ! the facets' dimension
     ! an element tag names one element: two different elements under one tag
     ! would be merged into one below (the later one lost)
     call duplicate_tags(raw, msg)
     if (len(msg) > 0) return
     ! a MSH 4.1 file without $Entities simply has no physical groups
-    call init_entities(raw%surf)
-    call init_entities(raw%vol)
+    do k = 1, 3
+      call init_entities(raw%ents(k))
+    end do
 
-    ! ---- physical groups: named ones plus every referenced tag (dims 2, 3)
+    ! ---- physical groups: named ones plus every referenced tag (dims kf, dim)
     allocate(key(raw%n_names + 16))
     m = 0
     do i = 1, raw%n_names
-      if (raw%name_dim(i) >= 2) call push_key(key, m, raw%name_dim(i), raw%name_tag(i))
+      if (raw%name_dim(i) >= kf .and. raw%name_dim(i) <= dim) &
+        call push_key(key, m, raw%name_dim(i), raw%name_tag(i))
     end do
-    if (raw%version == fmt_v41) then
-      do i = 1, raw%surf%first(raw%surf%n+1) - 1
-        call push_key(key, m, 2, raw%surf%phys(i))
-      end do
-      do i = 1, raw%vol%first(raw%vol%n+1) - 1
-        call push_key(key, m, 3, raw%vol%phys(i))
-      end do
-    else
-      call push_refs(raw%tets, 3)
-      call push_refs(raw%tris, 2)
-      do i = 1, raw%n_keys
-        call push_key(key, m, int(raw%keys(i) / dim_shift), int(mod(raw%keys(i), dim_shift)))
-      end do
-    end if
+    do k = kf, dim
+      if (raw%version == fmt_v41) then
+        do i = 1, raw%ents(k)%first(raw%ents(k)%n+1) - 1
+          call push_key(key, m, k, raw%ents(k)%phys(i))
+        end do
+      else
+        call push_refs(raw%elems(k), k)
+      end if
+    end do
+    do i = 1, raw%n_keys       ! (MSH 2.2 only)
+      call push_key(key, m, int(raw%keys(i) / dim_shift), int(mod(raw%keys(i), dim_shift)))
+    end do
     allocate(perm(m))
     call sort_unique(key(1:m), perm, ng)
     allocate(gkey(ng))
@@ -739,31 +760,33 @@ contains
         end if
       end do
     end do
-    if (count(mesh%groups(:)%dim == 3) == 0) then
-      msg = 'no physical volume group: define one ("Physical Volume") so the solver knows '// &
-            'which tetrahedra form the body'
+    if (count(mesh%groups(:)%dim == dim) == 0) then
+      msg = 'no physical '//trim(entity_name(dim))//' group: define one ("'// &
+            trim(physical_cmd(dim))//'") so the solver knows which '// &
+            trim(simplex_plural(dim)(8:))//' form the body'
       return
     end if
 
-    ! ---- tetrahedra in a physical volume: first dim-3 physical tag wins
-    allocate(keep(raw%tets%n), kgrp(raw%tets%n))
+    ! ---- cells in a physical group of dimension dim: first physical tag wins
+    allocate(keep(raw%elems(dim)%n), kgrp(raw%elems(dim)%n))
     nkeep = 0
     last_ref = -1
     last_g = 0
-    do i = 1, raw%tets%n
-      if (raw%tets%ref(i) /= last_ref) then    ! blocks share a ref: look up once per run
-        last_ref = raw%tets%ref(i)
+    do i = 1, raw%elems(dim)%n
+      if (raw%elems(dim)%ref(i) /= last_ref) then    ! blocks share a ref: look up once per run
+        last_ref = raw%elems(dim)%ref(i)
         phys = 0
         if (raw%version == fmt_v41) then
-          e = find_entity(raw%vol, raw%tets%ref(i))
+          e = find_entity(raw%ents(dim), last_ref)
           if (e > 0) then
-            if (raw%vol%first(e+1) > raw%vol%first(e)) phys = raw%vol%phys(raw%vol%first(e))
+            if (raw%ents(dim)%first(e+1) > raw%ents(dim)%first(e)) &
+              phys = raw%ents(dim)%phys(raw%ents(dim)%first(e))
           end if
         else
-          phys = raw%tets%ref(i)
+          phys = last_ref
         end if
         last_g = 0
-        if (phys > 0) last_g = find_sorted(gkey(1:ng), 3 * dim_shift + phys)
+        if (phys > 0) last_g = find_sorted(gkey(1:ng), dim * dim_shift + phys)
       end if
       if (last_g > 0) then
         nkeep = nkeep + 1
@@ -772,41 +795,41 @@ contains
       end if
     end do
     if (nkeep == 0) then
-      msg = 'no 4-node tetrahedra belong to a physical volume group (note: MSH 2.2 '// &
-            'written with Mesh.SaveAll = 1 carries no physical tags)'
+      msg = 'no '//trim(simplex_plural(dim))//' belong to a physical '//trim(entity_name(dim))// &
+            ' group (note: MSH 2.2 written with Mesh.SaveAll = 1 carries no physical tags)'
       return
     end if
     ! stable sort by element tag; duplicates (MSH 2.2 lists an element once
     ! per physical group) keep their first occurrence
     allocate(key(nkeep), perm(nkeep))
-    key = int(raw%tets%tag(keep(1:nkeep)), i8)
+    key = int(raw%elems(dim)%tag(keep(1:nkeep)), i8)
     call sort_unique(key, perm, m)
     mesh%n_cells = m
-    allocate(mesh%cell_tag(m), mesh%cell(m, 4), mesh%cell_group(m))
+    allocate(mesh%cell_tag(m), mesh%cell(m, dim+1), mesh%cell_group(m))
     do i = 1, m
-      mesh%cell_tag(i) = raw%tets%tag(keep(perm(i)))
+      mesh%cell_tag(i) = raw%elems(dim)%tag(keep(perm(i)))
       mesh%cell_group(i) = kgrp(perm(i))
-      mesh%cell(i, :) = raw%tets%node(:, keep(perm(i)))   ! node tags for now
+      mesh%cell(i, :) = raw%elems(dim)%node(:, keep(perm(i)))   ! node tags for now
     end do
-    deallocate(key, perm, keep, kgrp, raw%tets%tag, raw%tets%ref, raw%tets%node)
+    deallocate(key, perm, keep, kgrp, raw%elems(dim)%tag, raw%elems(dim)%ref, raw%elems(dim)%node)
 
-    ! ---- triangles: one row per (triangle, physical surface group)
+    ! ---- facets: one row per (facet, physical group of dimension kf)
     nrows = 0
-    call tri_rows(.false.)      ! count
+    call facet_rows(.false.)      ! count
     allocate(rows(nrows), rgrp(nrows))
     nrows = 0
-    call tri_rows(.true.)       ! fill
+    call facet_rows(.true.)       ! fill
     ! order by (element tag, group); drop exact duplicates
     allocate(key(nrows), perm(nrows))
     do i = 1, nrows
-      key(i) = int(raw%tris%tag(rows(i)), i8) * int(ng + 1, i8) + rgrp(i)
+      key(i) = int(raw%elems(kf)%tag(rows(i)), i8) * int(ng + 1, i8) + rgrp(i)
     end do
     call sort_unique(key, perm, m)
     mesh%n_facets = m
-    allocate(mesh%facet(m, 3), mesh%facet_group(m), ttag(m))
+    allocate(mesh%facet(m, dim), mesh%facet_group(m), ttag(m))
     do i = 1, m
-      ttag(i) = raw%tris%tag(rows(perm(i)))     ! kept only for error messages
-      mesh%facet(i, :) = raw%tris%node(:, rows(perm(i)))
+      ttag(i) = raw%elems(kf)%tag(rows(perm(i)))     ! kept only for error messages
+      mesh%facet(i, :) = raw%elems(kf)%node(:, rows(perm(i)))
       mesh%facet_group(i) = rgrp(perm(i))
     end do
     deallocate(key, perm, rows, rgrp)
@@ -842,6 +865,21 @@ contains
       end if
       mesh%x(i, :) = raw%nx(:, perm(i)) * scale
     end do
+    ! a 2D mesh lies in the plane z = 0 (up to rounding, relative to its size)
+    if (dim == 2) then
+      extent = 0.0_rk
+      do j = 1, 3
+        extent = max(extent, maxval(raw%nx(j, :)) - minval(raw%nx(j, :)))
+      end do
+      do i = 1, raw%nn
+        if (abs(raw%nx(3, perm(i))) > degenerate_tol * extent) then
+          msg = 'node '//itoa(mesh%node_tag(i))//' has z = '//r2s(raw%nx(3, perm(i)))// &
+                ' in the file, but a 2D mesh must lie in the plane z = 0: draw the geometry '// &
+                'in the (x, y) plane (axisymmetric: x radial, y along the axis)'
+          return
+        end if
+      end do
+    end if
     deallocate(key, perm, raw%ntag, raw%nx)
 
     ! ---- node tag -> index: direct table when tags are dense enough,
@@ -860,65 +898,65 @@ contains
     end if
     nbad = 0
     do i = 1, mesh%n_cells
-      do j = 1, 4
+      do j = 1, dim + 1
         call translate(mesh%cell(i, j), mesh%cell_tag(i))
       end do
     end do
     do i = 1, mesh%n_facets
-      do j = 1, 3
+      do j = 1, dim
         call translate(mesh%facet(i, j), ttag(i))
       end do
     end do
     if (nbad > 0) return
 
     ! ---- orientation and degeneracy
-    call orient_tets(mesh, nbad, tags)
+    call orient_cells(mesh, nbad, tags)
     if (nbad > 0) then
-      msg = itoa(nbad)//' degenerate (zero-volume) tetrahedra'//achar(10)// &
-            '  element tags: '//tags
+      msg = itoa(nbad)//' degenerate (zero-'//trim(measure_name(dim))//') '// &
+            trim(simplex_plural(dim)(8:))//achar(10)//'  element tags: '//tags
       return
     end if
 
   contains
 
-    !> MSH 2.2: the physical groups (of dimension dim) the elements refer to.
-    subroutine push_refs(list, dim)
+    !> MSH 2.2: the physical groups (of dimension kd) the elements refer to.
+    subroutine push_refs(list, kd)
       type(elem_list_t), intent(in) :: list
-      integer, intent(in) :: dim
-      integer :: k, last
+      integer, intent(in) :: kd
+      integer :: ir, last
       last = -1
-      do k = 1, list%n
-        if (list%ref(k) /= last) call push_key(key, m, dim, list%ref(k))
-        last = list%ref(k)
+      do ir = 1, list%n
+        if (list%ref(ir) /= last) call push_key(key, m, kd, list%ref(ir))
+        last = list%ref(ir)
       end do
     end subroutine push_refs
 
-    subroutine tri_rows(fill)
+    subroutine facet_rows(fill)
       logical, intent(in) :: fill
       integer :: ir, jp, ie
-      do ir = 1, raw%tris%n
+      do ir = 1, raw%elems(kf)%n
         if (raw%version == fmt_v41) then
-          ie = find_entity(raw%surf, raw%tris%ref(ir))
+          ie = find_entity(raw%ents(kf), raw%elems(kf)%ref(ir))
           if (ie == 0) cycle
-          do jp = raw%surf%first(ie), raw%surf%first(ie+1) - 1
-            call tri_row(ir, raw%surf%phys(jp), fill)
+          do jp = raw%ents(kf)%first(ie), raw%ents(kf)%first(ie+1) - 1
+            call facet_row(ir, raw%ents(kf)%phys(jp), fill)
           end do
         else
-          call tri_row(ir, raw%tris%ref(ir), fill)
+          call facet_row(ir, raw%elems(kf)%ref(ir), fill)
         end if
       end do
-    end subroutine tri_rows
+    end subroutine facet_rows
 
-    !> The row of triangle ir in physical surface phys (only counted unless fill).
-    subroutine tri_row(ir, phys, fill)
+    !> The row of facet ir in physical group phys (only counted unless fill).
+    subroutine facet_row(ir, phys, fill)
       integer, intent(in) :: ir, phys
       logical, intent(in) :: fill
       nrows = nrows + 1
       if (fill) then
         rows(nrows) = ir
-        rgrp(nrows) = find_sorted(gkey(1:ng), 2 * dim_shift + phys)
+        rgrp(nrows) = find_sorted(gkey(1:ng), kf * dim_shift + phys)
       end if
-    end subroutine tri_row
+    end subroutine facet_row
 
     !> Replace a node tag by its index; record the first failure.
     subroutine translate(v, etag)
@@ -940,25 +978,60 @@ contains
 
   end subroutine build_mesh
 
-  !> The message for a volume element udar cannot use (tdim < 0: unknown type).
-  function bad_element_text(etag, etype, tdim) result(msg)
-    integer, intent(in) :: etag, etype, tdim
+  !> What becomes of elements of gmsh type etype (of dimension tdim, from
+  !> element_info) in a block of entity dimension edim (MSH 2.2: edim = tdim)
+  !> when a mesh of dimension dim is read: kept in raw%elems(k) (k > 0: the
+  !> linear simplices of dimensions dim-1 and dim), skipped (0: points and
+  !> other lower-dimensional elements) or refused (-1: any other element of
+  !> dimension dim or more, or a type gmsh does not have: skipping it would
+  !> lose part of the body without a word).
+  pure integer function element_fate(etype, tdim, edim, dim) result(k)
+    integer, intent(in) :: etype, tdim, edim, dim
+    integer :: j
+    do j = dim - 1, dim
+      if (etype == linear_type(j) .and. edim == j) then
+        k = j
+        return
+      end if
+    end do
+    k = 0
+    if (tdim < 0 .or. tdim >= dim .or. edim >= dim) k = -1
+  end function element_fate
+
+  !> The message for an element udar cannot use in a mesh of dimension dim
+  !> (tdim < 0: unknown type; edim: dimension of its block, = tdim in MSH 2.2).
+  function bad_element_text(etag, etype, tdim, edim, dim) result(msg)
+    integer, intent(in) :: etag, etype, tdim, edim, dim
     character(len=:), allocatable :: msg
     character(len=:), allocatable :: what
+    logical :: high_order
+    character(len=*), parameter :: lower_blocks(2:3) = [character(len=22) :: &
+         'line or point', 'surface or line']
     if (tdim < 0) then
       msg = 'element '//itoa(etag)//' has element type '//itoa(etype)//', which udar does not '// &
-            'know: not a gmsh type (file damaged?) or a high-order one (mesh with gmsh -3 -order 1)'
+            'know: not a gmsh type (file damaged?) or a high-order one (mesh with gmsh -'// &
+            itoa(dim)//' -order 1)'
       return
     end if
     select case (etype)
+    case (3)
+      what = 'a 4-node quadrilateral'
     case (5)
       what = 'an 8-node hexahedron'
     case (6)
       what = 'a 6-node prism'
     case (7)
       what = 'a 5-node pyramid'
+    case (9)
+      what = 'a 6-node (second-order) triangle'
+    case (10)
+      what = 'a 9-node (second-order) quadrilateral'
     case (11)
       what = 'a 10-node (second-order) tetrahedron'
+    case (16)
+      what = 'an 8-node (second-order) quadrilateral'
+    case (20:25)
+      what = 'a higher-order triangle'
     case (29:31, 71:75)
       what = 'a higher-order tetrahedron'
     case (12, 17, 92:98)
@@ -967,112 +1040,147 @@ contains
       what = 'a higher-order prism'
     case (14, 19, 118:124)
       what = 'a higher-order pyramid'
-    case (type_tet4)
-      what = 'a tetrahedron in a block of surface or line elements'
     case default
       what = 'a volume element'
-      ! MSH 4.1: a lower-dimensional type in a block of dimension 3
-      if (tdim < 3) what = 'a '//itoa(tdim)//'D element in a block of volume elements'
+      if (tdim < 3) what = 'a '//itoa(tdim)//'D element'
+      if (tdim >= 1) then
+        if (etype == linear_type(tdim)) what = 'a '//trim(simplex_name(tdim))
+      end if
     end select
-    msg = 'element '//itoa(etag)//' is '//what//' (gmsh type '//itoa(etype)//'): udar takes only '// &
-          '4-node tetrahedra (type 4) as volume elements; '
+    ! MSH 4.1: a block of another dimension than its elements'
+    if (edim > tdim) then
+      what = 'a '//itoa(tdim)//'D element in a block of '//trim(entity_name(min(edim, 3)))//' elements'
+    else if (edim < tdim .and. tdim >= 2 .and. etype == linear_type(tdim)) then
+      what = 'a '//trim(simplex_name(tdim))//' in a block of '//trim(lower_blocks(tdim))//' elements'
+    end if
+    msg = 'element '//itoa(etag)//' is '//what//' (gmsh type '//itoa(etype)//'): '
+    if (dim == 2 .and. max(tdim, edim) == 3) then
+      msg = msg//'the mesh is 3D but a 2D calculation was asked for; mesh the geometry in '// &
+            '2D (gmsh -2) with 3-node triangles in physical surfaces, or run the calculation in 3D'
+      return
+    end if
+    msg = msg//'udar takes only '//trim(simplex_plural(dim))//' (type '//itoa(linear_type(dim))// &
+          ') as '//trim(entity_name(dim))//' elements'
+    if (dim == 2) msg = msg//' in 2D'
     select case (etype)
     case (11, 29:31, 71:75)
-      msg = msg//'mesh with first-order elements: gmsh -3 -order 1 (Mesh.ElementOrder = 1)'
+      high_order = dim == 3
+    case (9, 20:25)
+      high_order = dim == 2
     case default
-      msg = msg//'mesh the volumes with tetrahedra only (no Recombine, no extrusion Layers, '// &
-            'no Mesh.SubdivisionAlgorithm)'
+      high_order = .false.
     end select
+    if (high_order) then
+      msg = msg//'; mesh with first-order elements: gmsh -'//itoa(dim)//' -order 1 (Mesh.ElementOrder = 1)'
+    else if (dim == 3) then
+      msg = msg//'; mesh the volumes with tetrahedra only (no Recombine, no extrusion Layers, '// &
+            'no Mesh.SubdivisionAlgorithm)'
+    else
+      msg = msg//'; mesh the surfaces with triangles only (no Recombine, no Mesh.RecombineAll, '// &
+            'no Mesh.SubdivisionAlgorithm)'
+    end if
   end function bad_element_text
 
-  !> First duplicate element tag among the tetrahedra and triangles, as a
-  !> message ('' if none). MSH 2.2 writes an element once per physical
-  !> group: the same tag with the same nodes is that, not a duplicate.
+  !> First duplicate element tag among the kept elements (tets, triangles,
+  !> lines), as a message ('' if none). MSH 2.2 writes an element once per
+  !> physical group: the same tag with the same nodes is that, not a duplicate.
   subroutine duplicate_tags(raw, msg)
     type(raw_t), intent(in) :: raw
     character(len=:), allocatable, intent(inout) :: msg
     integer(i8), allocatable :: key(:)
     integer, allocatable :: perm(:)
-    integer :: n4, n3, i, a, b
+    integer :: first(3), n, i, k, ka, kb, a, b
     logical :: same
 
-    n4 = raw%tets%n
-    n3 = raw%tris%n
-    if (n4 + n3 < 2) return
-    allocate(key(n4 + n3), perm(n4 + n3))
-    if (n4 > 0) key(1:n4) = raw%tets%tag(1:n4)
-    if (n3 > 0) key(n4+1:) = raw%tris%tag(1:n3)
+    ! tets first, then triangles, then lines: key position p is element
+    ! p - first(k) of the list k holding it
+    n = 0
+    do k = 3, 1, -1
+      first(k) = n
+      n = n + raw%elems(k)%n
+    end do
+    if (n < 2) return
+    allocate(key(n), perm(n))
+    do k = 1, 3
+      if (raw%elems(k)%n > 0) key(first(k)+1:first(k)+raw%elems(k)%n) = raw%elems(k)%tag(1:raw%elems(k)%n)
+    end do
     call sort_perm(key, perm)
-    do i = 2, n4 + n3
+    do i = 2, n
       if (key(perm(i)) /= key(perm(i-1))) cycle
-      a = perm(i-1)
-      b = perm(i)
-      if (a <= n4 .neqv. b <= n4) then
-        same = .false.
-      else if (a <= n4) then
-        same = all(raw%tets%node(:, a) == raw%tets%node(:, b))
-      else
-        same = all(raw%tris%node(:, a - n4) == raw%tris%node(:, b - n4))
-      end if
+      call locate(perm(i-1), ka, a)
+      call locate(perm(i), kb, b)
+      same = ka == kb
+      if (same) same = all(raw%elems(ka)%node(:, a) == raw%elems(kb)%node(:, b))
       if (same .and. raw%version == fmt_v22) cycle
-      msg = 'element tag '//itoa(int(key(a)))//' is used by '//elem_text(a)//' and by '//elem_text(b)// &
-            ': element tags must be unique (file damaged or concatenated?)'
+      msg = 'element tag '//itoa(int(key(perm(i))))//' is used by '//elem_text(ka, a)//' and by '// &
+            elem_text(kb, b)//': element tags must be unique (file damaged or concatenated?)'
       return
     end do
 
   contains
 
-    function elem_text(j) result(t)
-      integer, intent(in) :: j
+    subroutine locate(p, kl, j)
+      integer, intent(in) :: p
+      integer, intent(out) :: kl, j
+      do kl = 1, 3
+        if (p > first(kl) .and. p <= first(kl) + raw%elems(kl)%n) exit
+      end do
+      j = p - first(kl)
+    end subroutine locate
+
+    function elem_text(kl, j) result(t)
+      integer, intent(in) :: kl, j
       character(len=:), allocatable :: t
       integer :: m
-      if (j <= n4) then
-        t = 'a tetrahedron (nodes'
-        do m = 1, 4
-          t = t//' '//itoa(raw%tets%node(m, j))
-        end do
-      else
-        t = 'a triangle (nodes'
-        do m = 1, 3
-          t = t//' '//itoa(raw%tris%node(m, j - n4))
-        end do
-      end if
+      t = 'a '//trim(simplex_name(kl))//' (nodes'
+      do m = 1, raw%elems(kl)%nv
+        t = t//' '//itoa(raw%elems(kl)%node(m, j))
+      end do
       t = t//')'
     end function elem_text
 
   end subroutine duplicate_tags
 
-  !> Make every tet positively oriented (swap nodes 2 and 3) and collect
-  !> degenerate ones: |6V| <= tol * L**3 with L the longest edge, which is
-  !> independent of the length unit.
-  subroutine orient_tets(mesh, nbad, tags)
+  !> Make every cell positively oriented (swap nodes 2 and 3) and collect
+  !> degenerate ones.  Tets: signed 6V, positive for a right-handed
+  !> (2-1, 3-1, 4-1); triangles: twice the signed area in the (x, y) plane,
+  !> positive counter-clockwise.  Degenerate: |measure| <= tol * L**dim with L
+  !> the longest edge, which is independent of the length unit.
+  subroutine orient_cells(mesh, nbad, tags)
     type(gmsh_mesh_t), intent(inout) :: mesh
     integer, intent(out) :: nbad
     character(len=:), allocatable, intent(out) :: tags
-    real(rk) :: p(3, 4), a(3), b(3), d(3), v6, l2
-    integer :: i, j, k, t
+    real(rk) :: p(3, 4), a(3), b(3), d(3), v, l2, lsize
+    integer :: i, j, k, t, nv
 
     nbad = 0
     tags = ''
+    nv = mesh%dim + 1
     do i = 1, mesh%n_cells
-      do k = 1, 4
+      do k = 1, nv
         p(:, k) = mesh%x(mesh%cell(i, k), :)
       end do
       a = p(:, 2) - p(:, 1)
       b = p(:, 3) - p(:, 1)
-      d = p(:, 4) - p(:, 1)
-      v6 = a(1) * (b(2) * d(3) - b(3) * d(2)) - a(2) * (b(1) * d(3) - b(3) * d(1)) &
-         + a(3) * (b(1) * d(2) - b(2) * d(1))
       l2 = 0.0_rk
-      do k = 1, 3
-        do j = k + 1, 4
+      do k = 1, nv - 1
+        do j = k + 1, nv
           l2 = max(l2, sum((p(:, j) - p(:, k))**2))
         end do
       end do
-      if (abs(v6) <= degenerate_tol * l2 * sqrt(l2)) then
+      if (mesh%dim == 3) then
+        d = p(:, 4) - p(:, 1)
+        v = a(1) * (b(2) * d(3) - b(3) * d(2)) - a(2) * (b(1) * d(3) - b(3) * d(1)) &
+          + a(3) * (b(1) * d(2) - b(2) * d(1))
+        lsize = l2 * sqrt(l2)
+      else
+        v = a(1) * b(2) - b(1) * a(2)
+        lsize = l2
+      end if
+      if (abs(v) <= degenerate_tol * lsize) then
         nbad = nbad + 1
         if (nbad <= max_listed) tags = tags//' '//itoa(mesh%cell_tag(i))
-      else if (v6 < 0.0_rk) then
+      else if (v < 0.0_rk) then
         t = mesh%cell(i, 2)
         mesh%cell(i, 2) = mesh%cell(i, 3)
         mesh%cell(i, 3) = t
@@ -1081,7 +1189,7 @@ contains
     end do
     if (nbad > max_listed) tags = tags//' and '//itoa(nbad - max_listed)//' more'
     if (nbad > 0) tags = tags(2:)     ! drop the leading blank
-  end subroutine orient_tets
+  end subroutine orient_cells
 
   ! ==========================================================================
   !  Cursor primitives

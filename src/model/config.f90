@@ -12,7 +12,8 @@ module udar_config
             bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, wall_coulomb, &
             tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
             jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
-            overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook
+            overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook, &
+            geometry_solid, geometry_axisymmetric, geometry_plane_strain
 
   ! integer codes the kernels dispatch on (strings stay in the deck)
   integer, parameter :: eos_linear = 1, eos_mie_gruneisen = 2
@@ -26,6 +27,9 @@ module udar_config
   integer, parameter :: contact_weights_distance = 1, contact_weights_area = 2
   integer, parameter :: overlap_report = 1, overlap_move = 2
   integer, parameter :: fracture_none = 0, fracture_plastic_strain = 1, fracture_johnson_cook = 2
+  !> what the mesh is (&mesh geometry): 3D tetrahedra, or 2D triangles in
+  !> the (r, z) half plane about the y axis or in the (x, y) plane per metre
+  integer, parameter :: geometry_solid = 1, geometry_axisymmetric = 2, geometry_plane_strain = 3
 
   type :: run_cfg_t
     character(len=256) :: title = 'udar run'
@@ -48,6 +52,7 @@ module udar_config
   type :: mesh_cfg_t
     character(len=max_path_len) :: file = ''   !< gmsh .msh, relative to the deck's folder
     real(rk) :: scale = 1.0_rk                 !< -, multiplies coordinates (0.001 for mm)
+    integer  :: geometry = geometry_solid      !< solid (3D), axisymmetric or plane_strain (2D)
   end type
 
   type :: material_cfg_t

@@ -6,7 +6,7 @@
 !> local and global numberings coincide.
 module udar_domain
   use udar_kinds, only: rk, i8, max_name_len, block_size
-  use udar_config, only: material_cfg_t
+  use udar_config, only: material_cfg_t, geometry_solid
   implicit none
   private
   public :: domain_t, wall_t, block_size, domain_bytes
@@ -41,7 +41,10 @@ module udar_domain
     ! ---- elements
     integer :: n_elems = 0
     integer, allocatable :: el_id(:), el_part(:), el_mat(:)
-    integer, allocatable :: el_conn(:,:)        !< (n,4) node indices
+    integer, allocatable :: el_conn(:,:)        !< (n,corners) node indices
+    integer :: corners = 4                      !< nodes of an element: 4 (tet4) or 3 (2D tri3)
+    real(rk) :: corner_share = 0.25_rk          !< 1/corners: each node's share of a lumped element quantity
+    integer :: geometry = geometry_solid        !< udar_config geometry_*: 3D, axisymmetric or plane strain
     real(rk), allocatable :: el_vol0(:), el_vol(:), el_mass(:)   !< m3, m3, kg
     real(rk), allocatable :: el_h(:)   !< m, smallest altitude at the last update (huge when eroded)
     real(rk), allocatable :: el_k(:)   !< N/m, bound of the element stiffness's largest eigenvalue at the last

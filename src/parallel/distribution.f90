@@ -107,8 +107,11 @@ contains
       loc%el_id = glob%el_id(ge)
       loc%el_part = glob%el_part(ge)
       loc%el_mat = glob%el_mat(ge)
-      allocate(loc%el_conn(el,4))
-      do a = 1, 4
+      allocate(loc%el_conn(el,glob%corners))
+      loc%corners = glob%corners
+      loc%corner_share = glob%corner_share
+      loc%geometry = glob%geometry
+      do a = 1, glob%corners
         loc%el_conn(:,a) = node_l(glob%el_conn(ge,a))
       end do
       loc%el_owned = part(ge) == me

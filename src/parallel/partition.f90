@@ -42,9 +42,6 @@ module udar_partition
   integer(idx_t), parameter :: metis_objtype_cut = 0
   integer(idx_t), parameter :: metis_seed = 1
 
-  !> Local faces of a tet (node positions), the face opposite each vertex.
-  integer, parameter :: tet_face(3,4) = reshape([2,3,4, 1,3,4, 1,2,4, 1,2,3], [3,4])
-
   interface
     function c_metis_set_default_options(options) bind(c, name='METIS_SetDefaultOptions') result(rc)
       import :: c_int, idx_t
@@ -70,7 +67,8 @@ module udar_partition
 
 contains
 
-  !> Partitions the elements of conn(n_elems,4) into n_parts face-connected,
+  !> Partitions the elements of conn(n_elems,4) (tetrahedra; 2D: (n_elems,3)
+  !> triangles, connected through edges) into n_parts face-connected,
   !> balanced parts (part(e) in 0..n_parts-1): balanced in element count,
   !> or with weights (>= 1 each) in their sums (METIS vertex weights: the
   !> elements' costs). n_parts >= n_elems puts one element in each of the
@@ -95,8 +93,8 @@ contains
       write (buf, '(a,i0)') 'partition: number of parts must be >= 1, got ', n_parts
       errmsg = trim(buf); return
     end if
-    if (size(conn, 2) /= 4) then
-      write (buf, '(a,i0)') 'partition: conn must have 4 columns (tet4), got ', size(conn, 2)
+    if (size(conn, 2) /= 4 .and. size(conn, 2) /= 3) then
+      write (buf, '(a,i0)') 'partition: conn must have 4 (tet4) or 3 (tri3) columns, got ', size(conn, 2)
       errmsg = trim(buf); return
     end if
     if (size(part) /= n_elems) then
@@ -176,28 +174,29 @@ contains
 
   !> Face-adjacency graph in 0-based CSR (METIS layout): rows sorted ascending,
   !> no self loops, no duplicates. Faces shared by more than two elements (a
-  !> non-conforming mesh) connect every pair rather than failing.
+  !> non-conforming mesh) connect every pair rather than failing. An
+  !> element's face j is its corners but the j-th (a triangle's: an edge).
   subroutine dual_graph(n_nodes, conn, xadj, adjncy)
     integer, intent(in) :: n_nodes, conn(:,:)
     integer, allocatable, intent(out) :: xadj(:), adjncy(:)
     integer, allocatable :: key(:,:), order(:), tmp(:), cnt(:), ea(:), eb(:)
-    integer :: n_elems, n_faces, f, e, j, pass, i0, i1, i, k, n_edges, a, b, c
+    integer :: n_elems, n_faces, f, e, j, pass, i0, i1, i, k, n_edges, a, b, nc, m
 
     n_elems = size(conn, 1)
-    n_faces = 4*n_elems
-    allocate(key(3, n_faces), order(n_faces), tmp(n_faces), cnt(0:n_nodes))
-    ! face f = 4*(e-1)+j: sorted node triple
+    nc = size(conn, 2)
+    m = nc - 1
+    n_faces = nc*n_elems
+    allocate(key(m, n_faces), order(n_faces), tmp(n_faces), cnt(0:n_nodes))
+    ! face f = nc*(e-1)+j: its sorted nodes
     do e = 1, n_elems
-      do j = 1, 4
-        f = 4*(e - 1) + j
-        a = conn(e, tet_face(1, j)); b = conn(e, tet_face(2, j)); c = conn(e, tet_face(3, j))
-        call sort3(a, b, c)
-        key(:, f) = [a, b, c]
+      do j = 1, nc
+        f = nc*(e - 1) + j
+        key(:, f) = sorted(pack(conn(e, :), [(i /= j, i = 1, nc)]))
       end do
     end do
-    ! stable LSD counting sort on (c, b, a): O(faces + nodes), fully deterministic
+    ! stable LSD counting sort on the nodes, last first: O(faces + nodes), fully deterministic
     order = [(f, f = 1, n_faces)]
-    do pass = 3, 1, -1
+    do pass = m, 1, -1
       cnt = 0
       do f = 1, n_faces
         cnt(key(pass, f)) = cnt(key(pass, f)) + 1
@@ -222,13 +221,13 @@ contains
       i1 = i0
       do while (i1 < n_faces)
         f = order(i1 + 1); j = order(i0)
-        if (key(1, f) /= key(1, j) .or. key(2, f) /= key(2, j) .or. key(3, f) /= key(3, j)) exit
+        if (any(key(:, f) /= key(:, j))) exit
         i1 = i1 + 1
       end do
       do i = i0, i1 - 1
         do k = i + 1, i1
-          a = (order(i) - 1)/4 + 1
-          b = (order(k) - 1)/4 + 1
+          a = (order(i) - 1)/nc + 1
+          b = (order(k) - 1)/nc + 1
           if (a == b) cycle        ! degenerate element with a repeated face
           if (n_edges == size(ea)) call grow2(ea, eb)
           n_edges = n_edges + 1
@@ -246,7 +245,7 @@ contains
     integer, intent(in) :: n, ea(:), eb(:)
     integer, allocatable, intent(out) :: xadj(:), adjncy(:)
     integer, allocatable :: deg(:), fill(:), tmp(:)
-    integer :: i, v, k, lo, hi, m, x
+    integer :: i, v, lo, hi, m
 
     allocate(deg(n), source=0)
     do i = 1, size(ea)
@@ -268,16 +267,7 @@ contains
     m = 0
     do v = 1, n
       lo = xadj(v) + 1; hi = xadj(v + 1)
-      do i = lo + 1, hi
-        x = tmp(i)
-        k = i - 1
-        do while (k >= lo)
-          if (tmp(k) <= x) exit
-          tmp(k + 1) = tmp(k)
-          k = k - 1
-        end do
-        tmp(k + 1) = x
-      end do
+      tmp(lo:hi) = sorted(tmp(lo:hi))
       xadj(v) = m
       do i = lo, hi
         if (i > lo) then
@@ -435,13 +425,22 @@ contains
     ok = all(part >= 0 .and. part <= 1)
   end function
 
-  pure subroutine sort3(a, b, c)
-    integer, intent(inout) :: a, b, c
-    integer :: t
-    if (a > b) then; t = a; a = b; b = t; end if
-    if (b > c) then; t = b; b = c; c = t; end if
-    if (a > b) then; t = a; a = b; b = t; end if
-  end subroutine
+  !> The values in ascending order (insertion sort: for short lists, a face's nodes or a graph row).
+  pure function sorted(v) result(w)
+    integer, intent(in) :: v(:)
+    integer :: w(size(v)), i, j, t
+    w = v
+    do i = 2, size(w)
+      t = w(i)
+      j = i - 1
+      do while (j >= 1)
+        if (w(j) <= t) exit
+        w(j+1) = w(j)
+        j = j - 1
+      end do
+      w(j+1) = t
+    end do
+  end function
 
   pure subroutine grow2(a, b)
     integer, allocatable, intent(inout) :: a(:), b(:)

@@ -18,7 +18,7 @@ module udar_run
   use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_value
   use udar_fatal, only: fatal, fatal_all, fatal_unless_all_ok, exit_physics, exit_io, log_error_here
   use udar_log, only: log_info, log_warn
-  use udar_element_driver, only: element_volumes, element_update, nodal_pressures, element_time_steps, &
+  use udar_element_passes, only: element_volumes, element_update, nodal_pressures, element_time_steps, &
       element_forces_averaged, element_stiffness_bounds, nodal_stable_dt, nodal_reference_volumes, current_volume, &
       element_altitudes
   use udar_fracture, only: fracture_enabled, erosion_enabled, el_intact, el_eroded
@@ -596,7 +596,7 @@ contains
       if (e > 0) then
         j_el = current_volume(dom, e)/dom%el_vol0(e)
         if (dom%anti_locking) then
-          do i = 1, 4
+          do i = 1, dom%corners
             j_lo = min(j_lo, dom%nd_j(dom%el_conn(e,i)))
             j_hi = max(j_hi, dom%nd_j(dom%el_conn(e,i)))
           end do
@@ -741,8 +741,8 @@ contains
       call status_running()
       ! the field file gets each rank's owned nodes (1..n_owned_nodes) and elements
       work_node = transpose(dom%nd_x0(:,1:dom%n_owned_nodes))
-      allocate(conn_global(no,4))
-      do k = 1, 4
+      allocate(conn_global(no,dom%corners))
+      do k = 1, dom%corners
         conn_global(:,k) = dom%nd_gidx(dom%el_conn(dom%el_owned_list,k))
       end do
       call fw_open(fw, base//'.h5', base//'.xmf', dom%n_global_nodes, dom%n_global_elems, &
@@ -782,7 +782,7 @@ contains
       if (comms_max_int(bad_out) /= 0) call fatal_all(exit_io, 'restart: '//errmsg)
       call fw_reopen(fw, base//'.h5', base//'.xmf', dom%n_global_nodes, dom%n_global_elems, &
                      dom%nd_gidx(1:dom%n_owned_nodes), dom%el_gidx(dom%el_owned_list), st%field_steps, &
-                     trim(cfg%run%title), ok, errmsg)
+                     trim(cfg%run%title), ok, errmsg, dom%corners)
       call fatal_unless_all_ok(exit_io, ok, 'restart: '//errmsg)
     end subroutine
 

@@ -10,13 +10,14 @@ module udar_setup
   use udar_ordering, only: morton_keys, stable_sort_permutation
   use udar_strings, only: itoa, r2s
   use udar_config, only: config_t, bc_fixed, bc_symmetry, bc_rigid_wall, tet_plain, tet_stabilised, &
-      tet_stabilised_linear
+      tet_stabilised_linear, geometry_solid, geometry_axisymmetric
   use udar_gmsh, only: gmsh_mesh_t
   use udar_nodal, only: apply_velocity_conditions
   use udar_domain, only: domain_t, block_size
   use udar_input_errors, only: input_errors_t
   use udar_deck, only: deck_where
   use udar_tet4, only: tet_volume
+  use udar_tri_driver, only: tri_cell_volume
   use udar_strength, only: initial_hardening, thermal_softening
   implicit none
   private
@@ -34,15 +35,24 @@ contains
     integer, allocatable :: group_part(:), node_new(:), used(:), perm(:), elem_order(:)
     integer(i8), allocatable :: keys(:)
     real(rk), allocatable :: centroid(:,:), el_mass(:)
-    integer :: ip, ig, e, n, a, k, n_err0
-    character(len=:), allocatable :: where
+    integer :: ip, ig, e, n, a, k, n_err0, dim, nc
+    character(len=:), allocatable :: where, body_groups, cells
     real(rk) :: xe(4,3)
 
     n_err0 = errs%count()
-    ! parts <- physical volume groups, by name
+    dim = mesh%dim
+    nc = dim + 1
+    body_groups = trim(group_word(dim))//' group'
+    cells = merge('4-node tetrahedra', '3-node triangles ', dim == 3)
+    if (cfg%mesh%geometry == geometry_axisymmetric) then
+      ! the axis is r = 0: round-off in the mesh file is no radius
+      where (abs(mesh%x(:,1)) <= 1.0e-12_rk*maxval(abs(mesh%x))) mesh%x(:,1) = 0.0_rk
+    end if
+    if (cfg%mesh%geometry /= geometry_solid) call planar_checks(cfg, mesh, errs)
+    ! parts <- physical volume groups (2D: surface groups), by name
     allocate(group_part(mesh%n_groups), source=0)
     do ip = 1, size(cfg%parts)
-      ig = find_group(mesh, cfg%parts(ip)%group, 3)
+      ig = find_group(mesh, cfg%parts(ip)%group, dim)
       where = ''
       if (ig == 0) then
         where = deck_where(cfg, 'part', ip, 'group')      ! file:line: &part #k: group = '...'
@@ -50,34 +60,34 @@ contains
         where = deck_where(cfg, 'part', ip, 'group')
       end if
       if (ig == 0) then
-        call errs%add(where//": no physical volume group of that name in " &
-          //trim(cfg%mesh%file)//' (volume groups: '//group_list(mesh, 3)//')')
+        call errs%add(where//": no "//body_groups//" of that name in " &
+          //trim(cfg%mesh%file)//' ('//trim(group_word(dim, short=.true.))//' groups: '//group_list(mesh, dim)//')')
       else if (group_part(ig) /= 0) then
         call errs%add(where//" is already used by &part #"//itoa(group_part(ig)))
       else
         group_part(ig) = ip
         ! a part without elements is a wrong group name or a mesh saved without it
         if (.not. any(mesh%cell_group == ig)) call errs%add(deck_where(cfg, 'part', ip, 'group')// &
-          ': the physical volume group has no 4-node tetrahedra in '//trim(cfg%mesh%file)// &
-          ' (volume groups: '//group_list(mesh, 3)//')')
+          ': the '//body_groups//' has no '//trim(cells)//' in '//trim(cfg%mesh%file)// &
+          ' ('//trim(group_word(dim, short=.true.))//' groups: '//group_list(mesh, dim)//')')
       end if
     end do
     do ig = 1, mesh%n_groups
-      if (mesh%groups(ig)%dim == 3 .and. group_part(ig) == 0 .and. find_group(mesh, mesh%groups(ig)%name, 3) == ig) then
-        if (any(mesh%cell_group == ig)) call errs%add(deck_where(cfg, 'mesh', 1, 'file')//": physical volume group '" &
+      if (mesh%groups(ig)%dim == dim .and. group_part(ig) == 0 .and. find_group(mesh, mesh%groups(ig)%name, dim) == ig) then
+        if (any(mesh%cell_group == ig)) call errs%add(deck_where(cfg, 'mesh', 1, 'file')//": "//body_groups//" '" &
           //trim(mesh%groups(ig)%name)//"' of "//trim(cfg%mesh%file)//' has elements but no &part gives it a material')
       end if
     end do
     call boundaries_check(cfg, mesh, errs)
     if (errs%count() > n_err0) return
 
-    ! nodes: only those used by tetrahedra; nodes and elements stored in a
+    ! nodes: only those used by the cells; nodes and elements stored in a
     ! space-filling-curve order (elements grouped by material) so that
     ! neighbours are near in memory. The order derives from the mesh alone,
     ! so it is the same global numbering on every rank; the mesh-file tags
     ! are kept as the ids.
     allocate(node_new(mesh%n_nodes), source=0)
-    do a = 1, 4
+    do a = 1, nc
       node_new(mesh%cell(:,a)) = 1
     end do
     used = pack([(n, n = 1, mesh%n_nodes)], node_new /= 0)
@@ -89,15 +99,18 @@ contains
     node_new(used(perm)) = [(n, n = 1, dom%n_nodes)]
     allocate(dom%nd_id(dom%n_nodes), dom%nd_part(dom%n_nodes), dom%nd_x0(3,dom%n_nodes), dom%nd_v(3,dom%n_nodes), &
              dom%nd_mass(dom%n_nodes), dom%nd_vol0(dom%n_nodes))
-    allocate(dom%el_id(dom%n_elems), dom%el_part(dom%n_elems), dom%el_mat(dom%n_elems), dom%el_conn(dom%n_elems,4), &
+    allocate(dom%el_id(dom%n_elems), dom%el_part(dom%n_elems), dom%el_mat(dom%n_elems), dom%el_conn(dom%n_elems,nc), &
              dom%el_vol0(dom%n_elems))
     dom%nd_id = mesh%node_tag(used(perm))
     dom%nd_x0 = transpose(mesh%x(used(perm),:))
     deallocate(keys, perm)
     allocate(keys(dom%n_elems), perm(dom%n_elems), centroid(dom%n_elems,3), elem_order(dom%n_elems))
     do k = 1, 3
-      centroid(:,k) = 0.25_rk*(mesh%x(mesh%cell(:,1),k) + mesh%x(mesh%cell(:,2),k) &
-                             + mesh%x(mesh%cell(:,3),k) + mesh%x(mesh%cell(:,4),k))
+      centroid(:,k) = mesh%x(mesh%cell(:,1),k)
+      do a = 2, nc
+        centroid(:,k) = centroid(:,k) + mesh%x(mesh%cell(:,a),k)
+      end do
+      centroid(:,k) = centroid(:,k)/nc
     end do
     call morton_keys(centroid, keys)
     deallocate(centroid)
@@ -110,9 +123,12 @@ contains
     elem_order = perm(elem_order)
     deallocate(keys, perm)
     dom%el_id = mesh%cell_tag(elem_order)
-    do a = 1, 4
+    do a = 1, nc
       dom%el_conn(:,a) = node_new(mesh%cell(elem_order,a))
     end do
+    dom%corners = nc
+    dom%corner_share = 1.0_rk/nc
+    dom%geometry = cfg%mesh%geometry
     deallocate(mesh%cell, mesh%cell_tag)
 
     ! materials and parts
@@ -126,10 +142,14 @@ contains
     do e = 1, dom%n_elems
       dom%el_part(e) = group_part(mesh%cell_group(elem_order(e)))
       dom%el_mat(e) = material_index(cfg, cfg%parts(dom%el_part(e))%material)
-      do a = 1, 4
+      do a = 1, nc
         xe(a,:) = dom%nd_x0(:,dom%el_conn(e,a))
       end do
-      dom%el_vol0(e) = tet_volume(xe)
+      if (nc == 4) then
+        dom%el_vol0(e) = tet_volume(xe)
+      else
+        dom%el_vol0(e) = tri_cell_volume(dom%geometry, transpose(xe(1:3,:)))
+      end if
       el_mass(e) = dom%mat(dom%el_mat(e))%rho0*dom%el_vol0(e)   ! as init_state computes it
     end do
     deallocate(mesh%cell_group, elem_order)
@@ -142,8 +162,8 @@ contains
       dom%nd_mass(n) = 0.0_rk
       dom%nd_vol0(n) = 0.0_rk
       do k = dom%nd_el_ptr(n), dom%nd_el_ptr(n+1) - 1
-        dom%nd_mass(n) = dom%nd_mass(n) + 0.25_rk*el_mass(dom%nd_el(k))
-        dom%nd_vol0(n) = dom%nd_vol0(n) + 0.25_rk*dom%el_vol0(dom%nd_el(k))
+        dom%nd_mass(n) = dom%nd_mass(n) + dom%corner_share*el_mass(dom%nd_el(k))
+        dom%nd_vol0(n) = dom%nd_vol0(n) + dom%corner_share*dom%el_vol0(dom%nd_el(k))
       end do
       dom%nd_part(n) = dom%el_part(dom%nd_el(dom%nd_el_ptr(n)))
       dom%nd_v(:,n) = cfg%parts(dom%nd_part(n))%velocity
@@ -220,7 +240,7 @@ contains
     with_corners = .true.
     if (present(corners)) with_corners = corners
     allocate(dom%nd_el_ptr(dom%n_nodes+1), source=0)
-    do a = 1, 4
+    do a = 1, dom%corners
       do e = 1, dom%n_elems
         n = dom%el_conn(e,a)
         dom%nd_el_ptr(n+1) = dom%nd_el_ptr(n+1) + 1
@@ -234,7 +254,7 @@ contains
     if (with_corners) allocate(dom%nd_el_corner(dom%nd_el_ptr(dom%n_nodes+1)-1))
     allocate(fill(dom%n_nodes), source=dom%nd_el_ptr(1:dom%n_nodes))
     do e = 1, dom%n_elems
-      do a = 1, 4
+      do a = 1, dom%corners
         n = dom%el_conn(e,a)
         k = fill(n)
         dom%nd_el(k) = e
@@ -306,16 +326,17 @@ contains
     if (.not. allocated(cfg%boundaries)) return
     do ib = 1, size(cfg%boundaries)
       if (cfg%boundaries(ib)%kind == bc_rigid_wall) cycle
-      ig = find_group(mesh, cfg%boundaries(ib)%surface, 2)
+      ig = find_group(mesh, cfg%boundaries(ib)%surface, mesh%dim - 1)
       if (ig == 0) then
         ! file:line: &boundary #k: surface = '...'
         call errs%add(deck_where(cfg, 'boundary', ib, 'surface')// &
-          ": no physical surface group of that name in "//trim(cfg%mesh%file)// &
-          ' (surface groups: '//group_list(mesh, 2)//')')
+          ": no "//trim(group_word(mesh%dim - 1))//" group of that name in "//trim(cfg%mesh%file)// &
+          ' ('//trim(group_word(mesh%dim - 1, short=.true.))//' groups: '//group_list(mesh, mesh%dim - 1)//')')
       else if (cfg%boundaries(ib)%kind == bc_symmetry) then
         call plane_of_group(mesh, ig, normal, dev)
         if (dev > 1.0e-6_rk) call errs%add(deck_where(cfg, 'boundary', ib, 'surface')// &
-          " is not planar (relative deviation "//r2s(dev)//'): a symmetry surface must be a plane')
+          " is not "//trim(merge('planar  ', 'straight', mesh%dim == 3))//" (relative deviation "//r2s(dev)// &
+          '): a symmetry '//trim(merge('surface must be a plane', 'curve must be a line   ', mesh%dim == 3)))
       end if
     end do
   end subroutine
@@ -325,7 +346,7 @@ contains
     type(gmsh_mesh_t), intent(in) :: mesh
     integer, intent(in) :: node_new(:)
     type(domain_t), intent(inout) :: dom
-    integer :: ib, ig, n_walls, iw
+    integer :: ib, ig, n_walls, iw, n
     integer, allocatable :: nodes(:), sym(:), fix(:)
     real(rk), allocatable :: symn(:,:)
     real(rk) :: normal(3), dev
@@ -344,11 +365,11 @@ contains
           dom%walls(iw)%wall_type = cfg%boundaries(ib)%wall_type
           dom%walls(iw)%friction = cfg%boundaries(ib)%friction
         case (bc_fixed)
-          ig = find_group(mesh, cfg%boundaries(ib)%surface, 2)
+          ig = find_group(mesh, cfg%boundaries(ib)%surface, mesh%dim - 1)
           call group_nodes(mesh, ig, node_new, nodes)
           fix = [fix, nodes]
         case (bc_symmetry)
-          ig = find_group(mesh, cfg%boundaries(ib)%surface, 2)
+          ig = find_group(mesh, cfg%boundaries(ib)%surface, mesh%dim - 1)
           call group_nodes(mesh, ig, node_new, nodes)
           call plane_of_group(mesh, ig, normal, dev)
           sym = [sym, nodes]
@@ -356,12 +377,20 @@ contains
         end select
       end do
     end if
+    if (cfg%mesh%geometry == geometry_axisymmetric) then
+      ! the axis: no radial motion of the nodes on r = 0
+      nodes = pack([(n, n = 1, size(node_new))], node_new /= 0 .and. mesh%x(:,1) == 0.0_rk)
+      nodes = node_new(nodes)
+      sym = [sym, nodes]
+      symn = append_rows(symn, [1.0_rk, 0.0_rk, 0.0_rk], size(nodes))
+    end if
     dom%sym_nodes = sym
     dom%sym_normal = symn
     dom%fixed_nodes = fix
   end subroutine
 
-  !> Nodes (new numbering, ascending, unique) of a surface group's triangles.
+  !> Nodes (new numbering, ascending, unique) of a boundary group's facets
+  !> (surface triangles; 2D: curve segments).
   subroutine group_nodes(mesh, ig, node_new, nodes)
     type(gmsh_mesh_t), intent(in) :: mesh
     integer, intent(in) :: ig, node_new(:)
@@ -371,17 +400,18 @@ contains
     allocate(mark(mesh%n_nodes), source=.false.)
     do t = 1, mesh%n_facets
       if (mesh%facet_group(t) /= ig) cycle
-      do a = 1, 3
+      do a = 1, mesh%dim
         mark(mesh%facet(t,a)) = .true.
       end do
     end do
-    ! a surface node that no tetrahedron uses has no mass: drop it
+    ! a boundary node that no cell uses has no mass: drop it
     where (node_new == 0) mark = .false.
     nodes = pack(node_new, mark)
   end subroutine
 
-  !> Area-weighted unit normal of a surface group and the largest distance of
-  !> its nodes from the mean plane relative to the group's extent.
+  !> Area-weighted unit normal of a surface group (2D: length-weighted, of a
+  !> curve group, in the plane z = 0) and the largest distance of its nodes
+  !> from the mean plane (line) relative to the group's extent.
   subroutine plane_of_group(mesh, ig, normal, dev)
     type(gmsh_mesh_t), intent(in) :: mesh
     integer, intent(in) :: ig
@@ -393,16 +423,17 @@ contains
     do t = 1, mesh%n_facets
       if (mesh%facet_group(t) /= ig) cycle
       a = mesh%x(mesh%facet(t,2),:) - mesh%x(mesh%facet(t,1),:)
-      b = mesh%x(mesh%facet(t,3),:) - mesh%x(mesh%facet(t,1),:)
+      b = [0.0_rk, 0.0_rk, 1.0_rk]
+      if (mesh%dim == 3) b = mesh%x(mesh%facet(t,3),:) - mesh%x(mesh%facet(t,1),:)
       c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
       ! orient consistently with the first triangle before summing
       if (dot_product(c, normal) < 0.0_rk) c = -c
       normal = normal + c
-      do k = 1, 3
+      do k = 1, mesh%dim
         x0 = x0 + mesh%x(mesh%facet(t,k),:)
         lo = min(lo, mesh%x(mesh%facet(t,k),:)); hi = max(hi, mesh%x(mesh%facet(t,k),:))
       end do
-      cnt = cnt + 3
+      cnt = cnt + mesh%dim
     end do
     dev = 0.0_rk
     if (cnt == 0 .or. norm2(normal) == 0.0_rk) then
@@ -414,7 +445,7 @@ contains
     ext = max(norm2(hi - lo), tiny(1.0_rk))
     do t = 1, mesh%n_facets
       if (mesh%facet_group(t) /= ig) cycle
-      do k = 1, 3
+      do k = 1, mesh%dim
         dev = max(dev, abs(dot_product(mesh%x(mesh%facet(t,k),:) - x0, normal))/ext)
       end do
     end do
@@ -430,7 +461,7 @@ contains
     parent = [(n, n = 1, dom%n_nodes)]
     do e = 1, dom%n_elems
       r1 = root(dom%el_conn(e,1))
-      do a = 2, 4
+      do a = 2, dom%corners
         r2 = root(dom%el_conn(e,a))
         if (r2 /= r1) parent(r2) = r1
       end do
@@ -462,6 +493,54 @@ contains
       out(size(table,1) + k,:) = r
     end do
   end function
+
+  !> What gmsh calls a physical group of dimension dim ('physical volume',
+  !> 'physical surface', 'physical curve'; short: 'volume', ...).
+  function group_word(dim, short) result(w)
+    integer, intent(in) :: dim
+    logical, intent(in), optional :: short
+    character(len=16) :: w
+    character(len=7), parameter :: words(3) = [character(len=7) :: 'curve', 'surface', 'volume']
+    w = 'physical '//words(max(1, min(3, dim)))
+    if (present(short)) then
+      if (short) w = words(max(1, min(3, dim)))
+    end if
+  end function
+
+  !> A 2D deck's own rules (&mesh geometry axisymmetric or plane_strain):
+  !> a 2D mesh, the deck's vectors in the plane z = 0, no node at r < 0
+  !> (axisymmetric), no contact yet.
+  subroutine planar_checks(cfg, mesh, errs)
+    type(config_t), intent(in) :: cfg
+    type(gmsh_mesh_t), intent(in) :: mesh
+    type(input_errors_t), intent(inout) :: errs
+    integer :: k, n
+    character(len=:), allocatable :: mode
+    mode = trim(merge('axisymmetric', 'plane_strain', cfg%mesh%geometry == geometry_axisymmetric))
+    do k = 1, size(cfg%parts)
+      if (cfg%parts(k)%velocity(3) /= 0.0_rk) call errs%add(deck_where(cfg, 'part', k, 'velocity')// &
+        ': the third component must be 0 in a 2D ('//mode//') calculation: give the velocity in the '// &
+        'mesh plane, e.g. velocity = 0.0, -190.0')
+    end do
+    if (allocated(cfg%boundaries)) then
+      do k = 1, size(cfg%boundaries)
+        if (cfg%boundaries(k)%kind /= bc_rigid_wall) cycle
+        if (cfg%boundaries(k)%point(3) /= 0.0_rk .or. cfg%boundaries(k)%normal(3) /= 0.0_rk) &
+          call errs%add(deck_where(cfg, 'boundary', k, 'normal')//': a rigid wall is a line in the mesh plane '// &
+          'in a 2D ('//mode//') calculation: point and normal with third components 0')
+      end do
+    end if
+    if (allocated(cfg%contacts)) then
+      if (size(cfg%contacts) > 0) call errs%add(deck_where(cfg, 'contact', 1, 'master')// &
+        ': contact is not available in 2D ('//mode//') calculations yet (issue 14): model the impact on '// &
+        'a rigid wall or in 3D')
+    end if
+    if (cfg%mesh%geometry /= geometry_axisymmetric) return
+    n = findloc(mesh%x(:,1) < 0.0_rk, .true., 1)
+    if (n > 0) call errs%add(deck_where(cfg, 'mesh', 1, 'file')//': node '//itoa(mesh%node_tag(n))// &
+      ' is at x = '//r2s(mesh%x(n,1))//' m: an axisymmetric mesh lies in x = r >= 0 with the axis on x = 0 '// &
+      '(y along the axis)')
+  end subroutine
 
   integer function find_group(mesh, name, dim) result(ig)
     type(gmsh_mesh_t), intent(in) :: mesh

@@ -18,7 +18,8 @@ program test_averaging_energy
   use udar_distribution, only: distribute_domain
   use udar_comms, only: halo_t
   use udar_fracture, only: el_eroded
-  use udar_element_driver, only: element_volumes, nodal_reference_volumes, nodal_pressures, current_volume
+  use udar_element_driver, only: element_volumes, current_volume
+  use udar_element_shared, only: nodal_reference_volumes, nodal_pressures
   use udar_strings, only: r2s, itoa
   use unit_checks, only: check, check_summary
   use unit_domains, only: elastic_bar_mesh_domain

@@ -14,7 +14,8 @@ program test_distribution_mpi
   use udar_partition, only: partition_elements, partition_stats_t
   use udar_distribution, only: distribute_domain, node_owners
   use udar_strings, only: itoa, r2s
-  use udar_element_driver, only: element_volumes, element_update, nodal_stable_dt
+  use udar_element_driver, only: element_volumes, element_update
+  use udar_element_shared, only: nodal_stable_dt
   use unit_checks, only: check, check_summary
   use unit_domains, only: elastic_bar_mesh_domain
   implicit none
