@@ -102,6 +102,7 @@ run_test "cli/contact_mirrored" tests/cli/contact_mirrored.sh bin/udar
 run_test "cli/ranks_taylor_ofhc" tests/cli/rank_invariance.sh bin/udar taylor_ofhc_baseline 30.0e-6
 run_test "cli/ranks_taylor_wg_stabilised" tests/cli/rank_invariance.sh bin/udar taylor_wg 20.0e-6 stabilised
 run_test "cli/restart" tests/cli/restart.sh bin/udar
+run_test "cli/restart_2d" tests/cli/restart_2d.sh bin/udar
 # repartitioning during a run (&run rebalance_imbalance): bitwise the 1-rank run
 run_test "cli/rebalance" tests/cli/rebalance.sh bin/udar taylor_ofhc_baseline 20.0e-6 2
 run_test "cli/rebalance_erosion" tests/cli/rebalance.sh bin/udar penetration 2.0e-6 1
@@ -117,6 +118,7 @@ run_test "cli/slurm_real" tests/cli/slurm_real.sh bin/udar
 run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
 run_test "regression/elastic_bar_2d" regression elastic_bar_2d bin/udar-debug
 run_test "regression/plate_impact" regression plate_impact bin/udar-debug
+run_test "regression/plate_impact_2d" regression plate_impact_2d bin/udar-debug
 run_test "regression/coulomb_wall" regression coulomb_wall bin/udar-debug
 run_test "regression/blocks_head_on" regression blocks_head_on bin/udar-debug
 run_test "regression/blocks_head_on_symmetric" regression blocks_head_on bin/udar-debug blocks_head_on_symmetric

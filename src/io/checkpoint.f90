@@ -98,7 +98,7 @@ contains
     do k = 1, 3
       h = hash_reals(h, glob%nd_x0(k,:))
     end do
-    do k = 1, 4
+    do k = 1, size(glob%el_conn, 2)
       h = hash_ints(h, glob%el_conn(:,k))
     end do
     h = hash_ints(h, glob%el_part)

@@ -117,7 +117,7 @@ contains
   !> Create (truncate) the HDF5 file and write the run header and the mesh.
   !> Collective.  node_gidx/elem_gidx: 1-based global indices of the rows
   !> this rank writes, strictly ascending; node_id(:) and x0(:,3) hold the
-  !> rows of those nodes, elem_id(:), part_id(:) and conn(:,4) those of the
+  !> rows of those nodes, elem_id(:), part_id(:) and conn(:,4) (2D: conn(:,3)) those of the
   !> elements, conn with 1-based GLOBAL node indices (stored 0-based).
   !> Removes a stale .xmf of the same name: the .xmf appears at the first
   !> fw_end_step and always lists only committed steps.

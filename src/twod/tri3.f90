@@ -108,16 +108,19 @@ contains
   !> An upper bound of the largest eigenvalue of the element's isotropic
   !> elastic stiffness (bulk modulus k(i), shear modulus g; per radian
   !> axisymmetric), for the nodal time step as in 3D (theory.md sections 9
-  !> and 14). With S = sum_a grad N_a grad N_a^T (2 x 2), L the in-plane
-  !> velocity gradient, D = sum_a |u_a|^2 and the hoop rate's weight
-  !> eta = 1/(3 rbar^2) (0 in plane strain):
+  !> and 14), with the radial velocity of the corners on the axis held at
+  !> 0 (the axis condition): free_r(i) of the corners move radially. With
+  !> S = sum_a grad N_a grad N_a^T (2 x 2), L the in-plane velocity
+  !> gradient, D = sum_a |u_a|^2 and the hoop rate's weight
+  !> eta = free_r/(9 rbar^2) (the hoop rate is the free corners' radial
+  !> velocities over 3 rbar; 0 in plane strain):
   !>   (tr L)^2 <= tr S D,  |sym L|^2 <= s_max D,  d_hoop^2 <= eta D,
   !> so with lambda = k - 2g/3 >= 0
   !>   u.K u <= V D (lambda (sqrt(tr S) + sqrt(eta))^2 + 2 g (s_max + eta)).
-  pure subroutine tri_stiffness_bound(ld, nb, axisymmetric, vol, rbar, grad, k, g, lam)
+  pure subroutine tri_stiffness_bound(ld, nb, axisymmetric, vol, rbar, grad, free_r, k, g, lam)
     integer, intent(in) :: ld, nb
     logical, intent(in) :: axisymmetric
-    real(rk), intent(in) :: vol(nb), rbar(nb), grad(ld,3,2), k(nb), g
+    real(rk), intent(in) :: vol(nb), rbar(nb), grad(ld,3,2), free_r(nb), k(nb), g
     real(rk), intent(inout) :: lam(nb)
     real(rk) :: srr, szz, srz, s_max, eta
     integer :: i
@@ -127,7 +130,7 @@ contains
       srz = grad(i,1,1)*grad(i,1,2) + grad(i,2,1)*grad(i,2,2) + grad(i,3,1)*grad(i,3,2)
       s_max = 0.5_rk*(srr + szz) + sqrt(0.25_rk*(srr - szz)**2 + srz**2)
       eta = 0.0_rk
-      if (axisymmetric) eta = 1.0_rk/(3.0_rk*rbar(i)**2)
+      if (axisymmetric) eta = free_r(i)/(9.0_rk*rbar(i)**2)
       lam(i) = abs(vol(i))*(max(k(i) - 2.0_rk/3.0_rk*g, 0.0_rk)*(sqrt(srr + szz) + sqrt(eta))**2 &
                             + 2.0_rk*g*(s_max + eta))
     end do

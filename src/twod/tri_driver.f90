@@ -61,7 +61,7 @@ contains
     logical, intent(out) :: eroded_any
     real(rk), intent(out) :: dt_stable
     integer, intent(out) :: dt_node
-    real(rk) :: ve(ld,3,2), grad(ld,3,2), fe(ld,3,2), area(ld), rbar(ld)
+    real(rk) :: ve(ld,3,2), grad(ld,3,2), fe(ld,3,2), area(ld), rbar(ld), free_r(ld)
     type(element_block_t) :: eb
     type(pass_outcome_t) :: out
     logical :: axi
@@ -71,7 +71,7 @@ contains
     call begin_update_pass(dom)
     do b = 1, dom%n_blocks
       if (dom%time_blocks) call system_clock(tick0)
-      call block_geometry(dom, b, first, last, nb, area, rbar, eb%vol, grad)
+      call block_geometry(dom, b, first, last, nb, area, rbar, eb%vol, grad, free_r)
       call gather_block(dom, dom%nd_v, first, nb, ve)
       call tri_smallest_altitude(ld, nb, grad, eb%h)
       eb%d(1:nb,5:6) = 0.0_rk
@@ -81,8 +81,8 @@ contains
       call material_update(dom, first, nb, dt, eb, out)
       ! its stiffness bound with the whole volumetric part: the nodal
       ! average's patch share is measured for tetrahedra only (theory.md 14)
-      call tri_stiffness_bound(ld, nb, axi, eb%vol, rbar, grad, eb%bulk, step_shear_modulus(dom%mat(dom%el_mat(first))), &
-                               eb%lam)
+      call tri_stiffness_bound(ld, nb, axi, eb%vol, rbar, grad, free_r, eb%bulk, &
+                               step_shear_modulus(dom%mat(dom%el_mat(first))), eb%lam)
       call material_finish(dom, first, nb, dt, eb, out)
       call tri_internal_forces(ld, nb, axi, eb%vol, area, grad, eb%s, eb%p_app, fe)
       do i = 1, nb
@@ -122,15 +122,15 @@ contains
   !> (start-up and restart: no viscosity).
   subroutine tri_element_stiffness_bounds(dom)
     type(domain_t), intent(inout) :: dom
-    real(rk) :: area(ld), rbar(ld), vol(ld), grad(ld,3,2), c2(ld), bulk(ld), lam(ld), g
+    real(rk) :: area(ld), rbar(ld), vol(ld), grad(ld,3,2), c2(ld), bulk(ld), lam(ld), g, free_r(ld)
     integer :: b, nb, first, last
     do b = 1, dom%n_blocks
-      call block_geometry(dom, b, first, last, nb, area, rbar, vol, grad)
+      call block_geometry(dom, b, first, last, nb, area, rbar, vol, grad, free_r)
       associate (mat => dom%mat(dom%el_mat(first)))
         g = step_shear_modulus(mat)
         call dilatational_speed2(mat, nb, dom%el_j(first:last), dom%el_p(first:last), dom%el_mass(first:last), vol, c2)
         bulk(1:nb) = tangent_bulk_modulus(c2(1:nb), dom%el_mass(first:last)/vol(1:nb), 4.0_rk/3.0_rk*g)
-        call tri_stiffness_bound(ld, nb, dom%geometry == geometry_axisymmetric, vol, rbar, grad, bulk, g, lam)
+        call tri_stiffness_bound(ld, nb, dom%geometry == geometry_axisymmetric, vol, rbar, grad, free_r, bulk, g, lam)
       end associate
       dom%el_k(first:last) = merge(0.0_rk, lam(1:nb), dom%el_state(first:last) == el_eroded)
     end do
@@ -169,18 +169,28 @@ contains
     v = vol(1)
   end function
 
-  !> Geometry of block b at the current coordinates.
-  subroutine block_geometry(dom, b, first, last, nb, area, rbar, vol, grad)
+  !> Geometry of block b at the current coordinates; when asked, free_r:
+  !> how many corners of each element are off the axis (r > 0: the axis
+  !> nodes never leave it), for the stiffness bound.
+  subroutine block_geometry(dom, b, first, last, nb, area, rbar, vol, grad, free_r)
     type(domain_t), intent(in) :: dom
     integer, intent(in) :: b
     integer, intent(out) :: first, last, nb
     real(rk), intent(inout) :: area(ld), rbar(ld), vol(ld), grad(ld,3,2)
+    real(rk), intent(inout), optional :: free_r(ld)
     real(rk) :: xe(ld,3,2)
+    integer :: i
     first = dom%blk_first(b)
     last = dom%blk_last(b)
     nb = last - first + 1
     call gather_block(dom, dom%nd_x, first, nb, xe)
     call volumes(dom%geometry, nb, xe, area, rbar, vol, grad)
+    if (present(free_r)) then
+      do i = 1, nb
+        free_r(i) = merge(1.0_rk, 0.0_rk, xe(i,1,1) > 0.0_rk) + merge(1.0_rk, 0.0_rk, xe(i,2,1) > 0.0_rk) &
+                  + merge(1.0_rk, 0.0_rk, xe(i,3,1) > 0.0_rk)
+      end do
+    end if
   end subroutine
 
   !> tri_geometry with the volume and area of a full revolution
