@@ -3,7 +3,10 @@
 
 Every tetrahedron of the chosen step's deformed mesh is intersected with the plane
 (vectorised numpy); each cut is a triangle or a quadrilateral, drawn in the plane's 2-D
-coordinates (mm) with a matplotlib PolyCollection.
+coordinates (mm) with a matplotlib PolyCollection. A 2D file (axisymmetric or plane strain:
+triangles in z = 0) is its own section: its triangles are drawn as they are (the plane
+options do not apply), and ``--mirror`` reflects them about the axis x = 0 to show the
+whole diameter of an axisymmetric body.
 
     /usr/bin/python3 postproc/section.py out/taylor.h5 --plane y=0 --color von_mises -o vm.png
     /usr/bin/python3 postproc/section.py out/taylor.h5 --step 0 --color part --mirror -o parts.png
@@ -181,6 +184,13 @@ def polygon_areas(poly2d):
     return 0.5 * np.abs(np.sum(x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y, axis=1))
 
 
+def planar_polygons(coords, connectivity):
+    """A 2D mesh's triangles as the section -> (elem (k,), poly2d (k, 4, 2) in m), each
+    triangle's third vertex repeated as the fourth (as section_polygons gives cut triangles)."""
+    elem = np.arange(connectivity.shape[0])
+    return elem, np.asarray(coords)[connectivity][:, [0, 1, 2, 2], :2]
+
+
 def section_polygons(coords, connectivity, plane):
     """Cut with a ``Plane`` -> (elem (k,), poly2d (k, 4, 2) in m).
 
@@ -252,7 +262,13 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
         st = f.step(idx)
         coords = f.x0 if undeformed else st.coordinates
         conn = f.connectivity
-        elem, poly = section_polygons(coords, conn, plane)
+        planar = f.dim == 2
+        if planar:
+            plane = plane_from_spec("z=0")
+            plane.u_label, plane.v_label, plane.description = "x = r", "y", "2D mesh (z = 0)"
+            elem, poly = planar_polygons(coords, conn)
+        else:
+            elem, poly = section_polygons(coords, conn, plane)
         if elem.size == 0:
             dist = plane.signed_distance(coords)
             raise SectionError("%s: the plane %s does not cut the mesh at step %d (node distances "
@@ -363,8 +379,9 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
             "cut_tets": int(elem.size), "area_m2": area, "seconds_cut": t_cut,
             "seconds_total": _time.perf_counter() - t0}
     if verbose:
-        print("%s: step %d (t = %.4f us), plane %s: %d tets cut, section area %.6g mm^2, "
+        print("%s: step %d (t = %.4f us), plane %s: %d %s, section area %.6g mm^2, "
               "wrote %s (%.2f s)" % (path, idx, step_time * 1e6, plane.description, elem.size,
+                                     "triangles drawn" if poly.shape[0] and planar else "tets cut",
                                      area * 1e6, out, info["seconds_total"]))
     return info
 
@@ -464,6 +481,16 @@ def _self_test(verbose=True):
                     h5, out2, color="nosuchfield", verbose=False, contains="pressure")
         test.raises(SectionError, "plane missing the mesh rejected", render_section, h5, out2,
                     plane=plane_from_spec("z=1"), verbose=False, contains="does not cut")
+        # a 2D file: its triangles are the section, --mirror shows the whole diameter
+        nodes, conn = ur.rectangle_tris(4, 10, (0.0, 0.0), (R, L))
+        h5 = os.path.join(tmp, "axisymmetric.h5")
+        ur.write_fields(h5, nodes, conn, [{"time": 0.0, "cycle": 0, "coordinates": nodes,
+                                           "fields": {"pressure": 1e9 * nodes[conn].mean(axis=1)[:, 1] / L}}])
+        info = render_section(h5, out1, color="pressure", mirror="h", verbose=False)
+        check(os.path.getsize(out1) > 1000 and info["cut_tets"] == 80
+              and abs(info["area_m2"] - R * L) < 1e-12 * R * L * 1e3,
+              "2D file drawn as it is: 80 triangles, area R*L %.9g mm^2 (expected %.9g)"
+              % (info["area_m2"] * 1e6, R * L * 1e6))
     return test.finish()
 
 

@@ -11,7 +11,8 @@ footprint diameter and maximum (bulge) diameter.
 * max diameter = 2 * max radial distance from the axis over all nodes.
 
 The radius is measured from the axis line through ``--center``, so full, half and quarter
-models give the same numbers.
+models give the same numbers; a 2D axisymmetric file (x = r, y along the axis) is measured
+about the y axis by default, its radius being x.
 
     /usr/bin/python3 postproc/taylor.py out/taylor.h5
     /usr/bin/python3 postproc/taylor.py out/taylor.h5 --axis z --wall 0.0 --center 0 0 --band 0.0005
@@ -233,6 +234,18 @@ def _self_test(verbose=True):
               and all(close(vals[k], v, 1e-8) for k, v in exp.items())
               and "gap to the wall 0.9000 mm" in out and "difference +0.000 mm" in out,
               "rebounded bar through the CLI: length, gap and footprint on the machine line")
+        # a 2D axisymmetric bar (x = r, y along the axis): measured about y by default
+        nodes, conn = ur.rectangle_tris(4, n_len, (0.0, 0.0), (R, L))
+        t = nodes[:, 1] / L
+        g = 1.0 + 0.3 * np.exp(-t / 0.05)
+        x = np.column_stack([nodes[:, 0] * g, 0.8 * nodes[:, 1], np.zeros(len(nodes))])
+        h5 = os.path.join(tmp, "axisymmetric.h5")
+        ur.write_fields(h5, nodes, conn, [{"time": 8e-5, "cycle": 9, "coordinates": x}])
+        rc, out, err = test.run_main(main, [h5])
+        vals = parse_machine_line(out)
+        check(rc == 0 and err == "" and vals is not None and close(vals["length_m"], 0.8 * L, 1e-8)
+              and close(vals["footprint_diameter_m"], 2.6 * R, 1e-8),
+              "2D axisymmetric file: the y axis by default, footprint diameter 2 x the largest r")
         rc, _, err = test.run_main(main, [os.path.join(tmp, "missing.h5")])
         check(rc == 1 and "missing.h5: no such file" in err,
               "missing file: exit code 1 and a message naming the file")
@@ -264,7 +277,8 @@ The rod's side of the wall is the side of the mean nodal coordinate; full, half 
 models give the same result when the axis lies in the symmetry planes.""")
     g = ur.add_fields_argument(p)
     g.add_argument("--all", action="store_true", help="measure every output step")
-    p.add_argument("--axis", default="z", choices=("x", "y", "z"), help="rod axis (default z)")
+    p.add_argument("--axis", default=None, choices=("x", "y", "z"),
+                   help="rod axis (default z; y for a 2D axisymmetric file, whose axis is y)")
     p.add_argument("--wall", type=float, default=0.0, metavar="POS",
                    help="wall plane position along the axis, m (default 0.0)")
     p.add_argument("--center", type=float, nargs=2, default=(0.0, 0.0), metavar=("C1", "C2"),
@@ -291,7 +305,11 @@ def _run(args, p):
         p.error("--band must be >= 0")
     if not all(math.isfinite(v) for v in (args.wall, args.band, *args.center)):
         p.error("--wall, --band and --center must be finite numbers")
-    res = measure_file(args.fields, "all" if args.all else [args.step], AXES.index(args.axis),
+    axis = args.axis
+    if axis is None:
+        with ur.open_fields(args.fields) as f:
+            axis = "y" if f.dim == 2 else "z"
+    res = measure_file(args.fields, "all" if args.all else [args.step], AXES.index(axis),
                        args.wall, tuple(args.center), args.band)
     if args.json:
         def clean(m):

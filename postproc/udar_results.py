@@ -461,6 +461,8 @@ class FieldFile:
                            % (cmin, cmax, self.n_nodes - 1, hint))
         self.x0 = x0
         self.connectivity = conn.astype(np.int64, copy=False)
+        # 2: a 2D (axisymmetric or plane-strain) mesh of triangles in z = 0; 3: tetrahedra
+        self.dim = 2 if conn.shape[1] == 3 else 3
 
         def opt(name, n, default):
             if name in mesh:
@@ -765,6 +767,20 @@ def box_tets(nx, ny, nz, lo=(0.0, 0.0, 0.0), hi=(1.0, 1.0, 1.0)):
         tets.append(np.column_stack(verts))
     conn = np.stack(tets, axis=1).reshape(-1, 4).astype(np.int32)
     return nodes, _fix_orientation(nodes, conn)
+
+
+def rectangle_tris(nx, ny, lo=(0.0, 0.0), hi=(1.0, 1.0)):
+    """Structured triangle mesh of a rectangle in z = 0: each cell split into two
+    counter-clockwise triangles. Returns (nodes (n, 3) float64, connectivity (2*nx*ny, 3)
+    int32, 0-based): a 2D (axisymmetric or plane-strain) mesh as udar writes it."""
+    xs, ys = np.linspace(lo[0], hi[0], nx + 1), np.linspace(lo[1], hi[1], ny + 1)
+    X, Y = np.meshgrid(xs, ys, indexing="ij")
+    nodes = np.column_stack([X.ravel(), Y.ravel(), np.zeros(X.size)])
+    I, J = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
+    a = (I * (ny + 1) + J).ravel()
+    b, c, d = a + (ny + 1), a + (ny + 1) + 1, a + 1
+    conn = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])]).astype(np.int32)
+    return nodes, conn
 
 
 def cylinder_tets(radius, length, n_cross=8, n_len=20, sector="full", axis=2, base=0.0):

@@ -70,6 +70,7 @@ for s in udar_results plot_history section taylor plot_contact_history penetrati
 done
 # ---- deck errors through the real program
 run_test "cli/deck_errors" tests/cli/deck_errors.sh bin/udar-debug
+run_test "cli/input_decks" tests/cli/input_decks.sh bin/udar
 run_test "cli/malformed_corpus" tests/cli/malformed_corpus.sh bin/udar
 run_test "cli/run_goes_bad" tests/cli/run_goes_bad.sh bin/udar-debug
 run_test "cli/repeatable" tests/cli/repeatable.sh bin/udar-debug

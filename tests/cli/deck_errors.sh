@@ -79,4 +79,31 @@ else bad "check_output_is_a_valid_deck (exit $rc)"; head -3 "$W/resolved.nml"; c
 sed 's#directory = "out"#directory = "good.nml/out"#' "$W/good.nml" > "$W/bad_dir.nml"
 grep -q 'good.nml/out' "$W/bad_dir.nml" || bad "deck edit"
 expect output_folder_under_a_file 1 "bad_dir.nml:5: &output: directory = 'good.nml/out': cannot be created: 'good.nml' is a file" "--check bad_dir.nml"
+# 2D decks (&mesh geometry): the mesh and the deck's vectors must be 2D
+cp "$ROOT/tests/regression/elastic_bar_2d/elastic_bar_2d.msh" "$W/bar2d.msh"
+good2d='&run t_end = 1e-6 /
+&mesh file = "bar2d.msh", geometry = "axisymmetric" /
+&material name = "steel", rho0 = 7850, youngs_modulus = 200e9, poisson_ratio = 0.3 /
+&part group = "bar", material = "steel", velocity = 0.0, -10.0 /
+&output directory = "out" /'
+printf '%s\n' "$good2d" > "$W/good2d.nml"
+expect axisymmetric_deck_checks 0 '' "--check good2d.nml"
+sed 's/bar2d.msh/bar.msh/' "$W/good2d.nml" > "$W/mesh3d.nml"
+expect 3d_mesh_with_a_2d_deck 1 "mesh3d.nml:2: &mesh: file = .*the mesh is 3D but a 2D calculation was asked for" "--check mesh3d.nml"
+sed 's/velocity = 0.0, -10.0/velocity = 0.0, 0.0, -10.0/' "$W/good2d.nml" > "$W/vel3.nml"
+expect third_velocity_component_in_2d 1 "vel3.nml:4: &part #1 'bar': velocity = .*third component must be 0 in a 2D \(axisymmetric\)" "--check vel3.nml"
+printf '%s\n&boundary kind = "rigid_wall", point = 0, 0, 0, normal = 0, 0, 1 /\n' "$good2d" > "$W/wall3.nml"
+expect 3d_wall_in_2d 1 "wall3.nml:6: &boundary #1.*normal = .*a rigid wall is a line in the mesh plane" "--check wall3.nml"
+printf '%s\n&boundary kind = "symmetry", surface = "bar_side" /\n' "$good2d" > "$W/curve2d.nml"
+expect unknown_curve_in_2d 1 "curve2d.nml:6: &boundary #1 'bar_side': surface = 'bar_side': no physical curve group of that name .*'impact_face', 'axis'" "--check curve2d.nml"
+printf '%s\n&contact master = "bar", slave = "bar" /\n' "$good2d" > "$W/contact2d.nml"
+expect contact_in_2d_not_yet 1 "contact2d.nml:6: &contact.*contact is not available in 2D" "--check contact2d.nml"
+sed 's/geometry = "axisymmetric"/geometry = "axisymetric"/' "$W/good2d.nml" > "$W/geom.nml"
+expect misspelled_geometry 1 "geom.nml:2: &mesh: geometry = .*axisymetric.*axisymmetric" "--check geom.nml"
+# an axisymmetric mesh with a node at r < 0
+sed 's/^Point(1) = {0, 0, 0}; Point(2) = {R, 0, 0}; Point(3) = {R, L, 0}; Point(4) = {0, L, 0};/Point(1) = {-R, 0, 0}; Point(2) = {R, 0, 0}; Point(3) = {R, L, 0}; Point(4) = {-R, L, 0};/' \
+  "$ROOT/tests/regression/elastic_bar_2d/elastic_bar_2d.geo" > "$W/neg.geo"
+gmsh -2 -v 0 "$W/neg.geo" -o "$W/neg.msh"
+sed 's/bar2d.msh/neg.msh/' "$W/good2d.nml" > "$W/neg.nml"
+expect node_at_negative_radius 1 "neg.nml:2: &mesh: file = .*node [0-9]+ is at x = -.*x = r >= 0" "--check neg.nml"
 [ $fails -eq 0 ]
