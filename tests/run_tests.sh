@@ -147,6 +147,7 @@ run_test "regression/sharp_edge_off_fails" regression_fails sharp_edge bin/udar-
 run_test "regression/self_contact" regression self_contact bin/udar-debug
 run_test "cli/self_contact_off" tests/cli/self_contact_off.sh bin/udar
 run_test "cli/step_warning" tests/cli/step_warning.sh bin/udar
+run_test "regression/taylor_wg_2d" regression taylor_wg_2d bin/udar
 run_test "regression/taylor_wg" regression taylor_wg bin/udar
 run_test "regression/taylor_ofhc_baseline" regression taylor_ofhc_baseline bin/udar
 run_test "regression/taylor_half_length" regression_pair taylor_half_length bin/udar taylor_half_length taylor_half_length_plain

@@ -195,13 +195,21 @@ contains
   end function
 
   !> The volumetric share phi of the element stiffness bound
-  !> (tet_stiffness_bound): 1 for the plain element; beta + (1 - beta)
-  !> patch_share for the nodal-averaged ones (beta = 0: 'nodal').
-  pure real(rk) function step_volumetric_share(averaged, beta) result(phi)
+  !> (tet_stiffness_bound, tri_stiffness_bound): 1 for the plain element;
+  !> beta + (1 - beta) patch for the nodal-averaged ones (beta = 0: 'nodal'),
+  !> patch the element kind's share (patch_share for tetrahedra,
+  !> tri_patch_share for triangles).
+  pure real(rk) function step_volumetric_share(averaged, beta, patch) result(phi)
     logical, intent(in) :: averaged
     real(rk), intent(in) :: beta
+    real(rk), intent(in), optional :: patch   !< the element kind's patch share (default the tetrahedron's)
     phi = 1.0_rk
-    if (averaged) phi = beta + (1.0_rk - beta)*patch_share
+    if (.not. averaged) return
+    if (present(patch)) then
+      phi = beta + (1.0_rk - beta)*patch
+    else
+      phi = beta + (1.0_rk - beta)*patch_share
+    end if
   end function
 
   !> The shear modulus of the wave speed and of the time step: none for

@@ -8,7 +8,7 @@
 module udar_run
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use udar_kinds, only: rk, max_path_len
-  use udar_config, only: config_t
+  use udar_config, only: config_t, geometry_axisymmetric, geometry_plane_strain
   use udar_domain, only: domain_t
   use udar_kinds, only: i8
   use udar_vectors, only: cross
@@ -250,6 +250,10 @@ contains
     write(line, '(a,i0,a,i0,a,es10.3,a)') 'start: ', dom%n_global_elems, ' elements, ', dom%n_global_nodes, &
       ' nodes, stable step ', st%dt_stable, ' s'
     call log_info(line)
+    if (dom%geometry == geometry_axisymmetric) call log_info('axisymmetric (x = r, y the axis): the masses, '// &
+      'energies, momenta and forces of the history are those of the full revolution (2 pi rad)')
+    if (dom%geometry == geometry_plane_strain) call log_info('plane strain: the masses, energies, momenta and '// &
+      'forces of the history are per metre of thickness (z)')
     ! the stable step is watched from here on: the first warning below
     ! dt_warn_ratio of the starting step, then one per further factor of 10
     dt_warn_level = 0

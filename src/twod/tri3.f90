@@ -10,7 +10,16 @@ module udar_tri3
   use udar_kinds, only: rk
   implicit none
   private
-  public :: tri_geometry, tri_smallest_altitude, tri_velocity_gradient, tri_internal_forces, tri_stiffness_bound
+  public :: tri_geometry, tri_smallest_altitude, tri_velocity_gradient, tri_internal_forces, tri_stiffness_bound, &
+            tri_patch_share
+
+  !> The share of a nodal-averaged triangle's volumetric stiffness the
+  !> nodal time step counts beyond the element's own (step_volumetric_share;
+  !> the tetrahedron's is 1/6). Measured (unit/test_stable_step_2d): with
+  !> 1/4 the assembled limit is at least 1.13 times the nodal step on every
+  !> mesh tried up to nu = 0.49 (1/6 leaves the 'nodal' triangle at 0.93
+  !> towards nu = 0.5).
+  real(rk), parameter :: tri_patch_share = 0.25_rk
 
 contains
 
@@ -116,11 +125,15 @@ contains
   !> velocities over 3 rbar; 0 in plane strain):
   !>   (tr L)^2 <= tr S D,  |sym L|^2 <= s_max D,  d_hoop^2 <= eta D,
   !> so with lambda = k - 2g/3 >= 0
-  !>   u.K u <= V D (lambda (sqrt(tr S) + sqrt(eta))^2 + 2 g (s_max + eta)).
-  pure subroutine tri_stiffness_bound(ld, nb, axisymmetric, vol, rbar, grad, free_r, k, g, lam)
+  !>   u.K u <= V D (phi lambda (sqrt(tr S) + sqrt(eta))^2 + 2 g (s_max + eta)),
+  !> phi the share of the volumetric part the step counts, as in
+  !> tet_stiffness_bound (step_volumetric_share): with phi = 1 a bound of
+  !> the plain element's stiffness; below 1 an estimate for the
+  !> nodal-averaged elements, whose averaged part acts over the nodal patch.
+  pure subroutine tri_stiffness_bound(ld, nb, axisymmetric, vol, rbar, grad, free_r, k, g, phi, lam)
     integer, intent(in) :: ld, nb
     logical, intent(in) :: axisymmetric
-    real(rk), intent(in) :: vol(nb), rbar(nb), grad(ld,3,2), free_r(nb), k(nb), g
+    real(rk), intent(in) :: vol(nb), rbar(nb), grad(ld,3,2), free_r(nb), k(nb), g, phi
     real(rk), intent(inout) :: lam(nb)
     real(rk) :: srr, szz, srz, s_max, eta
     integer :: i
@@ -131,7 +144,7 @@ contains
       s_max = 0.5_rk*(srr + szz) + sqrt(0.25_rk*(srr - szz)**2 + srz**2)
       eta = 0.0_rk
       if (axisymmetric) eta = free_r(i)/(9.0_rk*rbar(i)**2)
-      lam(i) = abs(vol(i))*(max(k(i) - 2.0_rk/3.0_rk*g, 0.0_rk)*(sqrt(srr + szz) + sqrt(eta))**2 &
+      lam(i) = abs(vol(i))*(phi*max(k(i) - 2.0_rk/3.0_rk*g, 0.0_rk)*(sqrt(srr + szz) + sqrt(eta))**2 &
                             + 2.0_rk*g*(s_max + eta))
     end do
   end subroutine
