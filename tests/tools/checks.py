@@ -65,5 +65,36 @@ def unconverged_passes(run_dir, interface):
     raise ValueError(f'{run_dir}/run.log has no velocity-matching line for {interface}')
 
 
+def wilkins_guinan(path, axis, radius_name, radius_reference):
+    """The Wilkins-Guinan bar's checks on field file ``path`` (rod axis ``axis``): the
+    final length within 0.5 % of the converged reference range 21.42-21.48 mm, the final
+    footprint radius within 1 % of ``radius_reference`` (check ``radius_name``), and the
+    output consistent: with the deck's linear EOS (E 117 GPa, nu 0.35, rho0 8930 kg/m3)
+    every element's pressure is K (rho/rho0 - 1) of its output density. Returns the
+    measurement (postproc/taylor.py)."""
+    import h5py
+    import numpy as np
+    import taylor
+    m = taylor.measure_file(path, axis=axis, wall=0.0)[0]
+    print('MEASURED ' + taylor.human_line(m))
+    length = m['length_m']
+    nearest_end = min(max(length, 21.42e-3), 21.48e-3)
+    compare('final_length_to_the_reference_range', length, nearest_end, 0.005, 'm')
+    radius = 0.5 * m['footprint_diameter_m']
+    print('MEASURED footprint radius %.4f mm, %+.2f %% from the reference 7.22 mm'
+          % (radius * 1e3, 100 * (radius / 7.22e-3 - 1)))
+    compare(radius_name, radius, radius_reference, 0.01, 'm')
+    bulk = 117.0e9 / (3.0 * (1.0 - 2.0 * 0.35))   # the deck's E and nu
+    rho0 = 8930.0
+    with h5py.File(path, 'r') as f:
+        worst = 0.0
+        for k in f['steps']:
+            st = f['steps'][k]
+            p_eos = bulk * (st['density'][:] / rho0 - 1.0)
+            worst = max(worst, float(np.max(np.abs(st['pressure'][:] - p_eos))))
+    below('pressure_minus_eos_of_output_density_Pa_over_1GPa', worst / 1.0e9, 1.0e-6, '')
+    return m
+
+
 def finish():
     sys.exit(1 if _failed else 0)
