@@ -204,4 +204,29 @@ for spec in "coarse 0.62" "fine 0.31"; do
   done
 done
 echo "# OpenRadioss: 'plain' rows against its default tetrahedron, 'stabilised' against Itetra4=3 (nodal pressure)" | tee -a "$out"
+
+# ---- 2D (issue 14): the OFHC bar axisymmetric (input/taylor_ofhc_2d) against
+# the 3D quarter model at the same mesh size, 80 us, default element: cost
+# per element-cycle, cycles, time to solution and the figures
+echo "# 2D against 3D: OFHC bar, 190 m/s, 80 us, default element; time to solution = wall" | tee -a "$out"
+printf '%-5s %-14s %9s %9s %8s %9s %16s
+' h model elements cycles ns wall_s "Lf/Dm mm" | tee -a "$out"
+for spec in "0.45 3d input/taylor_ofhc/taylor_ofhc" "0.45 2d input/taylor_ofhc_2d/taylor_ofhc_2d" \
+            "0.2 2d input/taylor_ofhc_2d/taylor_ofhc_2d"; do
+  set -- $spec
+  case_name=ofhc_$2_h$1
+  gmsh -3 -v 0 -setnumber h "$1" "$3.geo" -o "$W/$case_name.msh"
+  sed -e "s|file = '[^']*.msh'|file = '$W/$case_name.msh'|" \
+      -e "s|directory = 'out'|directory = '$W/twod', case_name = '$case_name'|" \
+      -e "s|cycle_print = 500|cycle_print = 1000000|" -e "s|dt_field = 10.0e-6|dt_field = 80.0e-6|" \
+      "$3.nml" > "$W/twod.nml"
+  bin/udar "$W/twod.nml" > "$W/log" 2>&1
+  els=$(grep -o 'start: [0-9]* elements' "$W/log" | awk '{print $2}')
+  cyc=$(grep -o 'done: [0-9]* cycles' "$W/log" | awk '{print $2}')
+  ns=$(grep -o '[0-9.]* ns per element-cycle' "$W/log" | cut -d' ' -f1)
+  wall=$(grep -o '[0-9.]* s wall' "$W/log" | cut -d' ' -f1)
+  m=$($PYTHON postproc/taylor.py "$W/twod/$case_name.h5" | grep -o 'length_m=[0-9.e-]* footprint_diameter_m=[0-9.e-]*' | \
+      awk -F'[= ]' '{printf "%.2f/%.2f", 1000*$2, 1000*$4}')
+  printf '%-5s %-14s %9s %9s %8s %9s %16s\n' "$1" "$2" "$els" "$cyc" "$ns" "$wall" "$m" | tee -a "$out"
+done
 echo "saved in $out"

@@ -65,7 +65,7 @@ for t in build/debug/tests/test_*; do
   run_test "unit/$name" "$t" "$ROOT/tests/unit" "$WORK/$name"
 done
 # ---- post-processing scripts on synthetic files with known answers
-for s in udar_results plot_history section taylor plot_contact_history penetration shock; do
+for s in udar_results plot_history section taylor plot_contact_history penetration shock swept; do
   run_test "postproc/$s" $PYTHON postproc/$s.py --self-test
 done
 # ---- deck errors through the real program
@@ -82,6 +82,7 @@ run_test "unit/test_distribution_mpi_np3" mpirun -np 3 build/debug/tests/test_di
 run_test "cli/field_output_ranks" tests/cli/field_output_ranks.sh build/debug/tests/test_field_output_mpi "$WORK/field_output_ranks"
 run_test "cli/ranks_elastic_bar" tests/cli/rank_invariance.sh bin/udar elastic_bar
 run_test "cli/ranks_elastic_bar_2d" tests/cli/rank_invariance.sh bin/udar elastic_bar_2d
+run_test "cli/ranks_taylor_wg_2d" tests/cli/rank_invariance.sh bin/udar taylor_wg_2d 10.0e-6
 run_test "cli/ranks_coulomb_wall" tests/cli/rank_invariance.sh bin/udar-debug coulomb_wall
 run_test "cli/more_ranks_than_elements" tests/cli/more_ranks_than_elements.sh bin/udar-debug
 run_test "cli/ranks_plate_impact" tests/cli/rank_invariance.sh bin/udar plate_impact
