@@ -879,6 +879,8 @@ contains
           return
         end if
       end do
+      ! within rounding of the plane: on it (the solver's 2D state keeps z = 0)
+      mesh%x(:, 3) = 0.0_rk
     end if
     deallocate(key, perm, raw%ntag, raw%nx)
 

@@ -544,7 +544,8 @@ contains
     path = trim(tmp_dir)//'/tiny_z.msh'
     call write_text(path, msh22([character(len=12) :: '1 0 0 0', '2 1 0 1e-14', '3 1 1 0'], [tri]))
     call gmsh_read(path, 1.0_rk, m, ok, err, dim=2)
-    call check('2d_rounding_z_accepted', ok .and. m%n_cells == 1, 'message: '//err)
+    call check('2d_rounding_z_accepted_and_put_on_the_plane', ok .and. m%n_cells == 1 .and. all(m%x(:,3) == 0.0_rk), &
+               'message: '//err)
     ! no physical surface, or none holding a triangle
     call expect_rejected('2d_no_physical_surface', 'no_surface.msh', msh22(square, &
          [character(len=40) :: '1 2 2 0 1 1 2 3', '2 1 2 5 1 1 2']), 'no physical surface group: define one ("Physical '// &
