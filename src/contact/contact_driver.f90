@@ -300,16 +300,17 @@ contains
     real(rk), intent(in) :: depth_limit, dt
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
-    integer :: q, r, k, kq, ps, best_q, np, t(3), a
+    integer :: q, r, k, kq, ps, best_q, np, t(3), a, nf
     real(rk) :: dist
     np = comms_size()
+    nf = size(it%tri, 1)
     call gather_records(ct, n_rec)
     ! the states of the nodes found and of their triangles' nodes, current
     ! on every rank: the triangles' first, then the slave nodes' (a slave
     ! node of a self-contact put back is another's triangle node)
     do r = 0, sum(ct%rec_counts) - rec_found, rec_found
-      t = it%tri(:, nint(ct%rec_recv(r+2)))
-      do a = 1, 3
+      t(1:nf) = it%tri(:, nint(ct%rec_recv(r+2)))
+      do a = 1, nf
         ct%x(:,t(a)) = ct%rec_recv(r+18+3*a:r+20+3*a)
         ct%v(:,t(a)) = ct%rec_recv(r+27+3*a:r+29+3*a)
         ct%fresh(t(a)) = ct%stamp
@@ -431,8 +432,8 @@ contains
     type(contact_t), intent(inout) :: ct
     integer, intent(in) :: first, last
     real(rk), intent(in) :: dt
-    real(rk) :: dvs(3), dvm(3,3), dn, dtan(3), mismatch, first_change, vm(3,3), limit
-    integer :: i, k, ps, t, a, pa, iter
+    real(rk) :: dvs(3), dvm(3,3), dn, dtan(3), mismatch, first_change, vm(3,3), mm(3), limit
+    integer :: i, k, ps, t, a, pa, iter, nf
     logical :: closing, joint
     if (dt <= 0.0_rk) return
     first_change = 0
@@ -448,11 +449,17 @@ contains
       if (joint) call keep_row_velocities()
       do i = first, last
         associate (it => ct%ifc(i))
+          ! a face's nodes: 3 (a triangle) or 2 (a 2D segment, its third
+          ! slot of weight and share 0 padded with a unit mass at rest)
+          nf = size(it%tri, 1)
+          vm = 0.0_rk
+          mm = 1.0_rk
           do k = 1, it%n_pass
             ps = it%active(k)
             t = it%on_tri(k)
-            vm = ct%v(:, it%tri(:,t))
-            call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), ct%m(it%tri(:,t)), vm, it%area(:,k), &
+            vm(:,1:nf) = ct%v(:, it%tri(:,t))
+            mm(1:nf) = ct%m(it%tri(:,t))
+            call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), mm, vm, it%area(:,k), &
                                   it%share(:,k), it%friction, it%dn_sum(k), it%t_sum(:,k), dvs, dvm, closing, dn, dtan)
             if (.not. closing) cycle
             it%dn_sum(k) = it%dn_sum(k) + dn
@@ -463,9 +470,9 @@ contains
             ! whatever energy the matching dissipates shows in the energy error
             ct%v(:,ps) = ct%v(:,ps) + dvs
             ct%x(:,ps) = ct%x(:,ps) + dt*dvs
-            do a = 1, 3
+            do a = 1, nf
               pa = it%tri(a,t)
-              ct%v(:,pa) = vm(:,a) + dvm(:,a)
+              ct%v(:,pa) = ct%v(:,pa) + dvm(:,a)
               ct%x(:,pa) = ct%x(:,pa) + dt*dvm(:,a)
             end do
           end do
@@ -503,7 +510,7 @@ contains
       do j = first, last
         do kk = 1, ct%ifc(j)%n_pass
           tt = ct%ifc(j)%on_tri(kk)
-          do aa = 0, 3
+          do aa = 0, size(ct%ifc(j)%tri, 1)
             p = ct%ifc(j)%active(kk)
             if (aa > 0) p = ct%ifc(j)%tri(aa,tt)
             change = max(change, norm2(ct%v(:,p) - ct%v_sweep(:,p)))
@@ -530,7 +537,7 @@ contains
     real(rk), intent(out) :: change
     logical, intent(out) :: solved
     integer, parameter :: nr = joint_solve_rows
-    integer :: node(0:3,nr), row_ifc(nr), row_k(nr), n, i, k, t, q, a, p
+    integer :: node(0:3,nr), row_ifc(nr), row_k(nr), n, i, k, t, q, a, p, nf
     real(rk) :: w(0:3,nr), coef(0:3,nr), nrm(3,nr), m(nr,nr), b(nr), lam(nr), lam0(nr), work(nr,nr+1), &
                 gc(3), v_master(3), dl
     logical :: free(nr)
@@ -544,13 +551,16 @@ contains
     n = 0
     do i = first, last
       associate (it => ct%ifc(i))
+        nf = size(it%tri, 1)
         do k = 1, it%n_pass
           n = n + 1
           row_ifc(n) = i
           row_k(n) = k
           t = it%on_tri(k)
           node(0,n) = it%active(k)
-          node(1:3,n) = it%tri(:,t)
+          node(1:nf,n) = it%tri(:,t)
+          ! a 2D segment's third slot: its second node again, of weight and share 0
+          node(nf+1:3,n) = node(nf,n)
           gc = contact_point(it%area(:,k))
           w(0,n) = -1.0_rk
           w(1:3,n) = gc
