@@ -11,9 +11,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 MESHES_ONLY=1 tests/validate_taylor.sh
+MESHES_ONLY=1 tests/validate_taylor.sh 2d
 MESHES_ONLY=1 tests/validate_long_rod.sh
 MESHES_ONLY=1 tests/validate_paper.sh
 tests/validate_taylor.sh
+tests/validate_taylor.sh 2d
 tests/validate_long_rod.sh
 tests/validate_paper.sh
 tests/validate_contact.sh

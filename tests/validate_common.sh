@@ -43,7 +43,7 @@ meshes_checked() {
 log_value() {
   local line
   case $2 in
-    tets) grep -o '[0-9]* tetrahedra' "$1" | head -1 | cut -d' ' -f1; return ;;
+    tets) grep -o '[0-9]* tetrahedra\|[0-9]* triangles' "$1" | head -1 | cut -d' ' -f1; return ;;
   esac
   line=$(grep '^udar: done: ' "$1" | tail -1)
   case $2 in
