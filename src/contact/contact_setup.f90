@@ -17,10 +17,13 @@ module udar_contact_setup
   use udar_contact_kernels, only: tetrahedron_coordinates
   implicit none
   private
-  public :: build_contact, tet_face, contact_edges
+  public :: build_contact, tet_face, tri_face, contact_edges, exterior_faces
 
   !> local nodes of the face opposite each tet corner
   integer, parameter :: tet_face(3,4) = reshape([2,3,4, 1,4,3, 1,2,4, 1,3,2], [3,4])
+  !> 2D: local nodes of the edge opposite each corner of a triangle, in its
+  !> counter-clockwise order (the outward normal of edge a -> b is (dy, -dx))
+  integer, parameter :: tri_face(2,3) = reshape([2,3, 3,1, 1,2], [2,3])
 
 contains
 
@@ -361,33 +364,42 @@ contains
     end do
   end subroutine
 
-  !> Faces of each part's boundary: faces of its tetrahedra that no other
-  !> tetrahedron of the same part shares; counter-clockwise seen from outside.
+  !> Faces of each part's boundary: faces of its elements that no other
+  !> element of the same part shares; counter-clockwise seen from outside
+  !> (tetrahedra: triangles face(3,:); 2D triangles: edges face(2,:), in
+  !> their triangle's counter-clockwise order).
   subroutine exterior_faces(glob, face, face_part, nf)
     type(domain_t), intent(in) :: glob
     integer, allocatable, intent(out) :: face(:,:), face_part(:)
     integer, intent(out) :: nf
-    integer :: e, f, k, e2, a, b, c
-    logical :: shared
-    allocate(face(3, 4*glob%n_elems), face_part(4*glob%n_elems))
+    integer :: e, f, k, e2, j, nv, fn(3)
+    logical :: shared, has_all
+    nv = glob%corners - 1
+    allocate(face(nv, glob%corners*glob%n_elems), face_part(glob%corners*glob%n_elems))
     nf = 0
     do e = 1, glob%n_elems
-      do f = 1, 4
-        a = glob%el_conn(e, tet_face(1,f))
-        b = glob%el_conn(e, tet_face(2,f))
-        c = glob%el_conn(e, tet_face(3,f))
+      do f = 1, glob%corners
+        if (glob%corners == 4) then
+          fn(1:nv) = glob%el_conn(e, tet_face(:,f))
+        else
+          fn(1:nv) = glob%el_conn(e, tri_face(:,f))
+        end if
         shared = .false.
-        do k = glob%nd_el_ptr(a), glob%nd_el_ptr(a+1) - 1
+        do k = glob%nd_el_ptr(fn(1)), glob%nd_el_ptr(fn(1)+1) - 1
           e2 = glob%nd_el(k)
           if (e2 == e .or. glob%el_part(e2) /= glob%el_part(e)) cycle
-          if (any(glob%el_conn(e2,:) == b) .and. any(glob%el_conn(e2,:) == c)) then
+          has_all = .true.
+          do j = 2, nv
+            has_all = has_all .and. any(glob%el_conn(e2,:) == fn(j))
+          end do
+          if (has_all) then
             shared = .true.
             exit
           end if
         end do
         if (shared) cycle
         nf = nf + 1
-        face(:,nf) = [a, b, c]
+        face(:,nf) = fn(1:nv)
         face_part(nf) = glob%el_part(e)
       end do
     end do

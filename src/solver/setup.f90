@@ -37,7 +37,7 @@ contains
     real(rk), allocatable :: centroid(:,:), el_mass(:)
     integer :: ip, ig, e, n, a, k, n_err0, dim, nc
     character(len=:), allocatable :: where, body_groups, cells
-    real(rk) :: xe(4,3)
+    real(rk) :: xe(4,3), x3(3,3)
 
     n_err0 = errs%count()
     dim = mesh%dim
@@ -148,7 +148,8 @@ contains
       if (nc == 4) then
         dom%el_vol0(e) = tet_volume(xe)
       else
-        dom%el_vol0(e) = tri_cell_volume(dom%geometry, transpose(xe(1:3,:)))
+        x3 = transpose(xe(1:3,:))
+        dom%el_vol0(e) = tri_cell_volume(dom%geometry, x3)
       end if
       el_mass(e) = dom%mat(dom%el_mat(e))%rho0*dom%el_vol0(e)   ! as init_state computes it
     end do

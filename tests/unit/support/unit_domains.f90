@@ -9,7 +9,7 @@ module unit_domains
   use udar_setup, only: build_domain
   implicit none
   private
-  public :: elastic_bar_mesh_domain
+  public :: elastic_bar_mesh_domain, elastic_bar_2d_mesh_domain
 
 contains
 
@@ -26,6 +26,22 @@ contains
     call deck_read(unit_dir//'/../regression/elastic_bar/elastic_bar.nml', cfg, errs)
     call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg)
     if (errs%count() /= 0 .or. .not. ok) error stop 'cannot read the elastic-bar deck and mesh'
+    call build_domain(cfg, mesh, glob, errs)
+  end subroutine
+
+  !> The mesh domain of the axisymmetric elastic-bar regression deck (2000
+  !> triangles, radius 5 mm, length 100 mm), with its deck.
+  subroutine elastic_bar_2d_mesh_domain(unit_dir, cfg, glob)
+    character(len=*), intent(in) :: unit_dir
+    type(config_t), intent(out) :: cfg
+    type(domain_t), intent(out) :: glob
+    type(input_errors_t) :: errs
+    type(gmsh_mesh_t) :: mesh
+    character(len=:), allocatable :: msg
+    logical :: ok
+    call deck_read(unit_dir//'/../regression/elastic_bar_2d/elastic_bar_2d.nml', cfg, errs)
+    call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg, dim=2)
+    if (errs%count() /= 0 .or. .not. ok) error stop 'cannot read the 2D elastic-bar deck and mesh'
     call build_domain(cfg, mesh, glob, errs)
   end subroutine
 end module unit_domains
