@@ -14,7 +14,7 @@ module udar_segment2
   use udar_config, only: contact_weights_distance
   implicit none
   private
-  public :: segment_projection, segment_shares, triangle_coordinates
+  public :: segment_projection, segment_shares, triangle_coordinates, closest_on_segment
 
 contains
 
@@ -73,6 +73,19 @@ contains
         r_share(1) = 1.0_rk - r_share(2)
       end if
     end if
+  end subroutine
+
+  !> The point c of segment xa nearest to p (the 2D closest_on_triangle:
+  !> where a node behind the surface beyond a corner meets it) and its
+  !> linear coordinates g (both in [0, 1]).
+  pure subroutine closest_on_segment(xa, p, c, g)
+    real(rk), intent(in) :: xa(3,2), p(3)
+    real(rk), intent(out) :: c(3), g(2)
+    real(rk) :: e(3), t
+    e = xa(:,2) - xa(:,1)
+    t = min(max(dot_product(e, p - xa(:,1))/dot_product(e, e), 0.0_rk), 1.0_rk)
+    g = [1.0_rk - t, t]
+    c = xa(:,1) + t*e
   end subroutine
 
   !> Area coordinates lam of point p in triangle xa (corners xa(:,a), in the

@@ -8,14 +8,16 @@ program test_segment2
   use udar_kinds, only: rk
   use udar_strings, only: r2s
   use udar_config, only: contact_weights_distance, contact_weights_area
-  use udar_segment2, only: segment_projection, segment_shares, triangle_coordinates
-  use udar_contact_kernels, only: match_velocities, contact_point
+  use udar_segment2, only: segment_projection, segment_shares, triangle_coordinates, closest_on_segment
+  use udar_contact_kernels, only: match_velocities, contact_point, triangle_projection
+  use udar_contact_faces, only: face_projection, face_shares, closest_on_face, element_coordinates
   use unit_checks, only: check, check_summary
   implicit none
   real(rk) :: xa(3,2), xs(3), n(3), dist, g(2), r(2), xa0(3,2), xs0(3), p(3), lam(3), tri(3,3)
   real(rk) :: ms, vs(3), mm(3), vm(3,3), g3(3), r3(3), dvs(3), dvm(3,3), dn, dtv(3), vs_after(3), vm_after(3,3), &
               mom(3), rel(3)
   logical :: acted
+  real(rk) :: n1(3), d1, g31(3), g32(3), c(3), lam4(4), r3b(3)
 
   ! a master segment along +x: the master element lies above it (the
   ! boundary counter-clockwise), so its outward normal points down
@@ -88,5 +90,30 @@ program test_segment2
   call triangle_coordinates(tri, [0.8_rk, 0.4_rk, 0.0_rk], lam)
   call check('triangle_coordinates_outside', abs(lam(1) + 0.2_rk) < 1e-15_rk .and. minval(lam) < 0.0_rk, &
              r2s(lam(1))//' '//r2s(lam(2))//' '//r2s(lam(3)))
+
+  ! the face dispatch (udar_contact_faces): a triangle's the 3D kernel's
+  ! to the bit, a segment's the 2D kernel's with a third entry 0
+  tri(:,1) = [0.1_rk, 0.2_rk, 0.3_rk]
+  tri(:,2) = [1.2_rk, 0.1_rk, -0.2_rk]
+  tri(:,3) = [0.4_rk, 1.3_rk, 0.5_rk]
+  xs = [0.5_rk, 0.4_rk, 0.9_rk]
+  call triangle_projection(tri, xs, n, dist, g31)
+  call face_projection(tri, xs, n1, d1, g32)
+  call check('face_projection_of_a_triangle_is_the_3d_kernel', all(n1 == n) .and. d1 == dist .and. all(g32 == g31), &
+             'dist '//r2s(d1))
+  xs = [0.5_rk, -0.3_rk, 0.0_rk]
+  call face_projection(xa, xs, n1, d1, g31)
+  call segment_projection(xa, xs, n, dist, g)
+  call check('face_projection_of_a_segment_is_the_2d_kernel', all(n1 == n) .and. d1 == dist .and. &
+             all(g31 == [g(1), g(2), 0.0_rk]), 'g '//r2s(g31(1))//' '//r2s(g31(2))//' '//r2s(g31(3)))
+  call face_shares(contact_weights_area, xa, xs, g31, n1, xa, xs, r3b)
+  call check('face_shares_of_a_segment', all(abs(r3b - [0.75_rk, 0.25_rk, 0.0_rk]) < 1e-15_rk), &
+             'R '//r2s(r3b(1))//' '//r2s(r3b(2))//' '//r2s(r3b(3)))
+  call closest_on_face(xa, [2.5_rk, 0.4_rk, 0.0_rk], c, g31)
+  call check('closest_on_a_segment_beyond_its_end', all(c == xa(:,2)) .and. all(g31 == [0.0_rk, 1.0_rk, 0.0_rk]), &
+             'c = ('//r2s(c(1))//', '//r2s(c(2))//')')
+  call element_coordinates(xa, [1.0_rk, 1.0_rk, 0.0_rk], [1.0_rk, 0.25_rk, 0.0_rk], lam4)
+  call check('element_coordinates_in_a_2d_triangle', all(abs(lam4 - [0.375_rk, 0.375_rk, 0.25_rk, 0.0_rk]) < 1e-15_rk), &
+             r2s(lam4(1))//' '//r2s(lam4(2))//' '//r2s(lam4(3))//' '//r2s(lam4(4)))
   call check_summary()
 end program test_segment2
