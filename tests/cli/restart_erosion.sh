@@ -25,17 +25,9 @@ elif [ "${2:-}" = edges ]; then
   sed -i "s|&contact master = 'plate', slave = 'rod' /|\&contact master = 'plate', slave = 'rod', edges = .true. /|" "$W/$case.nml"
   grep -q "edges = .true." "$W/$case.nml" || { bad "deck_has_edges"; exit 1; }
 fi
-(cd "$W" && timeout 600 "$EXE" $case.nml > straight.log 2>&1) || { cat "$W/straight.log"; bad "straight run"; exit 1; }
-mkdir -p "$W/straight" && cp "$W/out/${case}_history.csv" "$W/out/$case.h5" "$W/straight/"
+straight_run $case
 eroded=$(grep -o '[0-9]* eroded;' "$W/straight.log" | cut -d' ' -f1)
 echo "MEASURED $eroded elements eroded in the straight run"
 [ "${eroded:-0}" -gt 0 ] && ok "elements_eroded_before_the_end" || bad "elements_eroded_before_the_end"
-(cd "$W" && timeout 600 mpirun -np 2 "$EXE" --restart out/${case}_ckpt1.h5 $case.nml > restart.log 2>&1) \
-  || { cat "$W/restart.log"; bad "restart on 2 ranks"; exit 1; }
-grep 'restart from' "$W/restart.log"
-if cmp -s "$W/straight/${case}_history.csv" "$W/out/${case}_history.csv"; then ok "history_restart_equals_straight"
-else bad "history_restart_equals_straight"; fi
-if h5diff --exclude-path /provenance "$W/straight/$case.h5" "$W/out/$case.h5" > "$W/h5diff.txt" 2>&1; then
-  ok "fields_restart_equal_straight"
-else bad "fields_restart_equal_straight"; head "$W/h5diff.txt"; fi
+restart_matches_straight $case 2
 [ $fails -eq 0 ]

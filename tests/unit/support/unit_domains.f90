@@ -19,14 +19,7 @@ contains
     character(len=*), intent(in) :: unit_dir
     type(config_t), intent(out) :: cfg
     type(domain_t), intent(out) :: glob
-    type(input_errors_t) :: errs
-    type(gmsh_mesh_t) :: mesh
-    character(len=:), allocatable :: msg
-    logical :: ok
-    call deck_read(unit_dir//'/../regression/elastic_bar/elastic_bar.nml', cfg, errs)
-    call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg)
-    if (errs%count() /= 0 .or. .not. ok) error stop 'cannot read the elastic-bar deck and mesh'
-    call build_domain(cfg, mesh, glob, errs)
+    call regression_mesh_domain(unit_dir//'/../regression/elastic_bar/elastic_bar.nml', 3, cfg, glob)
   end subroutine
 
   !> The mesh domain of the axisymmetric elastic-bar regression deck (2000
@@ -35,13 +28,22 @@ contains
     character(len=*), intent(in) :: unit_dir
     type(config_t), intent(out) :: cfg
     type(domain_t), intent(out) :: glob
+    call regression_mesh_domain(unit_dir//'/../regression/elastic_bar_2d/elastic_bar_2d.nml', 2, cfg, glob)
+  end subroutine
+
+  !> A regression deck, its mesh (of dimension dim) and the mesh domain.
+  subroutine regression_mesh_domain(deck, dim, cfg, glob)
+    character(len=*), intent(in) :: deck
+    integer, intent(in) :: dim
+    type(config_t), intent(out) :: cfg
+    type(domain_t), intent(out) :: glob
     type(input_errors_t) :: errs
     type(gmsh_mesh_t) :: mesh
     character(len=:), allocatable :: msg
     logical :: ok
-    call deck_read(unit_dir//'/../regression/elastic_bar_2d/elastic_bar_2d.nml', cfg, errs)
-    call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg, dim=2)
-    if (errs%count() /= 0 .or. .not. ok) error stop 'cannot read the 2D elastic-bar deck and mesh'
+    call deck_read(deck, cfg, errs)
+    call gmsh_read(trim(cfg%mesh%file), cfg%mesh%scale, mesh, ok, msg, dim=dim)
+    if (errs%count() /= 0 .or. .not. ok) error stop 'cannot read the regression deck '//deck//' and its mesh'
     call build_domain(cfg, mesh, glob, errs)
   end subroutine
 end module unit_domains
