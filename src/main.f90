@@ -261,11 +261,9 @@ contains
       dom = domain_t()
       contacts = contact_t()
       call build_domain(cfg, mesh, dom, errs)
-      if (mesh%dim == 3) then
-        if (errs%count() == 0) call build_contact(cfg, mesh, dom, contacts, errs)
-        ! the eroding surfaces with each face's element (its fourth corner)
-        if (errs%count() == 0) call contact_eroding_surfaces(contacts)
-      end if
+      if (errs%count() == 0) call build_contact(cfg, mesh, dom, contacts, errs)
+      ! the eroding surfaces with each face's element (its corner opposite)
+      if (errs%count() == 0) call contact_eroding_surfaces(contacts)
       write(line, '(a,i0,a,i0,a,i0,a)') 'mesh '//trim(cfg%mesh%file)//': ', mesh%n_nodes, ' nodes, ', &
         mesh%n_cells, trim(merge(' tetrahedra', ' triangles ', mesh%dim == 3))//', ', mesh%n_inverted, &
         ' reoriented at read time'

@@ -87,6 +87,7 @@ run_test "cli/ranks_coulomb_wall" tests/cli/rank_invariance.sh bin/udar-debug co
 run_test "cli/more_ranks_than_elements" tests/cli/more_ranks_than_elements.sh bin/udar-debug
 run_test "cli/ranks_plate_impact" tests/cli/rank_invariance.sh bin/udar plate_impact
 run_test "cli/ranks_blocks_head_on" tests/cli/rank_invariance.sh bin/udar blocks_head_on
+run_test "cli/ranks_bars_head_on_2d_symmetric" tests/cli/rank_invariance.sh bin/udar bars_head_on_2d - - bars_head_on_2d_symmetric
 run_test "cli/ranks_oblique_free" tests/cli/rank_invariance.sh bin/udar oblique_free
 run_test "cli/ranks_spall" tests/cli/rank_invariance.sh bin/udar spall
 run_test "cli/ranks_penetration" tests/cli/rank_invariance.sh bin/udar penetration 2.5e-6
@@ -124,6 +125,8 @@ run_test "regression/plate_impact_2d" regression plate_impact_2d bin/udar-debug
 run_test "regression/coulomb_wall" regression coulomb_wall bin/udar-debug
 run_test "regression/blocks_head_on" regression blocks_head_on bin/udar-debug
 run_test "regression/blocks_head_on_symmetric" regression blocks_head_on bin/udar-debug blocks_head_on_symmetric
+run_test "regression/bars_head_on_2d" regression bars_head_on_2d bin/udar-debug
+run_test "regression/bars_head_on_2d_symmetric" regression bars_head_on_2d bin/udar-debug bars_head_on_2d_symmetric
 run_test "regression/oblique_free" regression oblique_free bin/udar-debug
 run_test "regression/oblique_free_distance_fails" regression_fails oblique_free bin/udar-debug oblique_free_distance angular_momentum_relative
 run_test "regression/oblique_friction" regression oblique_friction bin/udar-debug

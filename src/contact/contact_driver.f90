@@ -7,14 +7,16 @@
 !> The search divides among the ranks, the matching over the nodes found
 !> is repeated; bitwise the same on any number of ranks (design.md D9).
 module udar_contact
-  use udar_kinds, only: rk, i8
+  use udar_kinds, only: rk, i8, pi
   use udar_exact_sum, only: exact_limbs, exact_add
   use udar_domain, only: domain_t
   use udar_contact_model, only: contact_t, interface_t, neighbour_across
   use udar_contact_search, only: grid_build, grid_cell, ensure
-  use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_shares, &
-      solve_normal_lcp, normal_rows_matrix, contact_point, &
-                                  edge_crossing, behind_surface, beside_sharp_edge, closest_on_triangle, behind_not, behind_face, behind_seam
+  use udar_contact_kernels, only: match_velocities, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
+                                  edge_crossing, behind_not, behind_face, behind_seam
+  use udar_contact_faces, only: face_projection, face_shares, closest_on_face, element_coordinates, face_behind_surface, &
+                                face_beside_sharp_edge
+  use udar_config, only: geometry_axisymmetric
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, &
                         comms_max, comms_alltoall_counts, comms_alltoallv_real, comms_wtime
   implicit none
@@ -610,11 +612,14 @@ contains
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
     real(rk) :: xa(3,3), n(3), dist, g(3), best_dist, best_n(3), best_g(3), vm(3,3), xa0(3,3), share(3), x_new(3), c_edge(3)
-    integer :: nt, t, k, ps, best, iter, a, pa, kc, n_rec
+    integer :: nt, t, k, ps, best, iter, a, pa, kc, n_rec, nf
     real(rk) :: t_search, t_share
     logical :: separating
     real(rk) :: room
     nt = size(it%tri, 2)
+    ! a face's nodes: 3 (a triangle, 3D) or 2 (a segment, 2D); xa(:,1:nf)
+    nf = size(it%tri, 1)
+    xa = 0
     n_found = it%n_pass
     deepest = 0
     worst = 0
@@ -672,17 +677,17 @@ contains
         call add_record(k, best, kind_separating, best_dist, best_n, best_g, [0.0_rk, 0.0_rk, 0.0_rk], x_new)
         cycle
       end if
-      xa = ct%x(:, it%tri(:,best))
+      xa(:,1:nf) = ct%x(:, it%tri(:,best))
       xa0 = at_step_start(best)
-      call master_shares(it%weights, xa, ct%x(:,ps), best_g, best_n, xa0, ct%x(:,ps) - dt*ct%v(:,ps), share)
+      call face_shares(it%weights, xa(:,1:nf), ct%x(:,ps), best_g, best_n, xa0(:,1:nf), ct%x(:,ps) - dt*ct%v(:,ps), share)
       call add_record(k, best, kind_found, best_dist, best_n, best_g, share, ct%x(:,ps))
       ! in a valley of the master surface: the other face it is behind too
       if (.not. it%valleys .or. it%self .or. dt <= 0.0_rk) cycle
       call valley_partner(ps, k, best, best_n, t, dist, n, g)
       if (t == 0) cycle
-      xa = ct%x(:, it%tri(:,t))
+      xa(:,1:nf) = ct%x(:, it%tri(:,t))
       xa0 = at_step_start(t)
-      call master_shares(it%weights, xa, ct%x(:,ps), g, n, xa0, ct%x(:,ps) - dt*ct%v(:,ps), share)
+      call face_shares(it%weights, xa(:,1:nf), ct%x(:,ps), g, n, xa0(:,1:nf), ct%x(:,ps) - dt*ct%v(:,ps), share)
       call add_record(k, t, kind_valley, dist, n, g, share, ct%x(:,ps))
     end do
     t_share = comms_wtime()
@@ -718,7 +723,7 @@ contains
           it%friction_impulse = it%friction_impulse + ct%m(ps)*norm2(it%t_sum(:,k))
           it%master_impulse = it%master_impulse - ct%m(ps)*(it%dn_sum(k)*it%normal(:,k) + it%t_sum(:,k))
           ct%impulse(ps) = ct%impulse(ps) + ct%m(ps)*it%dn_sum(k)
-          do a = 1, 3
+          do a = 1, nf
             pa = it%tri(a,it%on_tri(k))
             ct%impulse(pa) = ct%impulse(pa) + it%share(a,k)*ct%m(ps)*it%dn_sum(k)
           end do
@@ -729,8 +734,8 @@ contains
       do k = 1, it%n_pass
         ps = it%active(k)
         t = it%on_tri(k)
-        xa = ct%x(:, it%tri(:,t))
-        call triangle_projection(xa, ct%x(:,ps), n, dist, g)
+        xa(:,1:nf) = ct%x(:, it%tri(:,t))
+        call face_projection(xa(:,1:nf), ct%x(:,ps), n, dist, g)
         room = allowance(ps)
         ! a valley node's second face: what is left of the same room
         if (k > 1) then
@@ -739,7 +744,7 @@ contains
         if (dist < 0.0_rk) then
           if (it%seams .and. minval(g) < -edge_tolerance) then
             ! beyond the triangle's outline (a seam): onto its closest point
-            call closest_on_triangle(xa, ct%x(:,ps), c_edge, g)
+            call closest_on_face(xa(:,1:nf), ct%x(:,ps), c_edge, g)
             call put_back(ps, c_edge - ct%x(:,ps), room)
           else
             call put_back(ps, -dist*n, room)
@@ -750,7 +755,7 @@ contains
         ! push was all taken back by the later passes is not in contact)
         if (dt > 0.0_rk .and. it%dn_sum(k) > 0.0_rk) then
           g = max(it%area(:,k), 0.0_rk)/sum(max(it%area(:,k), 0.0_rk))
-          vm(:,1) = g(1)*ct%v(:,it%tri(1,t)) + g(2)*ct%v(:,it%tri(2,t)) + g(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps)
+          vm(:,1) = face_velocity(t, g) - ct%v(:,ps)
           vm(:,1) = vm(:,1) - dot_product(vm(:,1), it%normal(:,k))*it%normal(:,k)
           it%max_slip = max(it%max_slip, norm2(vm(:,1)))
         end if
@@ -791,8 +796,8 @@ contains
       real(rk), intent(in) :: dist, n(3), g(3), share(3), x(3)
       ps = it%slave(k)
       ct%rec_send(n_rec+1:n_rec+rec_found) = [real(k, rk), real(t, rk), real(kind, rk), dist, n, g, share, x, &
-        ct%v(:,ps), ct%h(ps), ct%x(:,it%tri(1,t)), ct%x(:,it%tri(2,t)), ct%x(:,it%tri(3,t)), &
-        ct%v(:,it%tri(1,t)), ct%v(:,it%tri(2,t)), ct%v(:,it%tri(3,t))]
+        ct%v(:,ps), ct%h(ps), ct%x(:,it%tri(1,t)), ct%x(:,it%tri(2,t)), ct%x(:,it%tri(nf,t)), &
+        ct%v(:,it%tri(1,t)), ct%v(:,it%tri(2,t)), ct%v(:,it%tri(nf,t))]
       n_rec = n_rec + rec_found
     end subroutine
 
@@ -803,9 +808,9 @@ contains
       real(rk), intent(in) :: reach
       real(rk), intent(out) :: lo(3), hi(3)
       real(rk) :: xt(3,3)
-      xt = ct%x(:, it%tri(:,t))
-      lo = minval(xt, dim=2)
-      hi = maxval(xt, dim=2)
+      xt(:,1:nf) = ct%x(:, it%tri(:,t))
+      lo = minval(xt(:,1:nf), dim=2)
+      hi = maxval(xt(:,1:nf), dim=2)
       if (it%apex(t) > 0 .and. dt > 0.0_rk) then
         lo = min(lo, ct%x(:,it%apex(t)))
         hi = max(hi, ct%x(:,it%apex(t)))
@@ -965,8 +970,8 @@ contains
         if (it%self) then
           if (any(it%near(it%tri(:,t)))) cycle   ! its own neighbourhood
         end if
-        xa = ct%x(:, it%tri(:,t))
-        call triangle_projection(xa, ct%x(:,ps), n, dist, g)
+        xa(:,1:nf) = ct%x(:, it%tri(:,t))
+        call face_projection(xa(:,1:nf), ct%x(:,ps), n, dist, g)
         if (dist >= 0.0_rk) cycle
         ! the faces across its edges: for a sharp edge (a node that did not
         ! cross this plane in the step), or for a seam beyond an edge
@@ -977,16 +982,17 @@ contains
         if (sharp) then
           ! each face across an edge shares the corners but the one opposite
           n_beside = 0
-          do a = 1, 3
+          do a = 1, nf
             if (.not. has(a)) cycle
             n_beside = n_beside + 1
             xs(:,:,n_beside) = xb(:,:,a)
             shares(:,n_beside) = [1, 2, 3] /= a
           end do
-          if (beside_sharp_edge(xa, n, g, xs, shares, n_beside, ct%x(:,ps), edge_tolerance)) cycle
+          if (face_beside_sharp_edge(xa(:,1:nf), n, g, xs(:,1:nf,:), shares(1:nf,:), n_beside, ct%x(:,ps), &
+                                     edge_tolerance)) cycle
         end if
         if (it%seams .and. off_face) then
-          verdict = behind_surface(xa, n, dist, g, xb, has, ct%x(:,ps), edge_tolerance)
+          verdict = face_behind_surface(xa(:,1:nf), n, dist, g, xb, has, ct%x(:,ps), edge_tolerance)
         else
           verdict = merge(behind_not, behind_face, off_face)
         end if
@@ -996,7 +1002,7 @@ contains
           ! outline): the contact is with the triangle's closest point,
           ! along the way to it; taken only when no face has the node
           if (it%self .or. dist < -depth_limit) cycle
-          call closest_on_triangle(xa, ct%x(:,ps), c_near, g)
+          call closest_on_face(xa(:,1:nf), ct%x(:,ps), c_near, g)
           dist = -norm2(c_near - ct%x(:,ps))
           if (dist >= 0.0_rk .or. dist <= seam_dist) cycle
           seam = t; seam_dist = dist; seam_n = (ct%x(:,ps) - c_near)/dist; seam_g = g
@@ -1006,8 +1012,8 @@ contains
           ! deeper than any approach in a step: only inside the element under
           ! the face (a face erosion exposed under a node already inside)
           if (geometric .or. dt <= 0.0_rk .or. it%apex(t) == 0) cycle
-          call tetrahedron_coordinates(xa, ct%x(:,it%apex(t)), ct%x(:,ps), lam)
-          if (any(lam <= edge_tolerance)) cycle     ! strictly inside: not on another of its faces
+          call element_coordinates(xa(:,1:nf), ct%x(:,it%apex(t)), ct%x(:,ps), lam)
+          if (any(lam(1:nf+1) <= edge_tolerance)) cycle     ! strictly inside: not on another of its faces
         end if
         if (present(n_ref)) then
           if (dot_product(n, n_ref) < 0.5_rk) cycle
@@ -1070,7 +1076,7 @@ contains
       integer :: s, t, a2
       t2 = 0; dist2 = 0; n2 = 0; g2 = 0
       best_closing = 0
-      c_best = sum(ct%x(:, it%tri(:,best)), dim=2)/3.0_rk
+      c_best = sum(ct%x(:, it%tri(:,best)), dim=2)/real(nf, rk)
       fold = 1.0e-3_rk*it%h_mean
       do s = it%cand_start(slot), it%cand_start(slot+1) - 1
         t = it%cand(s)
@@ -1078,13 +1084,14 @@ contains
         if (.not. known(t)) cycle
         if (any(it%tri(:,t) == ps)) cycle
         if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
-        xa = ct%x(:, it%tri(:,t))
-        call triangle_projection(xa, ct%x(:,ps), n, dist, g)
+        xa(:,1:nf) = ct%x(:, it%tri(:,t))
+        call face_projection(xa(:,1:nf), ct%x(:,ps), n, dist, g)
         if (dist >= 0.0_rk .or. dist < -depth_limit) cycle
         if (any(g < -edge_tolerance)) cycle
         if (dot_product(n, best_n) > valley_cos) cycle
-        if (count([(any(it%tri(:,t) == it%tri(a2,best)), a2 = 1, 3)]) < 2) cycle
-        c_t = sum(xa, dim=2)/3.0_rk
+        ! sharing an edge (3D) or a node (2D)
+        if (count([(any(it%tri(:,t) == it%tri(a2,best)), a2 = 1, nf)]) < nf - 1) cycle
+        c_t = sum(xa(:,1:nf), dim=2)/real(nf, rk)
         if (dot_product(best_n, c_t - c_best) <= fold) cycle
         if (dot_product(n, c_best - c_t) <= fold) cycle
         closing = approach(ps, t, n, g)
@@ -1101,8 +1108,19 @@ contains
       real(rk), intent(in) :: n(3), g(3)
       real(rk) :: gc(3)
       gc = max(g, 0.0_rk)/sum(max(g, 0.0_rk))
-      approach = dot_product(n, gc(1)*ct%v(:,it%tri(1,t)) + gc(2)*ct%v(:,it%tri(2,t)) &
-                                + gc(3)*ct%v(:,it%tri(3,t)) - ct%v(:,ps))
+      approach = dot_product(n, face_velocity(t, gc) - ct%v(:,ps))
+    end function
+
+    !> The velocity of face t's point at coordinates g (a segment: g(1:2)).
+    function face_velocity(t, g) result(v)
+      integer, intent(in) :: t
+      real(rk), intent(in) :: g(3)
+      real(rk) :: v(3)
+      if (nf == 3) then
+        v = g(1)*ct%v(:,it%tri(1,t)) + g(2)*ct%v(:,it%tri(2,t)) + g(3)*ct%v(:,it%tri(3,t))
+      else
+        v = g(1)*ct%v(:,it%tri(1,t)) + g(2)*ct%v(:,it%tri(2,t))
+      end if
     end function
 
     !> Whether slave node ps was in front of triangle t's plane at the start
@@ -1110,10 +1128,11 @@ contains
     !> Not in a pass without a step (dt = 0).
     logical function crossed(ps, t)
       integer, intent(in) :: ps, t
-      real(rk) :: n0(3), d0, g0(3)
+      real(rk) :: n0(3), d0, g0(3), x0(3,3)
       crossed = .false.
       if (dt <= 0.0_rk) return
-      call triangle_projection(at_step_start(t), ct%x(:,ps) - dt*ct%v(:,ps), n0, d0, g0)
+      x0 = at_step_start(t)
+      call face_projection(x0(:,1:nf), ct%x(:,ps) - dt*ct%v(:,ps), n0, d0, g0)
       crossed = d0 >= 0.0_rk
     end function
 
@@ -1123,26 +1142,30 @@ contains
       integer, intent(in) :: t
       real(rk) :: x0(3,3)
       integer :: a
-      do a = 1, 3
+      x0 = 0
+      do a = 1, nf
         x0(:,a) = ct%x(:,it%tri(a,t)) - dt*ct%v(:,it%tri(a,t))
       end do
     end function
 
     !> The triangles across the three edges of triangle t (xb(:,:,a): across
     !> the edge opposite corner a; has(a) false: a rim, or one this rank has
-    !> not current). Every rank has current those near its own slave nodes:
-    !> the neighbourhood reaches a triangle's extent beyond them.
+    !> not current), or in 2D the segments across the two ends of segment t
+    !> (xb(:,1:2,a): across the end opposite node a). Every rank has current
+    !> those near its own slave nodes: the neighbourhood reaches a face's
+    !> extent beyond them.
     subroutine faces_beside(t, xb, has)
       integer, intent(in) :: t
       real(rk), intent(out) :: xb(3,3,3)
       logical, intent(out) :: has(3)
       integer :: a, tb
-      do a = 1, 3
+      xb = 0
+      has = .false.
+      do a = 1, nf
         tb = neighbour_across(it, t, a)
         has(a) = tb > 0
         if (has(a)) has(a) = known(tb)
-        xb(:,:,a) = 0
-        if (has(a)) xb(:,:,a) = ct%x(:, it%tri(:,tb))
+        if (has(a)) xb(:,1:nf,a) = ct%x(:, it%tri(:,tb))
       end do
     end subroutine
   end subroutine
@@ -1187,11 +1210,11 @@ contains
         end if
         do k = 1, size(it%local_tri)
           t = it%local_tri(k)
-          nc = 3
-          c(1:3) = ct%local(it%tri(:,t))
+          nc = size(it%tri, 1)
+          c(1:nc) = ct%local(it%tri(:,t))
           if (it%apex(t) > 0) then
-            nc = 4
-            c(4) = ct%local(it%apex(t))
+            nc = nc + 1
+            c(nc) = ct%local(it%apex(t))
           end if
           do a = 1, nc - 1
             do b = a + 1, nc
@@ -1229,12 +1252,14 @@ contains
   !> ct%pressure): the normal impulse it received over the step and its
   !> tributary area, a third of each adjacent contact face that is wholly in
   !> contact (all three nodes loaded; so an edge node does not count the
-  !> free side faces), or of every adjacent face for a node that has none.
+  !> free side faces), or of every adjacent face for a node that has none;
+  !> in 2D half of each adjacent segment's area (axisymmetric: per
+  !> revolution).
   subroutine contact_pressure(ct, dom)
     type(contact_t), intent(inout) :: ct
     type(domain_t), intent(in) :: dom
     integer :: f, pass
-    real(rk) :: third_area
+    real(rk) :: node_area      !< a node's share of the face's area (a third of a triangle, half a segment)
     ct%pressure = 0
     ct%work_area = 0
     if (ct%dt_last <= 0.0_rk) return       ! before the first pass
@@ -1247,17 +1272,26 @@ contains
         else
           if (.not. any(ct%impulse(ct%faces(:,f)) > 0.0_rk .and. ct%pressure(ct%faces(:,f)) <= 0.0_rk)) cycle
         end if
-        associate (a => ct%x(:,ct%faces(1,f)), b => ct%x(:,ct%faces(2,f)), c => ct%x(:,ct%faces(3,f)))
-          third_area = norm2([(b(2)-a(2))*(c(3)-a(3)) - (b(3)-a(3))*(c(2)-a(2)), &
-                              (b(3)-a(3))*(c(1)-a(1)) - (b(1)-a(1))*(c(3)-a(3)), &
-                              (b(1)-a(1))*(c(2)-a(2)) - (b(2)-a(2))*(c(1)-a(1))])/6.0_rk
-        end associate
+        if (size(ct%faces, 1) == 3) then
+          associate (a => ct%x(:,ct%faces(1,f)), b => ct%x(:,ct%faces(2,f)), c => ct%x(:,ct%faces(3,f)))
+            node_area = norm2([(b(2)-a(2))*(c(3)-a(3)) - (b(3)-a(3))*(c(2)-a(2)), &
+                               (b(3)-a(3))*(c(1)-a(1)) - (b(1)-a(1))*(c(3)-a(3)), &
+                               (b(1)-a(1))*(c(2)-a(2)) - (b(2)-a(2))*(c(1)-a(1))])/6.0_rk
+          end associate
+        else
+          ! 2D: half the segment, per unit depth, or (axisymmetric) of the
+          ! cone it sweeps in a full revolution, as the masses are
+          associate (a => ct%x(:,ct%faces(1,f)), b => ct%x(:,ct%faces(2,f)))
+            node_area = 0.5_rk*norm2(b - a)
+            if (dom%geometry == geometry_axisymmetric) node_area = node_area*pi*(a(1) + b(1))
+          end associate
+        end if
         if (pass == 1) then
-          ct%pressure(ct%faces(:,f)) = ct%pressure(ct%faces(:,f)) + third_area
+          ct%pressure(ct%faces(:,f)) = ct%pressure(ct%faces(:,f)) + node_area
         else
           ! only the loaded nodes that no wholly loaded face reached
           where (ct%impulse(ct%faces(:,f)) > 0.0_rk .and. ct%pressure(ct%faces(:,f)) <= 0.0_rk) &
-            ct%work_area(ct%faces(:,f)) = ct%work_area(ct%faces(:,f)) + third_area
+            ct%work_area(ct%faces(:,f)) = ct%work_area(ct%faces(:,f)) + node_area
         end if
       end do
     end do

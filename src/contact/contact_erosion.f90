@@ -8,7 +8,7 @@ module udar_contact_erosion
   use udar_comms, only: comms_rank, comms_size
   use udar_contact_model, only: contact_t, interface_t, size_interface_work, surface_neighbours, on_symmetry_plane, self_neighbourhoods, &
                                 assign_slaves, mark_returns
-  use udar_contact_setup, only: tet_face, contact_edges
+  use udar_contact_setup, only: element_face, contact_edges
   implicit none
   private
   public :: contact_erode, contact_eroding_surfaces
@@ -74,7 +74,9 @@ contains
     type(contact_t), intent(inout) :: ct
     logical, intent(in) :: part_changed(:)
     integer, allocatable :: faces(:,:), face_part(:), face_apex(:), sel(:)
-    integer :: i, t, k, f, n, n_fixed
+    integer :: i, t, k, f, n, n_fixed, nc
+    ! corners of an element: 4 (tetrahedra) or 3 (2D triangles, whose faces are segments)
+    nc = size(ct%tet, 1)
     ! alive tetrahedra at each node: 0 = a free node (debris)
     ct%alive_count = 0
     do t = 1, ct%n_tets
@@ -85,17 +87,17 @@ contains
     ! the initial surface), counter-clockwise seen from outside
     n = 0
     do t = 1, ct%n_tets
-      do f = 1, 4
+      do f = 1, nc
         if (exposed(t, f)) n = n + 1
       end do
     end do
-    allocate(faces(3, n), face_part(n), face_apex(n))
+    allocate(faces(nc - 1, n), face_part(n), face_apex(n))
     n = 0
     do t = 1, ct%n_tets
-      do f = 1, 4
+      do f = 1, nc
         if (.not. exposed(t, f)) cycle
         n = n + 1
-        faces(:,n) = ct%tet(tet_face(:,f), t)
+        faces(:,n) = ct%tet(element_face(nc, f), t)
         face_part(n) = ct%tet_part(t)
         face_apex(n) = ct%tet(f, t)
       end do
@@ -134,7 +136,7 @@ contains
     ! faces for the contact pressure: the fixed ones and the eroding parts' current ones
     n_fixed = size(ct%fixed_faces, 2)
     deallocate(ct%faces)
-    allocate(ct%faces(3, n_fixed + n))
+    allocate(ct%faces(nc - 1, n_fixed + n))
     ct%faces(:,1:n_fixed) = ct%fixed_faces
     ct%faces(:,n_fixed+1:) = faces
 
@@ -147,11 +149,13 @@ contains
       if (ip > 0) changed = part_changed(ip)
     end function
 
-    !> Whether face f of tetrahedron t is on the current boundary.
+    !> Whether face f of element t is on the current boundary (in 2D not on
+    !> the axis or a symmetry line, where the body continues).
     logical function exposed(t, f)
       integer, intent(in) :: t, f
       exposed = ct%tet_alive(t)
       if (exposed .and. ct%tet_nbr(f,t) > 0) exposed = .not. ct%tet_alive(ct%tet_nbr(f,t))
+      if (exposed .and. nc == 3) exposed = .not. on_symmetry_plane(ct%sym_planes, ct%tet(element_face(nc, f), t))
     end function
 
     !> Slave nodes of part ip: the nodes of its current boundary (or of the
@@ -174,7 +178,7 @@ contains
       end if
       do t = 1, ct%n_tets
         if (ct%tet_part(t) /= ip) cycle
-        do c = 1, 4
+        do c = 1, nc
           if (ct%alive_count(ct%tet(c,t)) == 0) mark(ct%tet(c,t)) = .true.
         end do
       end do

@@ -7,11 +7,14 @@
 !> 0 (issue 14's 2D contact; theory.md 14). Pure: no state, no I/O.
 module udar_contact_faces
   use udar_kinds, only: rk
-  use udar_contact_kernels, only: triangle_projection, master_shares, closest_on_triangle, tetrahedron_coordinates
-  use udar_segment2, only: segment_projection, segment_shares, closest_on_segment, triangle_coordinates
+  use udar_contact_kernels, only: triangle_projection, master_shares, closest_on_triangle, tetrahedron_coordinates, &
+                                  behind_surface, beside_sharp_edge
+  use udar_segment2, only: segment_projection, segment_shares, closest_on_segment, triangle_coordinates, &
+                           segment_behind_surface, segment_beside_corner
   implicit none
   private
-  public :: face_projection, face_shares, closest_on_face, element_coordinates
+  public :: face_projection, face_shares, closest_on_face, element_coordinates, face_behind_surface, &
+            face_beside_sharp_edge
 
 contains
 
@@ -69,4 +72,31 @@ contains
       lam(4) = 0.0_rk
     end if
   end subroutine
+
+  !> Where a node xs behind face xa's plane or line is when its projection
+  !> falls beyond the face (behind_surface, segment_behind_surface); xb, has:
+  !> the faces across the face's edges (3D) or ends (2D), by opposite corner.
+  pure integer function face_behind_surface(xa, n, dist, g, xb, has, xs, tol) result(verdict)
+    real(rk), intent(in) :: xa(:,:), n(3), dist, g(3), xb(:,:,:), xs(3), tol
+    logical, intent(in) :: has(:)
+    if (size(xa, 2) == 3) then
+      verdict = behind_surface(xa, n, dist, g, xb, has, xs, tol)
+    else
+      verdict = segment_behind_surface(xa(:,1:2), n, dist, g(1:2), xb(:,1:2,1:2), has(1:2), xs, tol)
+    end if
+  end function
+
+  !> Whether a node xs behind face xa is outside the body beside a sharp
+  !> convex edge or corner (beside_sharp_edge, segment_beside_corner): the
+  !> nb faces xb beside it sharing the corners marked in shares.
+  pure logical function face_beside_sharp_edge(xa, n, g, xb, shares, nb, xs, tol) result(outside)
+    integer, intent(in) :: nb
+    real(rk), intent(in) :: xa(:,:), n(3), g(3), xb(:,:,:), xs(3), tol
+    logical, intent(in) :: shares(:,:)
+    if (size(xa, 2) == 3) then
+      outside = beside_sharp_edge(xa, n, g, xb, shares, nb, xs, tol)
+    else
+      outside = segment_beside_corner(xa(:,1:2), n, g(1:2), xb(:,1:2,1:nb), shares(1:2,1:nb), nb, xs, tol)
+    end if
+  end function
 end module udar_contact_faces

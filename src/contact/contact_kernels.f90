@@ -9,7 +9,7 @@ module udar_contact_kernels
   private
   public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_crossing, edge_shares, &
             behind_surface, beside_sharp_edge, closest_on_triangle, behind_not, behind_face, behind_seam, &
-            solve_normal_lcp, normal_rows_matrix, contact_point
+            solve_normal_lcp, normal_rows_matrix, contact_point, flat
 
   !> behind_surface's verdicts: not behind the surface; behind this face;
   !> behind the surface beyond one of its concave edges (the contact point

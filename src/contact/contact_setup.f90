@@ -14,10 +14,10 @@ module udar_contact_setup
   use udar_contact_model, only: feature_edges, contact_t, interface_t, size_interface_work, surface_neighbours, self_neighbourhoods, on_symmetry_plane, &
                                 assign_slaves, mark_returns
   use udar_contact_search, only: bucket_grid_t, grid_build, grid_cell
-  use udar_contact_kernels, only: tetrahedron_coordinates
+  use udar_contact_faces, only: element_coordinates
   implicit none
   private
-  public :: build_contact, tet_face, tri_face, contact_edges, exterior_faces
+  public :: build_contact, tet_face, tri_face, element_face, contact_edges, exterior_faces
 
   !> local nodes of the face opposite each tet corner
   integer, parameter :: tet_face(3,4) = reshape([2,3,4, 1,4,3, 1,2,4, 1,3,2], [3,4])
@@ -27,6 +27,19 @@ module udar_contact_setup
 
 contains
 
+  !> The local nodes of the face of an element of `corners` corners opposite
+  !> its corner f: a tetrahedron's triangle (tet_face) or a 2D triangle's
+  !> edge (tri_face), counter-clockwise seen from outside.
+  pure function element_face(corners, f) result(nodes)
+    integer, intent(in) :: corners, f
+    integer :: nodes(corners - 1)
+    if (corners == 4) then
+      nodes = tet_face(:,f)
+    else
+      nodes = tri_face(:,f)
+    end if
+  end function
+
   subroutine build_contact(cfg, mesh, glob, ct, errs)
     type(config_t), intent(in) :: cfg
     type(gmsh_mesh_t), intent(in) :: mesh
@@ -35,10 +48,10 @@ contains
     type(input_errors_t), intent(inout) :: errs
     integer, allocatable :: face(:,:), face_part(:), master(:,:), slave(:), tri_all(:,:), cn_of(:), sym_planes(:)
     type(interface_t), allocatable :: ifc(:)
-    integer :: k, n_err0, nf, n_ifc, i, mark_count, m_part, s_part, e
+    integer :: k, n_err0, nf, n_ifc, i, mark_count, m_part, s_part, e, nv
     logical, allocatable :: part_erodes(:)
     logical, allocatable :: is_contact(:), face_used(:), m_body(:), s_body(:)
-    character(len=:), allocatable :: mname, sname
+    character(len=:), allocatable :: mname, sname, face_word
 
     ct%n_interfaces = 0
     allocate(ct%ifc(0), ct%gidx(0))
@@ -47,6 +60,20 @@ contains
     n_err0 = errs%count()
     call exterior_faces(glob, face, face_part, nf)
     sym_planes = symmetry_planes(glob)
+    nv = glob%corners - 1
+    face_word = merge('triangle', 'segment ', nv == 3)
+    if (nv == 2) then
+      ! 2D: the boundary on the axis or a symmetry line bounds no material
+      ! (the body continues across it): no contact face
+      k = 0
+      do e = 1, nf
+        if (on_symmetry_plane(sym_planes, face(:,e))) cycle
+        k = k + 1
+        face(:,k) = face(:,e)
+        face_part(k) = face_part(e)
+      end do
+      nf = k
+    end if
     allocate(face_used(nf), source=.false.)
     n_ifc = size(cfg%contacts) + count(cfg%contacts%symmetric)
     allocate(ifc(n_ifc))
@@ -169,22 +196,26 @@ contains
         part = ip
         return
       end if
-      ig = find_group(mesh, trim(name), 2)
+      ig = find_group(mesh, trim(name), mesh%dim - 1)
       if (ig > 0) then
         call group_triangles(ig, tri, body)
-        if (size(tri, 2) == 0) call errs%add(deck_where(cfg, 'contact', k, role)//": surface group '"// &
-          trim(name)//"' has no triangle on the boundary of the mesh")
+        if (size(tri, 2) == 0) call errs%add(deck_where(cfg, 'contact', k, role)//": "// &
+          trim(merge('surface group', 'curve group  ', nv == 3))//" '"//trim(name)//"' has no "//trim(face_word)// &
+          ' on the boundary of the mesh'//trim(merge(' (off the axis and symmetry lines)', '                                  ', &
+          nv == 2)))
         return
       end if
-      allocate(tri(3,0))
+      allocate(tri(nv,0))
       allocate(body(size(cfg%parts)), source=.false.)
       call errs%add(deck_where(cfg, 'contact', k, role)//": '"//trim(name)//"' is neither a part nor a "// &
-        'physical surface group of '//trim(cfg%mesh%file)//' (parts: '//group_list(mesh, 3)// &
-        '; surface groups: '//group_list(mesh, 2)//')')
+        'physical '//trim(merge('surface', 'curve  ', nv == 3))//' group of '//trim(cfg%mesh%file)//' (parts: '// &
+        group_list(mesh, mesh%dim)//'; '//trim(merge('surface', 'curve  ', nv == 3))//' groups: '// &
+        group_list(mesh, mesh%dim - 1)//')')
     end subroutine
 
     !> The exterior faces (of any part) whose nodes are all nodes of the
-    !> triangles of physical surface group ig.
+    !> triangles of physical surface group ig (2D: of the lines of physical
+    !> curve group ig).
     subroutine group_triangles(ig, tri, body)
       integer, intent(in) :: ig
       integer, allocatable, intent(out) :: tri(:,:)
@@ -196,15 +227,15 @@ contains
       allocate(in_group(glob%n_nodes), source=.false.)
       do t = 1, mesh%n_facets
         if (mesh%facet_group(t) /= ig) cycle
-        do a = 1, 3
+        do a = 1, size(mesh%facet, 2)
           if (node_g(mesh%facet(t,a)) > 0) in_group(node_g(mesh%facet(t,a))) = .true.
         end do
       end do
-      call take_faces(in_group(face(1,1:nf)) .and. in_group(face(2,1:nf)) .and. in_group(face(3,1:nf)), tri, body)
+      call take_faces([(all(in_group(face(:,t))), t = 1, nf)], tri, body)
     end subroutine
 
-    !> Which slave nodes start inside the master body (a tetrahedron of the
-    !> parts the master triangles are faces of, to rounding, not one of its
+    !> Which slave nodes start inside the master body (an element of the
+    !> parts the master faces are faces of, to rounding, not one of its
     !> corners): only these are initial overlaps. Behind a face's plane
     !> with the projection on it is not enough: ahead of a sharp edge or
     !> corner of a coarse master, a node in front of the body is behind the
@@ -218,7 +249,8 @@ contains
       real(rk), allocatable :: lo(:,:), hi(:,:)
       type(bucket_grid_t) :: grid
       real(rk) :: xt(3,4), p(3), lam(4), s_lo(3), s_hi(3)
-      integer :: j, e, k, c, s
+      integer :: j, e, k, c, s, nc
+      nc = glob%corners
       allocate(it%start_inside(size(it%slave)), source=.false.)
       if (size(it%slave) == 0) return
       ! only the tetrahedra that reach the slave nodes' box can hold one
@@ -228,16 +260,16 @@ contains
       k = 0
       do e = 1, glob%n_elems
         if (.not. in_body(glob%el_part(e))) cycle
-        xt = glob%nd_x0(:, glob%el_conn(e,:))
-        if (any(maxval(xt, dim=2) < s_lo) .or. any(minval(xt, dim=2) > s_hi)) cycle
+        xt(:,1:nc) = glob%nd_x0(:, glob%el_conn(e,:))
+        if (any(maxval(xt(:,1:nc), dim=2) < s_lo) .or. any(minval(xt(:,1:nc), dim=2) > s_hi)) cycle
         k = k + 1
         tets(k) = e
       end do
       allocate(lo(3,k), hi(3,k))
       do j = 1, k
-        xt = glob%nd_x0(:, glob%el_conn(tets(j),:))
-        lo(:,j) = minval(xt, dim=2)
-        hi(:,j) = maxval(xt, dim=2)
+        xt(:,1:nc) = glob%nd_x0(:, glob%el_conn(tets(j),:))
+        lo(:,j) = minval(xt(:,1:nc), dim=2)
+        hi(:,j) = maxval(xt(:,1:nc), dim=2)
       end do
       call grid_build(grid, lo, hi)
       do k = 1, size(it%slave)
@@ -249,9 +281,9 @@ contains
           if (any(p < lo(:,j)) .or. any(p > hi(:,j))) cycle
           e = tets(j)
           if (any(glob%el_conn(e,:) == it%slave(k))) cycle
-          xt = glob%nd_x0(:, glob%el_conn(e,:))
-          call tetrahedron_coordinates(xt(:,1:3), xt(:,4), p, lam)
-          if (minval(lam) < -rounding) cycle
+          xt(:,1:nc) = glob%nd_x0(:, glob%el_conn(e,:))
+          call element_coordinates(xt(:,1:nc-1), xt(:,nc), p, lam)
+          if (minval(lam(1:nc)) < -rounding) cycle
           it%start_inside(k) = .true.
           exit
         end do
@@ -301,11 +333,19 @@ contains
       it%weights = cfg%contacts(k)%weights
       it%move_overlaps = cfg%contacts(k)%initial_overlap == overlap_move
       s = 0
-      do t = 1, size(tri, 2)
-        s = s + norm2(glob%nd_x0(:,tri(2,t)) - glob%nd_x0(:,tri(1,t))) + norm2(glob%nd_x0(:,tri(3,t)) - &
-            glob%nd_x0(:,tri(2,t))) + norm2(glob%nd_x0(:,tri(1,t)) - glob%nd_x0(:,tri(3,t)))
-      end do
-      it%h_mean = s/max(3*size(tri, 2), 1)
+      if (size(tri, 1) == 3) then
+        do t = 1, size(tri, 2)
+          s = s + norm2(glob%nd_x0(:,tri(2,t)) - glob%nd_x0(:,tri(1,t))) + norm2(glob%nd_x0(:,tri(3,t)) - &
+              glob%nd_x0(:,tri(2,t))) + norm2(glob%nd_x0(:,tri(1,t)) - glob%nd_x0(:,tri(3,t)))
+        end do
+        it%h_mean = s/max(3*size(tri, 2), 1)
+      else
+        ! 2D: the mean segment length
+        do t = 1, size(tri, 2)
+          s = s + norm2(glob%nd_x0(:,tri(2,t)) - glob%nd_x0(:,tri(1,t)))
+        end do
+        it%h_mean = s/max(size(tri, 2), 1)
+      end if
       ! half an element of reach beyond the margin: a full search every few
       ! cycles at moderate speeds, every cycle when a node moves half an
       ! element a step (3 km/s)
@@ -326,21 +366,22 @@ contains
     allocate(it%edge_lo(3, size(it%edge_m, 2)), it%edge_hi(3, size(it%edge_m, 2)))
   end subroutine
 
-  !> The tetrahedra of the parts that erode (contact-node indices, ascending
-  !> global element), the neighbour across the face opposite each corner
-  !> (same part), all alive.
+  !> The elements (tetrahedra, 2D triangles) of the parts that erode
+  !> (contact-node indices, ascending global element), the neighbour across
+  !> the face opposite each corner (same part), all alive.
   subroutine eroding_topology(glob, part_erodes, cn_of, ct)
     type(domain_t), intent(in) :: glob
     logical, intent(in) :: part_erodes(:)
     integer, intent(in) :: cn_of(:)
     type(contact_t), intent(inout) :: ct
     integer, allocatable :: tet_of(:)
-    integer :: e, t, f, k, e2, a, b, c
+    integer :: e, t, f, k, e2, a, b, c, nc, fn(3)
+    nc = glob%corners
     ct%tet_gidx = pack([(e, e = 1, glob%n_elems)], part_erodes(glob%el_part))
     ct%n_tets = size(ct%tet_gidx)
     allocate(tet_of(glob%n_elems), source=0)
     tet_of(ct%tet_gidx) = [(t, t = 1, ct%n_tets)]
-    allocate(ct%tet(4, ct%n_tets), ct%tet_part(ct%n_tets), ct%tet_nbr(4, ct%n_tets), ct%tet_alive(ct%n_tets), &
+    allocate(ct%tet(nc, ct%n_tets), ct%tet_part(ct%n_tets), ct%tet_nbr(nc, ct%n_tets), ct%tet_alive(ct%n_tets), &
              ct%alive_count(ct%n_nodes))
     ct%tet_alive = .true.
     ct%tet_nbr = 0
@@ -348,10 +389,12 @@ contains
       e = ct%tet_gidx(t)
       ct%tet(:,t) = cn_of(glob%el_conn(e,:))
       ct%tet_part(t) = glob%el_part(e)
-      do f = 1, 4
-        a = glob%el_conn(e, tet_face(1,f))
-        b = glob%el_conn(e, tet_face(2,f))
-        c = glob%el_conn(e, tet_face(3,f))
+      do f = 1, nc
+        ! the face's nodes (a 2D edge: its second node twice)
+        fn(1:nc-1) = element_face(nc, f)
+        a = glob%el_conn(e, fn(1))
+        b = glob%el_conn(e, fn(2))
+        c = glob%el_conn(e, fn(nc-1))
         do k = glob%nd_el_ptr(a), glob%nd_el_ptr(a+1) - 1
           e2 = glob%nd_el(k)
           if (e2 == e .or. glob%el_part(e2) /= glob%el_part(e)) cycle
@@ -379,11 +422,7 @@ contains
     nf = 0
     do e = 1, glob%n_elems
       do f = 1, glob%corners
-        if (glob%corners == 4) then
-          fn(1:nv) = glob%el_conn(e, tet_face(:,f))
-        else
-          fn(1:nv) = glob%el_conn(e, tri_face(:,f))
-        end if
+        fn(1:nv) = glob%el_conn(e, element_face(glob%corners, f))
         shared = .false.
         do k = glob%nd_el_ptr(fn(1)), glob%nd_el_ptr(fn(1)+1) - 1
           e2 = glob%nd_el(k)

@@ -181,12 +181,18 @@ contains
     end do
   end function
 
-  !> Whether triangle tri lies on a symmetry plane, given each node's bit
-  !> set of planes (sym_planes, indexed like tri): the mirrored body
-  !> continues there, it is no contact surface.
+  !> Whether face tri (a triangle, or a 2D segment) lies on a symmetry plane
+  !> (line, or the axis), given each node's bit set of planes (sym_planes,
+  !> indexed like tri): the mirrored body continues there, it is no contact
+  !> surface.
   pure logical function on_symmetry_plane(sym_planes, tri)
-    integer, intent(in) :: sym_planes(:), tri(3)
-    on_symmetry_plane = iand(iand(sym_planes(tri(1)), sym_planes(tri(2))), sym_planes(tri(3))) /= 0
+    integer, intent(in) :: sym_planes(:), tri(:)
+    integer :: bits, a
+    bits = sym_planes(tri(1))
+    do a = 2, size(tri)
+      bits = iand(bits, sym_planes(tri(a)))
+    end do
+    on_symmetry_plane = bits /= 0
   end function
 
   !> ct%returns: the slave nodes and the slave edges' nodes of every
@@ -291,7 +297,7 @@ contains
     allocate(at(start(n_nodes+1) - 1), fill(n_nodes))
     fill = start(1:n_nodes)
     do t = 1, size(tri, 2)
-      do a = 1, 3
+      do a = 1, size(tri, 1)
         i = tri(a,t)
         at(fill(i)) = t
         fill(i) = fill(i) + 1
@@ -299,14 +305,21 @@ contains
     end do
   end subroutine
 
-  !> The triangle across the edge of triangle t opposite its corner a (0: a
-  !> rim, or an edge of more than two faces), from surface_neighbours' lists.
+  !> The triangle across the edge of triangle t opposite its corner a, or
+  !> in 2D the segment across the end of segment t opposite its node a (0: a
+  !> rim, or an edge or end of more than two faces), from
+  !> surface_neighbours' lists.
   pure integer function neighbour_across(it, t, a) result(found)
     type(interface_t), intent(in) :: it
     integer, intent(in) :: t, a
     integer :: i, j, k, s
-    i = it%tri(mod(a,3)+1,t)
-    j = it%tri(mod(a+1,3)+1,t)
+    if (size(it%tri, 1) == 3) then
+      i = it%tri(mod(a,3)+1,t)
+      j = it%tri(mod(a+1,3)+1,t)
+    else
+      i = it%tri(3-a,t)
+      j = i
+    end if
     found = 0
     do k = it%tri_start(i), it%tri_start(i+1) - 1
       s = it%tri_at(k)
@@ -418,7 +431,7 @@ contains
       integer :: jj, aa, q
       integer, allocatable :: grown(:)
       do jj = tri_start(p), tri_start(p+1) - 1
-        do aa = 1, 3
+        do aa = 1, size(it%tri, 1)
           q = it%tri(aa, tri_of(jj))
           if (mark(q)) cycle
           mark(q) = .true.

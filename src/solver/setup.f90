@@ -510,7 +510,7 @@ contains
 
   !> A 2D deck's own rules (&mesh geometry axisymmetric or plane_strain):
   !> a 2D mesh, the deck's vectors in the plane z = 0, no node at r < 0
-  !> (axisymmetric), no contact yet.
+  !> (axisymmetric), no edge-to-edge contact.
   subroutine planar_checks(cfg, mesh, errs)
     type(config_t), intent(in) :: cfg
     type(gmsh_mesh_t), intent(in) :: mesh
@@ -532,9 +532,11 @@ contains
       end do
     end if
     if (allocated(cfg%contacts)) then
-      if (size(cfg%contacts) > 0) call errs%add(deck_where(cfg, 'contact', 1, 'master')// &
-        ': contact is not available in 2D ('//mode//') calculations yet (issue 14): model the impact on '// &
-        'a rigid wall or in 3D')
+      do k = 1, size(cfg%contacts)
+        if (cfg%contacts(k)%edges) call errs%add(deck_where(cfg, 'contact', k, 'edges')// &
+          ': edge-to-edge contact has no 2D meaning ('//mode//'): a 2D surface''s corners are its nodes, '// &
+          'which the node-to-segment contact already takes; leave it out')
+      end do
     end if
     if (cfg%mesh%geometry /= geometry_axisymmetric) return
     n = findloc(mesh%x(:,1) < 0.0_rk, .true., 1)

@@ -8,7 +8,7 @@
 !> (2 pi rbar A) or per metre of thickness (A), and so are the masses,
 !> forces and energies made from them (theory.md section 14).
 module udar_tri_driver
-  use udar_kinds, only: rk, i8
+  use udar_kinds, only: rk, i8, pi
   use udar_domain, only: domain_t, block_size
   use udar_config, only: geometry_axisymmetric
   use udar_tri3, only: tri_geometry, tri_smallest_altitude, tri_velocity_gradient, tri_internal_forces, &
@@ -23,7 +23,7 @@ module udar_tri_driver
             tri_element_altitudes, tri_current_volume, tri_cell_volume
 
   integer, parameter :: ld = block_size
-  real(rk), parameter :: two_pi = 6.283185307179586476925286766559_rk
+  real(rk), parameter :: two_pi = 2*pi
 
 contains
 
