@@ -131,6 +131,8 @@ run_test "regression/oblique_free" regression oblique_free bin/udar-debug
 run_test "regression/oblique_free_distance_fails" regression_fails oblique_free bin/udar-debug oblique_free_distance angular_momentum_relative
 run_test "regression/oblique_friction" regression oblique_friction bin/udar-debug
 run_test "regression/oblique_stick" regression oblique_friction bin/udar-debug oblique_stick
+run_test "regression/oblique_friction_2d" regression oblique_friction_2d bin/udar-debug
+run_test "regression/oblique_stick_2d" regression oblique_friction_2d bin/udar-debug oblique_stick_2d
 run_test "regression/rod_3kms" regression rod_3kms bin/udar
 run_test "regression/rod_3kms_fast" regression rod_3kms bin/udar rod_3kms_fast
 run_test "regression/rod_3kms_fast_seams_off_fails" regression_fails rod_3kms bin/udar rod_3kms_fast_seams_off \

@@ -405,6 +405,13 @@ contains
     call comms_allgatherv_real(ct%rec_send(1:n_rec), ct%rec_counts, ct%rec_recv)
   end subroutine
 
+  !> Point x mirrored in the line or plane m (unit normal m(1:3), offset m(4)).
+  pure function mirrored(x, m) result(y)
+    real(rk), intent(in) :: x(3), m(4)
+    real(rk) :: y(3)
+    y = x - (2.0_rk*(dot_product(m(1:3), x) - m(4)))*m(1:3)
+  end function
+
   !> The move u of a node back onto a surface, shortened to room.
   pure function returned(u, room) result(d)
     real(rk), intent(in) :: u(3), room
@@ -993,6 +1000,13 @@ contains
         end if
         if (it%seams .and. off_face) then
           verdict = face_behind_surface(xa(:,1:nf), n, dist, g, xb, has, ct%x(:,ps), edge_tolerance)
+          ! 2D: a node on the axis (or a symmetry line) beyond a segment's end
+          ! on it is where the segment and its mirror image meet, on the
+          ! bisector of their fold, which behind_surface's halves of the seam
+          ! share to rounding: in the seam
+          if (verdict == behind_not .and. nf == 2) then
+            if (beyond_mirrored_end(ps, t, g)) verdict = behind_seam
+          end if
         else
           verdict = merge(behind_not, behind_face, off_face)
         end if
@@ -1057,6 +1071,22 @@ contains
         separating = .true.
       end if
     end subroutine
+
+    !> 2D: whether slave node ps lies on the axis or symmetry line of the end
+    !> of segment t that its projection (coordinates g) falls beyond.
+    logical function beyond_mirrored_end(ps, t, g)
+      integer, intent(in) :: ps, t
+      real(rk), intent(in) :: g(3)
+      real(rk) :: m(4)
+      integer :: a
+      beyond_mirrored_end = .false.
+      do a = 1, 2
+        if (g(a) >= -edge_tolerance) cycle
+        m = ct%mirror(:, it%tri(3-a,t))
+        if (all(m(1:3) == 0.0_rk)) cycle
+        beyond_mirrored_end = abs(dot_product(m(1:3), ct%x(:,ps)) - m(4)) <= 1.0e-9_rk*it%h_mean
+      end do
+    end function
 
     !> The second face of a valley (&contact valleys) that slave node ps is
     !> behind besides its triangle best (normal best_n): a face of its
@@ -1158,7 +1188,7 @@ contains
       integer, intent(in) :: t
       real(rk), intent(out) :: xb(3,3,3)
       logical, intent(out) :: has(3)
-      integer :: a, tb
+      integer :: a, tb, q
       xb = 0
       has = .false.
       do a = 1, nf
@@ -1166,6 +1196,14 @@ contains
         has(a) = tb > 0
         if (has(a)) has(a) = known(tb)
         if (has(a)) xb(:,1:nf,a) = ct%x(:, it%tri(:,tb))
+        if (tb > 0 .or. nf /= 2) cycle
+        ! 2D: an end on the axis or a symmetry line is no rim: the surface
+        ! goes on as the segment's mirror image (its nodes in reverse order)
+        q = it%tri(3-a,t)
+        if (all(ct%mirror(1:3,q) == 0.0_rk)) cycle
+        has(a) = .true.
+        xb(:,1,a) = mirrored(ct%x(:,it%tri(2,t)), ct%mirror(:,q))
+        xb(:,2,a) = mirrored(ct%x(:,it%tri(1,t)), ct%mirror(:,q))
       end do
     end subroutine
   end subroutine

@@ -46,7 +46,7 @@ contains
     type(domain_t), intent(in) :: glob
     type(contact_t), intent(out) :: ct
     type(input_errors_t), intent(inout) :: errs
-    integer, allocatable :: face(:,:), face_part(:), master(:,:), slave(:), tri_all(:,:), cn_of(:), sym_planes(:)
+    integer, allocatable :: face(:,:), face_part(:), master(:,:), slave(:), tri_all(:,:), cn_of(:), sym_planes(:), cn_sym(:)
     type(interface_t), allocatable :: ifc(:)
     integer :: k, n_err0, nf, n_ifc, i, mark_count, m_part, s_part, e, nv
     logical, allocatable :: part_erodes(:)
@@ -168,6 +168,19 @@ contains
     ct%x0 = ct%x
     ct%v = glob%nd_v(:, ct%gidx)
     ct%sym_planes = sym_planes(ct%gidx)
+    allocate(ct%mirror(4, ct%n_nodes), source=0.0_rk)
+    if (nv == 2 .and. allocated(glob%sym_nodes)) then
+      allocate(cn_sym(glob%n_nodes), source=0)
+      do k = 1, size(glob%sym_nodes)
+        if (cn_sym(glob%sym_nodes(k)) == 0) cn_sym(glob%sym_nodes(k)) = k
+      end do
+      do k = 1, ct%n_nodes
+        e = cn_sym(ct%gidx(k))
+        if (e == 0) cycle
+        ct%mirror(1:3,k) = glob%sym_normal(e,:)
+        ct%mirror(4,k) = dot_product(glob%sym_normal(e,:), glob%nd_x0(:,ct%gidx(k)))
+      end do
+    end if
     do i = 1, n_ifc
       if (ct%ifc(i)%edges) call contact_edges(ct%ifc(i), ct%x0)
       call assign_slaves(ct%ifc(i), ct%x0, comms_rank(), comms_size())

@@ -126,6 +126,10 @@ module udar_contact_model
     real(rk), allocatable :: h(:)     !< m, smallest altitude of each contact node's elements (bounds its returns)
     logical, allocatable :: returns(:)     !< the node can be returned (a slave node or a slave edge's): its h is kept
     integer, allocatable :: sym_planes(:)   !< bit p set: the node lies on symmetry plane p
+    !> 2D: the symmetry line or axis a contact node lies on (unit normal in
+    !> 1:3, offset in 4; a zero normal: none): across it the surface goes on
+    !> as its mirror image (faces_beside)
+    real(rk), allocatable :: mirror(:,:)
     integer, allocatable :: faces(:,:)     !< (3, n_faces) every face of a contact surface once
     real(rk), allocatable :: impulse(:)    !< N s, normal contact impulse on each contact node in the last pass
     real(rk), allocatable :: pressure(:)   !< Pa, work array: contact pressure of each contact node

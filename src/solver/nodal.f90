@@ -5,12 +5,12 @@
 module udar_nodal
   use udar_kinds, only: rk
   use udar_domain, only: domain_t
-  use udar_config, only: wall_sticking, wall_coulomb
+  use udar_config, only: wall_sticking, wall_coulomb, geometry_axisymmetric
   use udar_exact_sum, only: exact_limbs, exact_add
   use udar_kinds, only: i8
   implicit none
   private
-  public :: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions, &
+  public :: update_velocities, apply_velocity_conditions, apply_rigid_walls, apply_axis, update_positions, &
             keep_constrained_positions, restore_constrained_positions
 
 contains
@@ -120,6 +120,28 @@ contains
           call exact_add(work_acc, dom%nd_mass(n)*((vn_new - vn)*vn_new + dot_product(dvt, vt + dvt)))
         end do
       end associate
+    end do
+  end subroutine
+
+  !> Axisymmetric: no node crosses the axis. A node off it (a node of
+  !> eroded elements, a ring of debris converging on the axis) that would
+  !> end the step at r < 0 lands on the axis instead (r = 0 at the end of
+  !> the step; one found at r < 0 is put back), the frictionless wall's
+  !> rule: its ring has closed. The work of the radial impulses goes into
+  !> work_acc (the wall work of the energy balance). The nodes on the axis
+  !> from the start hold it through the velocity conditions.
+  subroutine apply_axis(dom, dt, work_acc)
+    type(domain_t), intent(inout) :: dom
+    real(rk), intent(in) :: dt
+    integer(i8), intent(inout) :: work_acc(0:exact_limbs)
+    integer :: n
+    real(rk) :: vr
+    if (dom%geometry /= geometry_axisymmetric) return
+    do n = 1, dom%n_owned_nodes
+      if (dom%nd_x(1,n) + dt*dom%nd_v(1,n) >= 0.0_rk) cycle
+      vr = -dom%nd_x(1,n)/dt
+      call exact_add(work_acc, dom%nd_mass(n)*(vr - dom%nd_v(1,n))*vr)
+      dom%nd_v(1,n) = vr
     end do
   end subroutine
 

@@ -22,7 +22,7 @@ module udar_run
       element_forces_averaged, element_stiffness_bounds, nodal_stable_dt, nodal_reference_volumes, current_volume, &
       element_altitudes
   use udar_fracture, only: fracture_enabled, erosion_enabled, el_intact, el_eroded
-  use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, update_positions, &
+  use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, apply_axis, update_positions, &
       keep_constrained_positions, restore_constrained_positions
   use udar_strength, only: von_mises
   use udar_history, only: history_t, history_open, history_reopen, history_write, history_sync, history_close
@@ -280,6 +280,7 @@ contains
         call exact_clear(walls%impulse(:,k))
       end do
       call apply_rigid_walls(dom, dt, walls%work, walls%impulse)
+      call apply_axis(dom, dt, walls%work)
       walls%dt_v = dt_v
       call update_positions(dom, dt)
       elapsed = comms_wtime()

@@ -3,7 +3,8 @@
 # with a checkpoint at 20 us, then restarted from it on 3 ranks, gives
 # bitwise the history and fields of the straight 1-rank run; and the restart
 # says it is axisymmetric (a checkpoint does not carry a geometry the deck
-# does not say).
+# does not say). The same with contact: the axisymmetric bars head-on
+# (symmetric contact) checkpointed mid-contact at 4 us, restarted on 2 ranks.
 #   restart_2d.sh EXE
 source "$(dirname "$0")/common.sh" "$1"
 case=elastic_bar_2d
@@ -20,4 +21,12 @@ if (cd "$W" && "$EXE" --restart out/${case}_ckpt1.h5 other.nml > other.log 2>&1)
 else
   grep -m1 -i 'checkpoint' "$W/other.log"; ok "plane_strain_deck_refuses_axisymmetric_checkpoint"
 fi
+# contact: the checkpoint halfway through the bars' contact
+case=bars_head_on_2d_symmetric
+cp "$ROOT/tests/regression/bars_head_on_2d/bars_head_on_2d.msh" "$ROOT/tests/regression/bars_head_on_2d/$case.nml" "$W/"
+sed -i -e 's/^\( *\)t_end = .*/\1t_end = 10.0e-6/' \
+       -e 's|dt_history = 0.0 /|dt_history = 0.0, dt_checkpoint = 4.0e-6 /|' "$W/$case.nml"
+grep -q 'dt_checkpoint = 4.0e-6' "$W/$case.nml" || { bad "contact_deck_has_checkpoints"; exit 1; }
+straight_run $case
+restart_matches_straight $case 2
 [ $fails -eq 0 ]

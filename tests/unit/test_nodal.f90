@@ -1,12 +1,13 @@
 !> Unit tests of the nodal conditions: a planar rigid wall (frictionless and
 !> sticking: landing exactly on the plane, impulse, wall work, release) and
-!> symmetry-plane velocity projection.
+!> symmetry-plane velocity projection, and the axis of an axisymmetric
+!> calculation (no node crosses r = 0).
 program test_nodal
   use udar_kinds, only: rk
   use udar_strings, only: r2s
   use udar_domain, only: domain_t
-  use udar_config, only: wall_frictionless, wall_sticking, wall_coulomb
-  use udar_nodal, only: apply_rigid_walls, apply_velocity_conditions, update_positions
+  use udar_config, only: wall_frictionless, wall_sticking, wall_coulomb, geometry_axisymmetric
+  use udar_nodal, only: apply_rigid_walls, apply_velocity_conditions, update_positions, apply_axis
   use udar_exact_sum, only: exact_limbs, exact_value
   use udar_kinds, only: i8
   use unit_checks, only: check, check_summary
@@ -63,6 +64,33 @@ program test_nodal
   call check('symmetry_projection', all(dom%nd_v(:,1) == [0.0_rk, 0.0_rk, -10.0_rk]), &
              'v = ('//r2s(dom%nd_v(1,1))//', '//r2s(dom%nd_v(2,1))//', '//r2s(dom%nd_v(3,1))//')')
   call check('fixed_node', all(dom%nd_v(:,2) == 0.0_rk), 'node 2 at rest')
+
+  ! the axis (x = r = 0) of an axisymmetric calculation: node 1 (x = 1 um,
+  ! v_r = -3 m/s: r = -2 um after the step) lands on the axis, v_r = -1 m/s,
+  ! work m (v_new - v_r) v_new = 2 x 2 x (-1) = -4 J; node 2 (moving out) untouched
+  call two_nodes(dom)
+  dom%geometry = geometry_axisymmetric
+  dom%nd_x(1,1) = 1.0e-6_rk
+  dom%nd_v(1,1) = -3.0_rk
+  call axis(dom, dt, work)
+  call update_positions(dom, dt)
+  call check('axis_lands_on_r0', abs(dom%nd_x(1,1)) < 1e-18_rk .and. abs(dom%nd_v(1,1) + 1.0_rk) < 1e-12_rk, &
+             'r = '//r2s(dom%nd_x(1,1))//' m, v_r = '//r2s(dom%nd_v(1,1))//' m/s')
+  call check('axis_keeps_axial_velocity', dom%nd_v(2,1) == -1.0_rk .and. dom%nd_v(3,1) == -10.0_rk, 'v_y, v_z kept')
+  call check('axis_work', abs(work + 4.0_rk) < 1e-12_rk, 'W = '//r2s(work)//' J')
+  call check('axis_leaves_others', all(dom%nd_v(:,2) == [1.0_rk, 0.0_rk, 5.0_rk]), 'node 2 free')
+  ! a node found at r < 0 (a contact return) is put back within the step
+  dom%nd_x(1,1) = -1.0e-6_rk
+  dom%nd_v(1,1) = 0.0_rk
+  call axis(dom, dt, work)
+  call update_positions(dom, dt)
+  call check('axis_puts_back', abs(dom%nd_x(1,1)) < 1e-18_rk, 'r = '//r2s(dom%nd_x(1,1))//' m')
+  ! not in 3D
+  call two_nodes(dom)
+  dom%nd_x(1,1) = 1.0e-6_rk
+  dom%nd_v(1,1) = -3.0_rk
+  call axis(dom, dt, work)
+  call check('axis_not_in_3d', dom%nd_v(1,1) == -3.0_rk .and. work == 0.0_rk, 'v_x = '//r2s(dom%nd_v(1,1)))
   call check_summary()
 
 contains
@@ -77,6 +105,17 @@ contains
     call apply_rigid_walls(d, dt, work_acc, impulse_acc)
     work = exact_value(work_acc)
     force = exact_value(impulse_acc(:,1))/dt
+  end subroutine
+
+  !> One axis pass and its work.
+  subroutine axis(d, dt, work)
+    type(domain_t), intent(inout) :: d
+    real(rk), intent(in) :: dt
+    real(rk), intent(out) :: work
+    integer(i8) :: work_acc(0:exact_limbs)
+    work_acc = 0
+    call apply_axis(d, dt, work_acc)
+    work = exact_value(work_acc)
   end subroutine
 
   subroutine two_nodes(d)

@@ -9,7 +9,13 @@ within 2 %. Every impulse of the contact is in the history (issue 13, item
 momentum the history's contact_force_* columns sum to (force times each
 cycle's velocity interval); before 0.5.3 the settling after erosion zeroed
 the cycle's figures, and contact_normal summed to 0.54 N s while the plate
-gained 1.98 N s."""
+gained 1.98 N s.
+The deck penetration_2d (tests/regression/penetration_2d) is the same
+impact axisymmetric: triangles, the axis y, masses per revolution, the
+momentum along the axis only, and no node beyond the axis. It is not yet in
+make check: rod nodes end up to 0.27 h inside plate elements where the
+crater's lip folds over itself (issue 14).
+Usage: check.py RUN_DIR [DECK]"""
 import os
 import sys
 
@@ -22,18 +28,28 @@ import checks  # noqa: E402
 import udar_results  # noqa: E402
 from check_geometry import deepest_inside, slave_and_master  # noqa: E402
 
+deck = sys.argv[2] if len(sys.argv) > 2 else 'penetration'
 out = os.path.join(sys.argv[1], 'out')
-with h5py.File(os.path.join(out, 'penetration.h5'), 'r') as f:
+with h5py.File(os.path.join(out, deck + '.h5'), 'r') as f:
     conn, x0, rod_nodes, plate, h_plate = slave_and_master(f, 1, 2)
-    # lumped masses as udar forms them: a quarter of rho0 V0 of each element at each node
-    a, b, c, d = (x0[conn[:, k]] for k in range(4))
-    vol0 = np.abs(np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a))) / 6.0
+    nc = conn.shape[1]
+    axis = 2 if nc == 4 else 1          # the impact direction: z (3D) or the axis y (axisymmetric)
+    # lumped masses as udar forms them: an equal share of rho0 V0 of each
+    # element at each corner (axisymmetric: V0 = 2 pi rbar A, per revolution)
+    if nc == 4:
+        a, b, c, d = (x0[conn[:, k]] for k in range(4))
+        vol0 = np.abs(np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a))) / 6.0
+    else:
+        a, b, c = (x0[conn[:, k]] for k in range(3))
+        area = 0.5 * np.abs((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1]))
+        vol0 = 2.0 * np.pi * (a[:, 0] + b[:, 0] + c[:, 0]) / 3.0 * area
     mass = np.zeros(len(x0))
-    for k in range(4):
-        np.add.at(mass, conn[:, k], 0.25 * 7850.0 * vol0)
+    for k in range(nc):
+        np.add.at(mass, conn[:, k], 7850.0 * vol0 / nc)
     plate_nodes = np.unique(conn[plate])
     plate_p, frame_t = [], []
     worst = 0.0
+    r_min = 0.0
     for k in sorted(f['steps'].keys()):
         g = f['steps'][k]
         x = g['coordinates'][...]
@@ -42,27 +58,37 @@ with h5py.File(os.path.join(out, 'penetration.h5'), 'r') as f:
         alive = plate & (g['fracture_state'][...] < 1.5)
         w = deepest_inside(x[rod_nodes], x, conn[alive])
         print(f"MEASURED t = {g.attrs['time'] * 1e6:.2f} us: {np.count_nonzero(plate & ~alive)} plate elements "
-              f"eroded, deepest rod node inside the plate {w:.3g} m; rod tip z = {x[rod_nodes, 2].min() * 1e3:.3f} mm")
+              f"eroded, deepest rod node inside the plate {w:.3g} m; rod tip at {x[rod_nodes, axis].min() * 1e3:.3f} mm")
         worst = max(worst, w)
-    crater = -x[np.unique(conn[alive]), 2][np.abs(x[np.unique(conn[alive]), 0]) < 1e-3].max()
+        r_min = min(r_min, x[:, 0].min())
+    crater = -x[np.unique(conn[alive]), axis][np.abs(x[np.unique(conn[alive]), 0]) < 1e-3].max()
 checks.below('rod_nodes_inside_remaining_plate_over_h', worst / h_plate, 1e-6)
-h = udar_results.read_history(os.path.join(out, 'penetration_history.csv'))
+if nc == 3:
+    # no node (debris included) crosses the axis: at most a contact return's
+    # rounding, put back in the next step (without the axis condition the
+    # plate's debris went to r = -6 mm)
+    checks.below('nodes_beyond_the_axis_over_h', max(-r_min, 0.0) / h_plate, 1e-4)
+h = udar_results.read_history(os.path.join(out, deck + '_history.csv'))
 print(f"MEASURED at the end: {h['eroded'][-1]:.0f} elements eroded, eroded energy {h['eroded_energy'][-1]:.4g} J, "
       f"contact work {h['contact_work'][-1]:.4g} J, energy error {h['energy_error'][-1]:.3e}")
 checks.above('elements_eroded', h['eroded'][-1], 100)
 checks.below('mass_change', np.abs(h['mass'] - h['mass'][0]).max(), 0.0, 'kg')
-p0 = h['momentum_z'][0]
-checks.below('momentum_conserved_relative', np.abs(h['momentum_z'] - p0).max() / abs(p0), 1e-13)
+p0 = h['momentum_' + 'xyz'[axis]][0]
+checks.below('momentum_conserved_relative', np.abs(h['momentum_' + 'xyz'[axis]] - p0).max() / abs(p0), 1e-13)
 checks.below('energy_error_max', np.abs(h['energy_error']).max(), 0.02)
 # the contact's impulses on the plate, row by row (dt_history = 0: every cycle;
 # a cycle's impulse spans its velocity interval (dt of the last cycle + dt) / 2)
 force = np.array([h[f'contact_force_{c}_rod_on_plate'] for c in 'xyz'])
+# axisymmetric: only the axis component (the hoop stresses change the sum of
+# the radial momenta, which is no momentum of the body)
+comps = [0, 1, 2] if nc == 4 else [axis]
 dt_v = 0.5 * (np.concatenate([[0.0], h['dt'][:-1]]) + h['dt'])
 impulse = np.cumsum(force * dt_v, axis=1)
 worst_p = 0.0
 for tf, pf in zip(frame_t[1:], plate_p[1:]):
     row = int(np.argmin(np.abs(h['time'] - tf)))
-    worst_p = max(worst_p, np.abs(impulse[:, row] - (pf - plate_p[0])).max() / np.abs(pf - plate_p[0]).max())
+    gained = (pf - plate_p[0])[comps]
+    worst_p = max(worst_p, np.abs(impulse[comps, row] - gained).max() / np.abs(gained).max())
 print(f'MEASURED plate momentum gained by {frame_t[-1] * 1e6:.1f} us: {np.round(plate_p[-1] - plate_p[0], 5)} N s; '
       f'the history\'s contact impulse {np.round(impulse[:, -1], 5)} N s; the scalar normal force sums to '
       f'{np.sum(h["contact_normal_rod_on_plate"] * dt_v):.4f} N s')
