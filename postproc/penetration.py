@@ -2,7 +2,9 @@
 """Penetration measurements from a udar field file: crater depth, residual rod length and
 rod velocity at every output step.
 
-The target's impact face is the plane z = 0 (the rod moves along -z). At each step:
+The target's impact face is the plane z = 0 (the rod moves along -z); in a 2D
+(axisymmetric) file the line y = 0, the axis being y and the radius x (the rod moves
+along -y), and every "z" below is y, every distance from the axis |x|. At each step:
 
 * crater depth P: minus the highest z of the target material still there (elements not
   eroded) near the axis (centroid within --radius of it);
@@ -18,6 +20,7 @@ The target's impact face is the plane z = 0 (the rod moves along -z). At each st
   face's level (the hole's rim, for an impact on the axis).
 
     /usr/bin/python3 postproc/penetration.py out/long_rod.h5 --rod rod --target block --radius 1.25e-3
+    /usr/bin/python3 postproc/penetration.py out/long_rod_2d.h5 --radius 1.25e-3     (2D: axis y)
     /usr/bin/python3 postproc/penetration.py --self-test
 
 Library use: ``measure(fieldfile, rod, target, radius)`` returns one dict per step.
@@ -44,9 +47,22 @@ def part_id(ff, name):
     raise SystemExit("%s: no part '%s' (parts: %s)" % (ff.path, name, ", ".join(names.values()) or "unnamed"))
 
 
-def upward_boundary(x, conn, elements):
+def upward_boundary(x, conn, elements, up_axis=2):
     """Centroids of the faces of the given elements that are on their boundary
-    (not shared by two of them) and face upwards (outward normal z > 0.3)."""
+    (not shared by two of them) and face upwards (outward normal along up_axis >
+    0.3): tetrahedra's triangles, or 2D triangles' edges (up_axis 1)."""
+    if conn.shape[1] == 3:
+        tris = conn[elements]
+        faces = np.concatenate([tris[:, [0, 1]], tris[:, [1, 2]], tris[:, [2, 0]]])
+        opposite = np.concatenate([tris[:, 2], tris[:, 0], tris[:, 1]])
+        _, inv, count = np.unique(np.sort(faces, axis=1), axis=0, return_inverse=True, return_counts=True)
+        outer = count[inv.ravel()] == 1
+        f, o = faces[outer], opposite[outer]
+        a, b = x[f[:, 0]], x[f[:, 1]]
+        n = np.stack([b[:, 1] - a[:, 1], a[:, 0] - b[:, 0]], axis=1)
+        n *= np.where(np.einsum("ij,ij->i", n, x[o, :2] - a[:, :2]) > 0, -1.0, 1.0)[:, None]
+        up = n[:, up_axis] > 0.3 * np.linalg.norm(n, axis=1)
+        return (a + b)[up] / 2.0
     tets = conn[elements]
     faces = np.concatenate([tets[:, [0, 1, 2]], tets[:, [0, 1, 3]], tets[:, [0, 2, 3]], tets[:, [1, 2, 3]]])
     opposite = np.concatenate([tets[:, 3], tets[:, 2], tets[:, 1], tets[:, 0]])
@@ -64,8 +80,15 @@ def measure(ff, rod, target, radius, axis=(0.0, 0.0, -1.0)):
     """Per step: time (s), crater depth (m), residual rod length (m), rod velocity (m/s),
     rod tip z (m), eroded rod and target elements, intact rod length (m), deepest crater
     point anywhere (m), crater diameter (m)."""
-    axis = np.asarray(axis, float) / np.linalg.norm(axis)
     conn = ff.connectivity
+    planar = conn.shape[1] == 3          # a 2D file: the axis is y, the radius x
+    k = 1 if planar else 2               # the coordinate along the axis
+    if planar and tuple(axis) == (0.0, 0.0, -1.0):
+        axis = (0.0, -1.0, 0.0)
+    axis = np.asarray(axis, float) / np.linalg.norm(axis)
+
+    def off_axis(p):
+        return np.abs(p[..., 0]) if planar else np.hypot(p[..., 0], p[..., 1])
     rod_el = ff.part_id == part_id(ff, rod)
     tgt_el = ff.part_id == part_id(ff, target)
     rows = []
@@ -77,16 +100,16 @@ def measure(ff, rod, target, radius, axis=(0.0, 0.0, -1.0)):
                  else np.zeros(ff.n_elems))
         alive = state < 1.5
         centroid = x[conn].mean(axis=1)
-        near_axis = np.hypot(centroid[:, 0], centroid[:, 1]) < radius
+        near_axis = off_axis(centroid) < radius
         tgt_axis = tgt_el & alive & near_axis
-        depth = -min(x[conn[tgt_axis]][:, :, 2].max(), 0.0) if tgt_axis.any() else float("nan")
+        depth = -min(x[conn[tgt_axis]][:, :, k].max(), 0.0) if tgt_axis.any() else float("nan")
         rod_alive = rod_el & alive
         if rod_alive.any():
             nodes = np.unique(conn[rod_alive])
             along = x[nodes] @ axis
             length = along.max() - along.min()
             vel = (v[nodes] @ -axis).mean()     # the z velocity for the default axis
-            tip = x[nodes, 2].min()
+            tip = x[nodes, k].min()
         else:
             length, vel, tip = 0.0, float("nan"), float("nan")
         intact = rod_el & (state < 0.5)
@@ -96,10 +119,10 @@ def measure(ff, rod, target, radius, axis=(0.0, 0.0, -1.0)):
         else:
             intact_length = 0.0
         if (tgt_el & alive).any():
-            floor = upward_boundary(x, conn, tgt_el & alive)
-            deepest = -min(floor[:, 2].min(), 0.0)
-            rim = floor[np.abs(floor[:, 2]) < radius]
-            diameter = 2.0 * np.hypot(rim[:, 0], rim[:, 1]).min() if len(rim) else float("nan")
+            floor = upward_boundary(x, conn, tgt_el & alive, k)
+            deepest = -min(floor[:, k].min(), 0.0)
+            rim = floor[np.abs(floor[:, k]) < radius]
+            diameter = 2.0 * off_axis(rim).min() if len(rim) else float("nan")
         else:
             deepest, diameter = float("nan"), float("nan")
         rows.append(dict(time=st.time, depth=depth, rod_length=length, rod_velocity=vel, rod_tip=tip,
@@ -152,7 +175,50 @@ def self_test():
                  r["rod_eroded"], r["target_eroded"], re, te, r["rod_intact_length"], intact,
                  r["crater_deepest"], deepest, r["crater_diameter"], diam))
         ok &= good
+    ok &= self_test_2d()
     print("penetration self-test: %s" % ("PASS" if ok else "FAIL"))
+    return ok
+
+
+def self_test_2d():
+    """The same in an axisymmetric file: a column of unit squares (two
+    triangles each) along y, x in [0, 1]: target in [-4, 0], rod in [0, 4]."""
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "t2.h5")
+        xs, conn = [], []
+        for k in range(8):
+            y0 = -4.0 + k
+            base = len(xs)
+            xs += [[0, y0, 0], [1, y0, 0], [1, y0 + 1, 0], [0, y0 + 1, 0]]
+            conn += [[base, base + 1, base + 2], [base, base + 2, base + 3]]
+        x0 = np.array(xs, float)
+        part = np.array([2] * 8 + [1] * 8, dtype=np.int32)
+        deck = "&part group = 'rod', material = 'w' /\n&part group = 'block', material = 's' /\n"
+        v = np.tile([0.0, -5.0, 0.0], (len(x0), 1))
+        # second step: the target's top square and the rod's lowest eroded
+        state2 = np.array([0] * 6 + [2] * 4 + [0] * 6, float)
+        ur.write_fields(path, x0, conn, [
+            dict(time=0.0, cycle=0, coordinates=x0, fields=dict(velocity=0 * v, fracture_state=np.zeros(16))),
+            dict(time=1.0, cycle=9, coordinates=x0, fields=dict(velocity=v, fracture_state=state2))],
+            part_id=part, deck=deck)
+        ff = ur.open_fields(path)
+        rows = measure(ff, "rod", "block", 2.0)
+        ff.close()
+    # (depth, rod length, rod velocity (the y velocity, as the 3D one is z's), rod tip,
+    # deepest, crater diameter): the squares touch only at corners, so each target
+    # square's top edge (y = -3 .. 0, centre x = 0.5) faces up: deepest 3, diameter 1
+    want = [(0.0, 4.0, 0.0, 0.0, 3.0, 1.0), (1.0, 3.0, -5.0, 1.0, 3.0, 1.0)]
+    ok = True
+    for r, (depth, length, vel, tip, deepest, diam) in zip(rows, want):
+        good = abs(r["depth"] - depth) < 1e-12 and abs(r["rod_length"] - length) < 1e-12 \
+            and abs(r["rod_velocity"] - vel) < 1e-12 and abs(r["rod_tip"] - tip) < 1e-12 \
+            and abs(r["crater_deepest"] - deepest) < 1e-12 and abs(r["crater_diameter"] - diam) < 1e-12
+        print("  %s  2D t = %g: depth %g (%g), rod length %g (%g), velocity %g (%g), tip %g (%g), "
+              "deepest %g (%g), diameter %g (%g)"
+              % ("ok  " if good else "FAIL", r["time"], r["depth"], depth, r["rod_length"], length,
+                 r["rod_velocity"], vel, r["rod_tip"], tip, r["crater_deepest"], deepest,
+                 r["crater_diameter"], diam))
+        ok &= good
     return ok
 
 

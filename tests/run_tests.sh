@@ -92,6 +92,7 @@ run_test "cli/ranks_oblique_free" tests/cli/rank_invariance.sh bin/udar oblique_
 run_test "cli/ranks_spall" tests/cli/rank_invariance.sh bin/udar spall
 run_test "cli/ranks_penetration" tests/cli/rank_invariance.sh bin/udar penetration 2.5e-6
 run_test "cli/ranks_self_contact" tests/cli/rank_invariance.sh bin/udar self_contact
+run_test "cli/ranks_self_contact_2d" tests/cli/rank_invariance.sh bin/udar self_contact_2d
 run_test "cli/ranks_crossed_edges" tests/cli/rank_invariance.sh bin/udar crossed_edges 8.0e-6
 run_test "cli/ranks_crossed_edges_friction" tests/cli/rank_invariance.sh bin/udar crossed_edges 8.0e-6 - crossed_edges_friction
 run_test "cli/ranks_rod_valleys" tests/cli/rank_invariance.sh bin/udar rod_3kms - - rod_3kms_fast
@@ -152,6 +153,8 @@ run_test "regression/sharp_edge_off_fails" regression_fails sharp_edge bin/udar-
   block_nodes_inside_wedge_over_h
 run_test "regression/self_contact" regression self_contact bin/udar-debug
 run_test "cli/self_contact_off" tests/cli/self_contact_off.sh bin/udar
+run_test "regression/self_contact_2d" regression self_contact_2d bin/udar-debug
+run_test "cli/self_contact_2d_off" tests/cli/self_contact_off.sh bin/udar self_contact_2d
 run_test "cli/step_warning" tests/cli/step_warning.sh bin/udar
 run_test "regression/taylor_wg_2d" regression taylor_wg_2d bin/udar
 run_test "regression/taylor_wg" regression taylor_wg bin/udar

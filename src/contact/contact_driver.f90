@@ -995,8 +995,12 @@ contains
             xs(:,:,n_beside) = xb(:,:,a)
             shares(:,n_beside) = [1, 2, 3] /= a
           end do
+          ! (unless it is inside the element under the face: where a crack
+          ! has closed over itself, the faces beside cross this one)
           if (face_beside_sharp_edge(xa(:,1:nf), n, g, xs(:,1:nf,:), shares(1:nf,:), n_beside, ct%x(:,ps), &
-                                     edge_tolerance)) cycle
+                                     edge_tolerance)) then
+            if (.not. inside_element_under(ps, t, xa)) cycle
+          end if
         end if
         if (it%seams .and. off_face) then
           verdict = face_behind_surface(xa(:,1:nf), n, dist, g, xb, has, ct%x(:,ps), edge_tolerance)
@@ -1026,8 +1030,7 @@ contains
           ! deeper than any approach in a step: only inside the element under
           ! the face (a face erosion exposed under a node already inside)
           if (geometric .or. dt <= 0.0_rk .or. it%apex(t) == 0) cycle
-          call element_coordinates(xa(:,1:nf), ct%x(:,it%apex(t)), ct%x(:,ps), lam)
-          if (any(lam(1:nf+1) <= edge_tolerance)) cycle     ! strictly inside: not on another of its faces
+          if (.not. inside_element_under(ps, t, xa)) cycle
         end if
         if (present(n_ref)) then
           if (dot_product(n, n_ref) < 0.5_rk) cycle
@@ -1071,6 +1074,19 @@ contains
         separating = .true.
       end if
     end subroutine
+
+    !> Whether slave node ps is strictly inside the element under face t
+    !> (corners xa; the element's corner opposite, it%apex(t), known in a
+    !> cycle on eroding surfaces): not on another of its faces.
+    logical function inside_element_under(ps, t, xa)
+      integer, intent(in) :: ps, t
+      real(rk), intent(in) :: xa(3,3)
+      real(rk) :: lam(4)
+      inside_element_under = .false.
+      if (it%apex(t) == 0 .or. dt <= 0.0_rk) return
+      call element_coordinates(xa(:,1:nf), ct%x(:,it%apex(t)), ct%x(:,ps), lam)
+      inside_element_under = all(lam(1:nf+1) > edge_tolerance)
+    end function
 
     !> 2D: whether slave node ps lies on the axis or symmetry line of the end
     !> of segment t that its projection (coordinates g) falls beyond.

@@ -79,10 +79,12 @@ contains
   pure integer function face_behind_surface(xa, n, dist, g, xb, has, xs, tol) result(verdict)
     real(rk), intent(in) :: xa(:,:), n(3), dist, g(3), xb(:,:,:), xs(3), tol
     logical, intent(in) :: has(:)
+    real(rk) :: xb2(3,2,2)
     if (size(xa, 2) == 3) then
       verdict = behind_surface(xa, n, dist, g, xb, has, xs, tol)
     else
-      verdict = segment_behind_surface(xa(:,1:2), n, dist, g(1:2), xb(:,1:2,1:2), has(1:2), xs, tol)
+      xb2 = xb(:,1:2,1:2)      ! contiguous (a segment's slots of the 3D layout)
+      verdict = segment_behind_surface(xa(:,1:2), n, dist, g(1:2), xb2, has(1:2), xs, tol)
     end if
   end function
 
@@ -93,10 +95,15 @@ contains
     integer, intent(in) :: nb
     real(rk), intent(in) :: xa(:,:), n(3), g(3), xb(:,:,:), xs(3), tol
     logical, intent(in) :: shares(:,:)
+    real(rk) :: xb2(3,2,3)
+    logical :: shares2(2,3)
     if (size(xa, 2) == 3) then
       outside = beside_sharp_edge(xa, n, g, xb, shares, nb, xs, tol)
     else
-      outside = segment_beside_corner(xa(:,1:2), n, g(1:2), xb(:,1:2,1:nb), shares(1:2,1:nb), nb, xs, tol)
+      ! contiguous (a segment's slots of the 3D layout)
+      xb2(:,:,1:nb) = xb(:,1:2,1:nb)
+      shares2(:,1:nb) = shares(1:2,1:nb)
+      outside = segment_beside_corner(xa(:,1:2), n, g(1:2), xb2(:,:,1:nb), shares2(:,1:nb), nb, xs, tol)
     end if
   end function
 end module udar_contact_faces

@@ -60,7 +60,8 @@ contains
 
   !> After such a pass the conditions hold again: a symmetry node keeps only
   !> the in-plane part of what the pass did to its position and velocity, a
-  !> fixed node none of it.
+  !> fixed node none of it; axisymmetric, a node the pass put beyond the
+  !> axis goes back onto it (apply_axis takes its velocity in the next step).
   subroutine restore_constrained_positions(dom, x_kept)
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: x_kept(:,:)
@@ -73,6 +74,7 @@ contains
     do k = 1, size(dom%fixed_nodes)
       dom%nd_x(:,dom%fixed_nodes(k)) = x_kept(:,ns+k)
     end do
+    if (dom%geometry == geometry_axisymmetric) dom%nd_x(1,:) = max(dom%nd_x(1,:), 0.0_rk)
     call apply_velocity_conditions(dom)
   end subroutine
 

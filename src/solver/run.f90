@@ -573,7 +573,11 @@ contains
       call contact_erode(ct, all_gidx(1:sum(erosion_counts)))
       ! a slave node flush against an eroded element can be a hair behind
       ! the face its removal exposed: onto it before the next step
-      if (settle) call contact_settle(ct, dom)
+      if (settle) then
+        call keep_constrained_positions(dom, x_constrained)
+        call contact_settle(ct, dom)
+        call restore_constrained_positions(dom, x_constrained)
+      end if
     end subroutine
 
     !> The stable step fell below dt_warn_ratio of the first one (times a

@@ -8,7 +8,12 @@ under a corner, by at most 1e-3 of the element size); the energy balance (with t
 moves by less than 2 % over the contact (until the lower arm, sent back
 down, strikes the wall again). With `expect_penetration` (the
 same deck without the &contact group) the arms must pass into each other:
-the check can fail."""
+the check can fail.
+The deck self_contact_2d (tests/regression/self_contact_2d) is the same
+clamp's cross-section in plane strain: triangles, y the fall direction
+(the 3D z), no slab depth (the arms' free edges only at x = 30 mm), its
+element size 0.5 mm.
+Usage: check.py RUN_DIR [DECK [expect_penetration]]"""
 import math
 import os
 import sys
@@ -25,22 +30,28 @@ from check_geometry import deepest_inside  # noqa: E402
 E, RHO, V, T, GAP, H = 200e9, 7850.0, 100.0, 0.004, 0.2e-3, 1.0e-3
 c = math.sqrt(E / RHO)
 out = os.path.join(sys.argv[1], 'out')
+deck = sys.argv[2] if len(sys.argv) > 2 else 'self_contact'
 negative = len(sys.argv) > 3 and sys.argv[3] == 'expect_penetration'
-with h5py.File(os.path.join(out, 'self_contact.h5'), 'r') as f:
+with h5py.File(os.path.join(out, deck + '.h5'), 'r') as f:
     conn, x0 = f['mesh/connectivity'][...], f['mesh/x0'][...]
+plane = conn.shape[1] == 3          # plane strain: triangles in z = 0
+ax = 1 if plane else 2              # the fall direction: y (plane strain) or z (3D)
+if plane:
+    H = 0.5e-3                      # self_contact_2d.geo's element size
 centre = x0[conn].mean(axis=1)
-lower = conn[(centre[:, 0] > 0) & (centre[:, 2] < T)]
-upper = conn[(centre[:, 0] > 0) & (centre[:, 2] > T + GAP)]
+lower = conn[(centre[:, 0] > 0) & (centre[:, ax] < T)]
+upper = conn[(centre[:, 0] > 0) & (centre[:, ax] > T + GAP)]
 lower_nodes, upper_nodes = np.unique(lower), np.unique(upper)
 # the arms' far part: the bridge's disturbance has not reached it during the contact
 far_low = lower_nodes[x0[lower_nodes, 0] > 0.022]
 far_up = upper_nodes[x0[upper_nodes, 0] > 0.022]
 face_up = upper_nodes[(x0[upper_nodes, 0] > 0.015) & (x0[upper_nodes, 0] < 0.028)
-                      & (np.abs(x0[upper_nodes, 2] - T - GAP) < 1e-6)]
-fld = udar_results.open_fields(os.path.join(out, 'self_contact.h5'))
+                      & (np.abs(x0[upper_nodes, ax] - T - GAP) < 1e-6)]
+fld = udar_results.open_fields(os.path.join(out, deck + '.h5'))
 # the arms' faces away from their free edges (x = 30 mm, y = 4 mm): a
 # node-on-surface contact does not see a corner slipping under a corner
-inner = lambda n: n[(x0[n, 0] < 0.029) & (x0[n, 1] < 0.0039)]  # noqa: E731
+# (plane strain: no slab depth, the free edge x = 30 mm only)
+inner = lambda n: n[(x0[n, 0] < 0.029) & ((x0[n, 1] < 0.0039) | plane)]  # noqa: E731
 deepest, deepest_inner, rows = 0.0, 0.0, []
 for k in range(fld.n_steps):
     s = fld.step(k)
@@ -50,14 +61,14 @@ for k in range(fld.n_steps):
     deepest_inner = max(deepest_inner, deepest_inside(x[inner(upper_nodes)], x, lower),
                         deepest_inside(x[inner(lower_nodes)], x, upper))
     p = np.median(np.asarray(s.fields['contact_pressure'])[face_up]) if 'contact_pressure' in s.fields else 0.0
-    rows.append((s.time, depth, p, v[far_up, 2].mean(), v[far_low, 2].mean()))
+    rows.append((s.time, depth, p, v[far_up, ax].mean(), v[far_low, ax].mean()))
     print(f"MEASURED t = {s.time * 1e6:.2f} us: deepest arm node inside the other arm {depth:.3g} m, "
           f"contact pressure (far part, median) {p / 1e9:.3f} GPa, far-part velocity upper {rows[-1][3]:.1f} "
           f"lower {rows[-1][4]:.1f} m/s")
 if negative:
     checks.above('arms_pass_into_each_other_without_self_contact_m', deepest, 0.05e-3, 'm')
     checks.finish()
-h = udar_results.read_history(os.path.join(out, 'self_contact_history.csv'))
+h = udar_results.read_history(os.path.join(out, deck + '_history.csv'))
 t, force = h['time'], h['contact_normal_clamp_on_itself']
 touch = np.nonzero(force > 0)[0]
 checks.compare('contact_start_t_over_c_plus_gap_over_2v', t[touch[0]], T / c + GAP / (2 * V), 0.05, 's')
