@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # make validate: the longer validation runs behind doc/validation.md, two
 # at a time: the Taylor bars (tests/validate_taylor.sh), the long-rod
-# penetration on the deck's 1 mm mesh (tests/validate_long_rod.sh) and the
+# penetration on the deck's 1 mm mesh and the axisymmetric deck's 0.5 mm
+# (tests/validate_long_rod.sh, tests/validate_long_rod.sh 2d) and the
 # seed paper's decks with the ricochet (tests/validate_paper.sh), and the
 # contact depth sweeps (tests/validate_contact.sh). Every mesh
 # of every script is compared with doc/validation/meshes.csv first, so a
@@ -13,9 +14,11 @@ cd "$(dirname "$0")/.."
 MESHES_ONLY=1 tests/validate_taylor.sh
 MESHES_ONLY=1 tests/validate_taylor.sh 2d
 MESHES_ONLY=1 tests/validate_long_rod.sh
+MESHES_ONLY=1 tests/validate_long_rod.sh 2d
 MESHES_ONLY=1 tests/validate_paper.sh
 tests/validate_taylor.sh
 tests/validate_taylor.sh 2d
 tests/validate_long_rod.sh
+tests/validate_long_rod.sh 2d
 tests/validate_paper.sh
 tests/validate_contact.sh
