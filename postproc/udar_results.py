@@ -638,11 +638,29 @@ def _to_float(text):
         raise
 
 
+def _is_note(line):
+    """A comment line before a history's header: '#', no comma."""
+    return line.startswith("#") and "," not in line
+
+
+def history_note(path):
+    """The comment line before a history's header, without its '# ' ('' if none): in 2D
+    what the integrated columns stand for (per revolution, per metre of depth)."""
+    with open(str(path)) as fh:
+        for line in fh:
+            if not line.strip():
+                continue
+            return line.strip().lstrip("#").strip() if _is_note(line) else ""
+    return ""
+
+
 def read_history(path):
     """Read a udar history CSV -> dict {column name: 1-D float64 numpy array} (file order).
 
-    The first line holds the column names (a leading '#' is ignored). An incomplete *last*
-    line (a run still writing) is dropped with a warning. Raises ``UdarFileError``.
+    The first line holds the column names (a leading '#' is ignored), after an optional
+    comment line ('# ' and no comma: a 2D run says there that its integrated columns are
+    per revolution or per metre; ``history_note`` returns it). An incomplete *last* line
+    (a run still writing) is dropped with a warning. Raises ``UdarFileError``.
     """
     path = str(path)
     if not os.path.exists(path):
@@ -657,7 +675,7 @@ def read_history(path):
     except OSError as err:
         raise UdarFileError("%s: cannot read: %s" % (path, err)) from None
     lines = text.splitlines()
-    while lines and not lines[0].strip():
+    while lines and (not lines[0].strip() or _is_note(lines[0])):
         lines.pop(0)
     if not lines:
         raise UdarFileError("%s: empty file (expected a header line with column names)" % path)
@@ -1104,6 +1122,13 @@ def _self_test(verbose=True):
         check(abs(h["com_z_rod"][1] - 1e-102) < 1e-115, "Fortran exponent without E")
         check(any("incomplete" in str(x.message) for x in w), "warning for truncated line")
         check(history_parts(h) == ["rod"], "history_parts")
+        check(history_note(csvpath) == "", "no note in a 3D history")
+        with open(csvpath, "w") as fh:
+            fh.write("# udar history: axisymmetric (x = r; y the axis): per revolution (2 pi rad)\n")
+            fh.write("time,cycle,kinetic\n0,0,1\n1e-6,10,2\n")
+        h = read_history(csvpath)
+        check(list(h) == ["time", "cycle", "kinetic"] and h["kinetic"][1] == 2.0, "history after a 2D note")
+        check(history_note(csvpath).endswith("per revolution (2 pi rad)"), "history_note")
         with open(csvpath, "w") as fh:
             fh.write("time,kinetic\n0,1\n1,abc\n2,3\n")
         test.raises(UdarFileError, "non-numeric history rejected with line number", read_history,

@@ -1,5 +1,7 @@
 !> Time-history CSV: one header line of column names, then one row per
-!> history time, every value with 17 significant digits (round-trip exact).
+!> history time, every value with 17 significant digits (round-trip exact);
+!> before the header, optionally, one comment line ('# ', no comma) that
+!> says what the integrated columns stand for (2D: per revolution, per metre).
 !> history_sync puts every row written so far on disk (a checkpoint must
 !> never be ahead of its history: a hard kill after it loses nothing).
 module udar_history
@@ -18,9 +20,10 @@ module udar_history
 
 contains
 
-  subroutine history_open(h, path, columns, ok, errmsg)
+  subroutine history_open(h, path, columns, preamble, ok, errmsg)
     type(history_t), intent(out) :: h
     character(len=*), intent(in) :: path, columns(:)
+    character(len=*), intent(in) :: preamble   !< the comment line's text (after '# '); '': none
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
     integer :: ios, k
@@ -34,6 +37,7 @@ contains
       return
     end if
     errmsg = ''
+    if (len(preamble) > 0) write(h%unit, '(a)') '# '//preamble
     do k = 1, size(columns)
       if (k > 1) write(h%unit, '(a)', advance='no') ','
       write(h%unit, '(a)', advance='no') trim(columns(k))
@@ -47,9 +51,10 @@ contains
   !> append from there. The kept part is written to a temporary file, synced
   !> and renamed over the old one; h%rows tells the caller how many rows
   !> were kept.
-  subroutine history_reopen(h, path, columns, keep_rows, last_cycle, ok, errmsg)
+  subroutine history_reopen(h, path, columns, preamble, keep_rows, last_cycle, ok, errmsg)
     type(history_t), intent(out) :: h
     character(len=*), intent(in) :: path, columns(:)
+    character(len=*), intent(in) :: preamble   !< the comment line history_open wrote ('': none)
     integer, intent(in) :: keep_rows           !< rows written before the checkpoint
     integer, intent(in) :: last_cycle          !< the checkpoint's cycle: no kept row is later
     logical, intent(out) :: ok
@@ -67,6 +72,14 @@ contains
       errmsg = 'cannot open the history file '//trim(path)//' to continue it: '//trim(iomsg)
       return
     end if
+    if (len(preamble) > 0) then
+      call read_line(uin, line, ios)
+      if (ios /= 0 .or. line /= '# '//preamble) then
+        close(uin)
+        errmsg = 'history file '//trim(path)//' does not start with the line this run writes: # '//preamble
+        return
+      end if
+    end if
     call read_line(uin, line, ios)
     if (ios /= 0 .or. line /= header) then
       close(uin)
@@ -79,6 +92,7 @@ contains
       errmsg = 'cannot write '//trim(path)//'.tmp: '//trim(iomsg)
       return
     end if
+    if (len(preamble) > 0) write(uout, '(a)') '# '//preamble
     write(uout, '(a)') header
     h%rows = 0
     do

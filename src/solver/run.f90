@@ -760,7 +760,8 @@ contains
                    dom%el_part(dom%el_owned_list), work_node, &
                    cfg%resolved_text, program_version, trim(cfg%run%title), comms_size(), ok, errmsg)
       call output_check(ok, errmsg)
-      if (comms_is_root()) call history_open(hist, base//'_history.csv', history_columns(dom, ct), ok, errmsg)
+      if (comms_is_root()) call history_open(hist, base//'_history.csv', history_columns(dom, ct), &
+                                             history_preamble(dom%geometry), ok, errmsg)
       call output_check(ok, errmsg)
     end subroutine
 
@@ -780,8 +781,8 @@ contains
       bad_out = 0
       errmsg = ''
       if (comms_is_root()) then
-        call history_reopen(hist, base//'_history.csv', history_columns(dom, ct), st%history_rows, st%cycle, &
-                            ok, errmsg)
+        call history_reopen(hist, base//'_history.csv', history_columns(dom, ct), history_preamble(dom%geometry), &
+                            st%history_rows, st%cycle, ok, errmsg)
         if (.not. ok) bad_out = 1
         if (ok .and. hist%rows < st%history_rows) call log_warn('restart: the history '//base// &
           '_history.csv holds '//itoa(hist%rows)//' rows up to the checkpoint, which was written after row '// &
@@ -947,6 +948,24 @@ contains
     do k = 1, size(dom%mat)
       any_fracture = any_fracture .or. fracture_enabled(dom%mat(k))
     end do
+  end function
+
+  !> The history's comment line before its header: what a 2D run's
+  !> integrated columns stand for ('' in 3D: no such line). No comma, so
+  !> that no reader takes it for the header.
+  function history_preamble(geometry) result(text)
+    integer, intent(in) :: geometry
+    character(len=:), allocatable :: text
+    select case (geometry)
+    case (geometry_axisymmetric)
+      text = 'udar history: axisymmetric (x = r; y the axis): masses; energies; momenta and forces are '// &
+             'those of the full revolution (2 pi rad); momentum_x and angular_momentum_* are sums over the '// &
+             'meridian section (no momentum of the body)'
+    case (geometry_plane_strain)
+      text = 'udar history: plane strain: masses; energies; momenta and forces are per metre of depth (z)'
+    case default
+      text = ''
+    end select
   end function
 
   !> Decks with contact get, after the parts, each interface's normal and

@@ -23,7 +23,13 @@ def check(run_dir, deck, axis, area, symmetric):
     cross-section (m2); symmetric: the deck's contact is symmetric."""
     c = math.sqrt(E / RHO)
     k = 'xyz'.index(axis)
-    h = udar_results.read_history(os.path.join(run_dir, 'out', deck + '_history.csv'))
+    path = os.path.join(run_dir, 'out', deck + '_history.csv')
+    h = udar_results.read_history(path)
+    if axis == 'y':
+        # axisymmetric: the history says its columns are the full revolution's
+        note = udar_results.history_note(path)
+        print(f"MEASURED history note: {note}")
+        checks.above('history_note_says_full_revolution', float('full revolution' in note), 1)
     # the contact force: both directions' of a symmetric contact
     t, f = h['time'], sum(h[n] for n in h if n.startswith('contact_normal_'))
     touching = np.nonzero(f > 0.0)[0]
