@@ -51,29 +51,22 @@ def upward_boundary(x, conn, elements, up_axis=2):
     """Centroids of the faces of the given elements that are on their boundary
     (not shared by two of them) and face upwards (outward normal along up_axis >
     0.3): tetrahedra's triangles, or 2D triangles' edges (up_axis 1)."""
-    if conn.shape[1] == 3:
-        tris = conn[elements]
-        faces = np.concatenate([tris[:, [0, 1]], tris[:, [1, 2]], tris[:, [2, 0]]])
-        opposite = np.concatenate([tris[:, 2], tris[:, 0], tris[:, 1]])
-        _, inv, count = np.unique(np.sort(faces, axis=1), axis=0, return_inverse=True, return_counts=True)
-        outer = count[inv.ravel()] == 1
-        f, o = faces[outer], opposite[outer]
-        a, b = x[f[:, 0]], x[f[:, 1]]
-        n = np.stack([b[:, 1] - a[:, 1], a[:, 0] - b[:, 0]], axis=1)
-        n *= np.where(np.einsum("ij,ij->i", n, x[o, :2] - a[:, :2]) > 0, -1.0, 1.0)[:, None]
-        up = n[:, up_axis] > 0.3 * np.linalg.norm(n, axis=1)
-        return (a + b)[up] / 2.0
-    tets = conn[elements]
-    faces = np.concatenate([tets[:, [0, 1, 2]], tets[:, [0, 1, 3]], tets[:, [0, 2, 3]], tets[:, [1, 2, 3]]])
-    opposite = np.concatenate([tets[:, 3], tets[:, 2], tets[:, 1], tets[:, 0]])
+    el = conn[elements]
+    nc = el.shape[1]
+    # each face with the corner opposite it
+    faces = np.concatenate([np.delete(el, k, axis=1) for k in range(nc)])
+    opposite = np.concatenate([el[:, k] for k in range(nc)])
     _, inv, count = np.unique(np.sort(faces, axis=1), axis=0, return_inverse=True, return_counts=True)
     outer = count[inv.ravel()] == 1
     f, o = faces[outer], opposite[outer]
-    a, b, c = x[f[:, 0]], x[f[:, 1]], x[f[:, 2]]
-    n = np.cross(b - a, c - a)
+    a, b = x[f[:, 0]], x[f[:, 1]]
+    if nc == 4:
+        n = np.cross(b - a, x[f[:, 2]] - a)
+    else:
+        n = np.stack([b[:, 1] - a[:, 1], a[:, 0] - b[:, 0], np.zeros(len(a))], axis=1)
     n *= np.where(np.einsum("ij,ij->i", n, x[o] - a) > 0, -1.0, 1.0)[:, None]
-    up = n[:, 2] > 0.3 * np.linalg.norm(n, axis=1)
-    return (a + b + c)[up] / 3.0
+    up = n[:, up_axis] > 0.3 * np.linalg.norm(n, axis=1)
+    return x[f].mean(axis=1)[up]
 
 
 def measure(ff, rod, target, radius, axis=(0.0, 0.0, -1.0)):

@@ -797,7 +797,8 @@ contains
     end subroutine
 
     !> Appends a found slave node's record for share_found: with the
-    !> states of its node (at x) and of the triangle's.
+    !> states of its node (at x) and of the face's (a segment's second node
+    !> again in the third slot, which share_found does not read).
     subroutine add_record(k, t, kind, dist, n, g, share, x)
       integer, intent(in) :: k, t, kind
       real(rk), intent(in) :: dist, n(3), g(3), share(3), x(3)
@@ -1006,7 +1007,7 @@ contains
           verdict = face_behind_surface(xa(:,1:nf), n, dist, g, xb, has, ct%x(:,ps), edge_tolerance)
           ! 2D: a node on the axis (or a symmetry line) beyond a segment's end
           ! on it is where the segment and its mirror image meet, on the
-          ! bisector of their fold, which behind_surface's halves of the seam
+          ! bisector of their fold, which face_behind_surface's halves of the seam
           ! share to rounding: in the seam
           if (verdict == behind_not .and. nf == 2) then
             if (beyond_mirrored_end(ps, t, g)) verdict = behind_seam

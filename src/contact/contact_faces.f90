@@ -4,17 +4,23 @@
 !> (size(xa, 2): 3 or 2). The results keep the 3D layout: a segment's area
 !> coordinates and shares have a third entry 0, which the matching
 !> (match_velocities, the joint solve) takes as a node of weight and share
-!> 0 (issue 14's 2D contact; theory.md 14). Pure: no state, no I/O.
+!> 0 (issue 14's 2D contact; theory.md 14). What the faces beside a face
+!> decide (the seams of a dented surface, sharp convex edges) is one
+!> implementation for both kinds. Pure: no state, no I/O.
 module udar_contact_faces
   use udar_kinds, only: rk
+  use udar_vectors, only: cross
   use udar_contact_kernels, only: triangle_projection, master_shares, closest_on_triangle, tetrahedron_coordinates, &
-                                  behind_surface, beside_sharp_edge
-  use udar_segment2, only: segment_projection, segment_shares, closest_on_segment, triangle_coordinates, &
-                           segment_behind_surface, segment_beside_corner
+                                  behind_not, behind_face, behind_seam
+  use udar_segment2, only: segment_projection, segment_shares, closest_on_segment, triangle_coordinates
   implicit none
   private
   public :: face_projection, face_shares, closest_on_face, element_coordinates, face_behind_surface, &
             face_beside_sharp_edge
+
+  !> of an edge's length: a fold flatter than this, or a node nearer a plane,
+  !> is rounding
+  real(rk), parameter :: flat = 1.0e-9_rk
 
 contains
 
@@ -73,37 +79,95 @@ contains
     end if
   end subroutine
 
-  !> Where a node xs behind face xa's plane or line is when its projection
-  !> falls beyond the face (behind_surface, segment_behind_surface); xb, has:
-  !> the faces across the face's edges (3D) or ends (2D), by opposite corner.
+  !> Where a node xs behind the plane (line) of master face xa (its
+  !> face_projection: normal n, distance dist < 0, coordinates g) is, when
+  !> its projection falls outside the face: across each edge (a segment's
+  !> end) it falls beyond, the face there (xb(:,1:nf,a): the corners of the
+  !> one across the edge (end) opposite corner a, counter-clockwise seen
+  !> from outside; has(a) false: none known) decides.
+  !> - Beyond a convex or flat edge (the neighbour's centre not in front of
+  !>   this plane beyond rounding) the neighbour has the node, if anyone:
+  !>   behind_not.
+  !> - Beyond a concave edge (a dented surface) the body is behind either
+  !>   plane: a node behind the neighbour's plane too whose projection falls
+  !>   into the gap between the two outlines (within its depth times tan of
+  !>   half the angle between the normals beyond the edge) is behind the
+  !>   surface though on neither face (the seam a node slips through when a
+  !>   step's approach is deep): behind_seam.
+  !> - Without a neighbour (a rim) it is not behind this face.
+  !> A projection on the face (no coordinate below -tol) is behind_face.
   pure integer function face_behind_surface(xa, n, dist, g, xb, has, xs, tol) result(verdict)
     real(rk), intent(in) :: xa(:,:), n(3), dist, g(3), xb(:,:,:), xs(3), tol
     logical, intent(in) :: has(:)
-    real(rk) :: xb2(3,2,2)
-    if (size(xa, 2) == 3) then
-      verdict = behind_surface(xa, n, dist, g, xb, has, xs, tol)
-    else
-      xb2 = xb(:,1:2,1:2)      ! contiguous (a segment's slots of the 3D layout)
-      verdict = segment_behind_surface(xa(:,1:2), n, dist, g(1:2), xb2, has(1:2), xs, tol)
-    end if
+    real(rk) :: area2, edge, beyond, nb(3), db, gb(3), centre(3), cos_n
+    integer :: a, nf
+    verdict = behind_not
+    nf = size(xa, 2)
+    area2 = 0
+    if (nf == 3) area2 = norm2(cross(xa(:,2) - xa(:,1), xa(:,3) - xa(:,1)))
+    beyond = 0
+    do a = 1, nf
+      if (g(a) >= -tol) cycle
+      if (.not. has(a)) return
+      if (nf == 3) then
+        edge = norm2(xa(:,mod(a+1,3)+1) - xa(:,mod(a,3)+1))
+      else
+        edge = norm2(xa(:,2) - xa(:,1))
+      end if
+      centre = sum(xb(:,1:nf,a), dim=2)/real(nf, rk)
+      if (dot_product(n, centre - xa(:,1)) <= flat*edge) return
+      call face_projection(xb(:,1:nf,a), xs, nb, db, gb)
+      if (db > -flat*edge) return
+      ! how far beyond the edge (end) the projection falls (a triangle's
+      ! area2/edge: its altitude over the edge; a segment's length)
+      if (nf == 3) then
+        beyond = -g(a)*area2/edge
+      else
+        beyond = -g(a)*edge
+      end if
+      cos_n = dot_product(n, nb)
+      if (beyond > -dist*sqrt(max(1.0_rk - cos_n, 0.0_rk)/(1.0_rk + cos_n))) return
+      verdict = behind_seam
+    end do
+    if (verdict == behind_not) verdict = behind_face
   end function
 
-  !> Whether a node xs behind face xa is outside the body beside a sharp
-  !> convex edge or corner (beside_sharp_edge, segment_beside_corner): the
-  !> nb faces xb beside it sharing the corners marked in shares.
+  !> Whether a node xs behind the plane (line) of master face xa (normal n,
+  !> coordinates g of its projection) is outside the body beside a sharp
+  !> convex edge or corner of the face: on or in front of the plane of a
+  !> face beside it (xb(:,1:nf,k), k = 1..nb, sharing the corners of xa
+  !> marked in shares(:,k): an edge or a corner, a segment's node) that
+  !> falls away behind this plane (its centre behind it), with its
+  !> projection on that face (no coordinate below -tol) and on this one
+  !> clear of what they share (the coordinates of the corners not shared
+  !> sum to more than tol). Where two faces meet at an interior angle below
+  !> 90 degrees (a fractured fragment's corner, a crater lip, a wedge's
+  !> edge), a node on or just outside one of them is behind the other's
+  !> plane with its projection on it, though it never crossed it. At 90
+  !> degrees and more such a node projects onto the shared edge or corner
+  !> or beyond it: a node at a body's square edge that crossed the top face
+  !> stays the top face's.
   pure logical function face_beside_sharp_edge(xa, n, g, xb, shares, nb, xs, tol) result(outside)
     integer, intent(in) :: nb
     real(rk), intent(in) :: xa(:,:), n(3), g(3), xb(:,:,:), xs(3), tol
     logical, intent(in) :: shares(:,:)
-    real(rk) :: xb2(3,2,3)
-    logical :: shares2(2,3)
-    if (size(xa, 2) == 3) then
-      outside = beside_sharp_edge(xa, n, g, xb, shares, nb, xs, tol)
+    real(rk) :: longest, centre(3), nk(3), dk, gk(3)
+    integer :: k, nf
+    outside = .false.
+    nf = size(xa, 2)
+    if (nf == 3) then
+      longest = max(norm2(xa(:,2) - xa(:,1)), norm2(xa(:,3) - xa(:,2)), norm2(xa(:,1) - xa(:,3)))
     else
-      ! contiguous (a segment's slots of the 3D layout)
-      xb2(:,:,1:nb) = xb(:,1:2,1:nb)
-      shares2(:,1:nb) = shares(1:2,1:nb)
-      outside = segment_beside_corner(xa(:,1:2), n, g(1:2), xb2(:,:,1:nb), shares2(:,1:nb), nb, xs, tol)
+      longest = norm2(xa(:,2) - xa(:,1))
     end if
+    do k = 1, nb
+      if (sum(g(1:nf), mask=.not. shares(1:nf,k)) <= tol) cycle
+      centre = sum(xb(:,1:nf,k), dim=2)/real(nf, rk)
+      if (dot_product(n, centre - xa(:,1)) >= -flat*longest) cycle     ! rising or flat
+      call face_projection(xb(:,1:nf,k), xs, nk, dk, gk)
+      if (dk <= -flat*longest .or. any(gk(1:nf) < -tol)) cycle
+      outside = .true.
+      return
+    end do
   end function
 end module udar_contact_faces

@@ -8,16 +8,13 @@ module udar_contact_kernels
   implicit none
   private
   public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_crossing, edge_shares, &
-            behind_surface, beside_sharp_edge, closest_on_triangle, behind_not, behind_face, behind_seam, &
-            solve_normal_lcp, normal_rows_matrix, contact_point, flat
+            closest_on_triangle, behind_not, behind_face, behind_seam, &
+            solve_normal_lcp, normal_rows_matrix, contact_point
 
-  !> behind_surface's verdicts: not behind the surface; behind this face;
-  !> behind the surface beyond one of its concave edges (the contact point
-  !> is then the closest point of the triangle, closest_on_triangle)
+  !> udar_contact_faces' face_behind_surface's verdicts: not behind the
+  !> surface; behind this face; behind the surface beyond one of its concave
+  !> edges (the contact point is then the face's closest point)
   integer, parameter :: behind_not = 0, behind_face = 1, behind_seam = 2
-  !> of an edge's length: a fold flatter than this, or a node nearer a plane,
-  !> is rounding
-  real(rk), parameter :: flat = 1.0e-9_rk
 
 contains
 
@@ -42,82 +39,6 @@ contains
     g(2) = dot_product(n, cross(xa(:,3) - p, xa(:,1) - p))/area2
     g(3) = 1.0_rk - g(1) - g(2)
   end subroutine
-
-  !> Where a node xs behind the plane of master triangle xa (its
-  !> triangle_projection: normal n, distance dist < 0, area coordinates g)
-  !> is, when its projection falls outside the triangle: across each edge
-  !> it falls beyond, the triangle there (xb(:,:,a): the corners of the one
-  !> across the edge opposite corner a, counter-clockwise seen from
-  !> outside; has(a) false: none known) decides.
-  !> - Beyond a convex or flat edge (the neighbour's centre not in front of
-  !>   this plane beyond rounding) the neighbour has the node, if anyone:
-  !>   behind_not.
-  !> - Beyond a concave edge (a dented surface) the body is behind either
-  !>   plane: a node behind the neighbour's plane too whose projection falls
-  !>   into the gap between the two outlines (within its depth times tan of
-  !>   half the angle between the normals beyond the edge) is behind the
-  !>   surface though on neither face (the seam a node slips through when a
-  !>   step's approach is deep): behind_seam.
-  !> - Without a neighbour (a rim) it is not behind this face.
-  !> A projection on the triangle (no coordinate below -tol) is behind_face.
-  pure integer function behind_surface(xa, n, dist, g, xb, has, xs, tol) result(verdict)
-    real(rk), intent(in) :: xa(3,3), n(3), dist, g(3), xb(3,3,3), xs(3), tol
-    logical, intent(in) :: has(3)
-    real(rk) :: area2, edge, beyond, nb(3), db, gb(3), centre(3), cos_n
-    integer :: a
-    verdict = behind_not
-    area2 = norm2(cross(xa(:,2) - xa(:,1), xa(:,3) - xa(:,1)))
-    beyond = 0
-    do a = 1, 3
-      if (g(a) >= -tol) cycle
-      if (.not. has(a)) return
-      edge = norm2(xa(:,mod(a+1,3)+1) - xa(:,mod(a,3)+1))
-      centre = (xb(:,1,a) + xb(:,2,a) + xb(:,3,a))/3.0_rk
-      if (dot_product(n, centre - xa(:,1)) <= flat*edge) return
-      call triangle_projection(xb(:,:,a), xs, nb, db, gb)
-      if (db > -flat*edge) return
-      ! how far beyond the edge the projection falls (area2/edge: the altitude over it)
-      beyond = -g(a)*area2/edge
-      cos_n = dot_product(n, nb)
-      if (beyond > -dist*sqrt(max(1.0_rk - cos_n, 0.0_rk)/(1.0_rk + cos_n))) return
-      verdict = behind_seam
-    end do
-    if (verdict == behind_not) verdict = behind_face
-  end function
-
-  !> Whether a node xs behind the plane of master triangle xa (normal n,
-  !> area coordinates g of its projection) is outside the body beside a
-  !> sharp convex edge or corner of the triangle: on or in front of the
-  !> plane of a face beside it (xb(:,:,k), k = 1..nb, sharing the corners
-  !> of xa marked in shares(:,k): an edge or a corner) that falls away
-  !> behind this plane (its centre behind it), with its projection on that
-  !> face (no area coordinate below -tol) and on this one clear of what
-  !> they share (the area coordinates of the corners not shared sum to more
-  !> than tol). Where two faces meet at an interior angle below 90 degrees
-  !> (a fractured fragment's corner, a crater lip, a wedge's edge), a node
-  !> on or just outside one of them is behind the other's plane with its
-  !> projection on it, though it never crossed it. At 90 degrees and more
-  !> such a node projects onto the shared edge or corner or beyond it: a
-  !> node at a body's square edge that crossed the top face stays the top
-  !> face's.
-  pure logical function beside_sharp_edge(xa, n, g, xb, shares, nb, xs, tol) result(outside)
-    integer, intent(in) :: nb
-    real(rk), intent(in) :: xa(3,3), n(3), g(3), xb(3,3,nb), xs(3), tol
-    logical, intent(in) :: shares(3,nb)
-    real(rk) :: longest, centre(3), nk(3), dk, gk(3)
-    integer :: k
-    outside = .false.
-    longest = max(norm2(xa(:,2) - xa(:,1)), norm2(xa(:,3) - xa(:,2)), norm2(xa(:,1) - xa(:,3)))
-    do k = 1, nb
-      if (sum(g, mask=.not. shares(:,k)) <= tol) cycle
-      centre = (xb(:,1,k) + xb(:,2,k) + xb(:,3,k))/3.0_rk
-      if (dot_product(n, centre - xa(:,1)) >= -flat*longest) cycle     ! rising or flat
-      call triangle_projection(xb(:,:,k), xs, nk, dk, gk)
-      if (dk <= -flat*longest .or. any(gk < -tol)) cycle
-      outside = .true.
-      return
-    end do
-  end function
 
   !> The point c of triangle xa closest to p, and its area coordinates g
   !> (all in [0, 1]): the projection if it falls on the triangle, else

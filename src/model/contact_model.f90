@@ -49,11 +49,11 @@ module udar_contact_model
     integer, allocatable :: local_tri(:)
     real(rk) :: friction = 0
     integer :: iterations = 50, weights = contact_weights_area
-    !> nodes in the seams of a dented master surface are found (behind_surface;
+    !> nodes in the seams of a dented master surface are found (face_behind_surface;
     !> needs the node-triangle lists of surface_neighbours)
     logical :: seams = .true.
     !> a node in front of the face beside a sharp convex edge is not behind
-    !> the other face (beside_sharp_edge; the same lists)
+    !> the other face (face_beside_sharp_edge; the same lists)
     logical :: sharp_edges = .true.
     !> a slave node in a valley of the master surface is matched to both
     !> faces (detect's valley_partner; up to two rows a node in the matching)

@@ -11,11 +11,9 @@
 module udar_segment2
   use udar_kinds, only: rk
   use udar_config, only: contact_weights_distance
-  use udar_contact_kernels, only: behind_not, behind_face, behind_seam, flat
   implicit none
   private
-  public :: segment_projection, segment_shares, triangle_coordinates, closest_on_segment, segment_behind_surface, &
-            segment_beside_corner
+  public :: segment_projection, segment_shares, triangle_coordinates, closest_on_segment
 
 contains
 
@@ -107,63 +105,4 @@ contains
     lam(3) = 1.0_rk - lam(1) - lam(2)
   end subroutine
 
-  !> behind_surface in 2D: where a node xs behind the line of master segment
-  !> xa (its segment_projection n, dist < 0, g) is when its projection falls
-  !> beyond an end. xb(:,:,a): the segment across the end opposite node a
-  !> (sharing node 3 - a; has(a) false: none known). Beyond a convex or
-  !> straight corner the neighbour has the node, if anyone (behind_not);
-  !> beyond a concave corner, a node behind the neighbour's line too whose
-  !> projection falls into the gap between the two segments (within its
-  !> depth times tan of half the angle between the normals) is in the seam
-  !> (behind_seam); beyond a rim it is not behind this segment. On the
-  !> segment (no coordinate below -tol): behind_face.
-  pure integer function segment_behind_surface(xa, n, dist, g, xb, has, xs, tol) result(verdict)
-    real(rk), intent(in) :: xa(3,2), n(3), dist, g(2), xb(3,2,2), xs(3), tol
-    logical, intent(in) :: has(2)
-    real(rk) :: length, beyond, nb(3), db, gb(2), centre(3), cos_n
-    integer :: a
-    verdict = behind_not
-    length = norm2(xa(:,2) - xa(:,1))
-    do a = 1, 2
-      if (g(a) >= -tol) cycle
-      if (.not. has(a)) return
-      centre = 0.5_rk*(xb(:,1,a) + xb(:,2,a))
-      if (dot_product(n, centre - xa(:,1)) <= flat*length) return
-      call segment_projection(xb(:,:,a), xs, nb, db, gb)
-      if (db > -flat*length) return
-      beyond = -g(a)*length
-      cos_n = dot_product(n, nb)
-      if (beyond > -dist*sqrt(max(1.0_rk - cos_n, 0.0_rk)/(1.0_rk + cos_n))) return
-      verdict = behind_seam
-    end do
-    if (verdict == behind_not) verdict = behind_face
-  end function
-
-  !> beside_sharp_edge in 2D: whether a node xs behind the line of master
-  !> segment xa (normal n, coordinates g) is outside the body beside a sharp
-  !> convex corner: on or in front of the line of a segment beside it
-  !> (xb(:,:,k), k = 1..nb, sharing the node of xa marked in shares(:,k))
-  !> that falls away behind this line, with its projection on that segment
-  !> and on this one clear of the shared node (the other node's coordinate
-  !> above tol). A node just outside one side of a corner sharper than 90
-  !> degrees is behind the other side's line with its projection on it,
-  !> though it never crossed it.
-  pure logical function segment_beside_corner(xa, n, g, xb, shares, nb, xs, tol) result(outside)
-    integer, intent(in) :: nb
-    real(rk), intent(in) :: xa(3,2), n(3), g(2), xb(3,2,nb), xs(3), tol
-    logical, intent(in) :: shares(2,nb)
-    real(rk) :: length, centre(3), nk(3), dk, gk(2)
-    integer :: k
-    outside = .false.
-    length = norm2(xa(:,2) - xa(:,1))
-    do k = 1, nb
-      if (sum(g, mask=.not. shares(:,k)) <= tol) cycle
-      centre = 0.5_rk*(xb(:,1,k) + xb(:,2,k))
-      if (dot_product(n, centre - xa(:,1)) >= -flat*length) cycle     ! rising or straight
-      call segment_projection(xb(:,:,k), xs, nk, dk, gk)
-      if (dk <= -flat*length .or. any(gk < -tol)) cycle
-      outside = .true.
-      return
-    end do
-  end function
 end module udar_segment2

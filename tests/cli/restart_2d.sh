@@ -7,11 +7,16 @@
 # (symmetric contact) checkpointed mid-contact at 4 us, restarted on 2 ranks.
 #   restart_2d.sh EXE
 source "$(dirname "$0")/common.sh" "$1"
+# deck DECK of regression case CASE into $W, run to T_END with one checkpoint at T_CKPT
+#   checkpointed CASE DECK T_END T_CKPT
+checkpointed() {
+  cp "$ROOT/tests/regression/$1/$1.msh" "$ROOT/tests/regression/$1/$2.nml" "$W/"
+  sed -i -e "s/^\( *\)t_end = .*/\1t_end = $3/" \
+         -e "s|dt_history = 0.0 /|dt_history = 0.0, dt_checkpoint = $4 /|" "$W/$2.nml"
+  grep -q "dt_checkpoint = $4" "$W/$2.nml" || { bad "$2_deck_has_checkpoints"; exit 1; }
+}
 case=elastic_bar_2d
-cp "$ROOT/tests/regression/$case/$case.msh" "$ROOT/tests/regression/$case/$case.nml" "$W/"
-sed -i -e 's/^\( *\)t_end = .*/\1t_end = 40.0e-6/' \
-       -e 's|dt_history = 0.0 /|dt_history = 0.0, dt_checkpoint = 20.0e-6 /|' "$W/$case.nml"
-grep -q 'dt_checkpoint = 20.0e-6' "$W/$case.nml" || { bad "deck_has_checkpoints"; exit 1; }
+checkpointed $case $case 40.0e-6 20.0e-6
 straight_run $case
 restart_matches_straight $case 3
 # the same checkpoint with a plane-strain deck is another model: refused
@@ -23,10 +28,7 @@ else
 fi
 # contact: the checkpoint halfway through the bars' contact
 case=bars_head_on_2d_symmetric
-cp "$ROOT/tests/regression/bars_head_on_2d/bars_head_on_2d.msh" "$ROOT/tests/regression/bars_head_on_2d/$case.nml" "$W/"
-sed -i -e 's/^\( *\)t_end = .*/\1t_end = 10.0e-6/' \
-       -e 's|dt_history = 0.0 /|dt_history = 0.0, dt_checkpoint = 4.0e-6 /|' "$W/$case.nml"
-grep -q 'dt_checkpoint = 4.0e-6' "$W/$case.nml" || { bad "contact_deck_has_checkpoints"; exit 1; }
+checkpointed bars_head_on_2d $case 10.0e-6 4.0e-6
 straight_run $case
 restart_matches_straight $case 2
 [ $fails -eq 0 ]

@@ -9,10 +9,11 @@ program test_contact_kernels
   use udar_config, only: contact_weights_area, contact_weights_distance
   use udar_vectors, only: cross
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, edge_crossing, edge_shares, &
-                                  tetrahedron_coordinates, behind_surface, beside_sharp_edge, closest_on_triangle, behind_not, behind_face, &
+                                  tetrahedron_coordinates, closest_on_triangle, behind_not, behind_face, &
                                   behind_seam, solve_normal_lcp, normal_rows_matrix
+  use udar_contact_faces, only: face_behind_surface, face_beside_sharp_edge
   use udar_contact_model, only: interface_t, surface_neighbours, neighbour_across
-  use unit_checks, only: check, check_summary
+  use unit_checks, only: check, check_summary, logicals
   implicit none
   integer, parameter :: ns = 4
   real(rk) :: xm(3,3), gs(3,ns), v_fwd(3,ns+3), v_rev(3,ns+3), dn_fwd(ns), dn_rev(ns), p0(3), worst, gap
@@ -60,7 +61,7 @@ program test_contact_kernels
   call check_summary()
 contains
 
-  !> The surface beyond a triangle's edges (behind_surface,
+  !> The surface beyond a triangle's edges (face_behind_surface,
   !> closest_on_triangle, neighbour_across), by hand. Triangle T =
   !> (0,0,0), (1,0.5,0), (0,1,0) in the plane z = 0, outward +z; the edge
   !> opposite its corner 2 is x = 0. Across it a concave neighbour rising at
@@ -121,7 +122,7 @@ contains
 
   !> A node behind triangle T (that of test_seams: z = 0, outward +z, the
   !> edge x = 0 opposite its corner 2) beside a sharp convex edge
-  !> (beside_sharp_edge), by hand. Across x = 0 (sharing T's corners 1 and
+  !> (face_beside_sharp_edge), by hand. Across x = 0 (sharing T's corners 1 and
   !> 3) a face falling under T to (0.5,0.5,-1): the interior angle is
   !> atan(2) = 63.4 degrees, the body between the planes z = 0 and
   !> 2x + z = 0. Points with their projection on T: (0.3,0.5,-0.8) is in
@@ -162,25 +163,16 @@ contains
     integer, intent(in) :: nb
     real(rk) :: n(3), dist, g(3)
     call triangle_projection(xa, p, n, dist, g)
-    outside_at = beside_sharp_edge(xa, n, g, xb, shares, nb, p, 1.0e-3_rk)
+    outside_at = face_beside_sharp_edge(xa, n, g, xb, shares, nb, p, 1.0e-3_rk)
   end function
 
-  character(len=16) function logicals(l)
-    logical, intent(in) :: l(:)
-    integer :: k
-    logicals = ''
-    do k = 1, size(l)
-      logicals(k:k) = merge('T', 'F', l(k))
-    end do
-  end function
-
-  !> behind_surface of the point p behind triangle xa's plane.
+  !> face_behind_surface of the point p behind triangle xa's plane.
   integer function verdict_at(xa, xb, has, p)
     real(rk), intent(in) :: xa(3,3), xb(3,3,3), p(3)
     logical, intent(in) :: has(3)
     real(rk) :: n(3), dist, g(3)
     call triangle_projection(xa, p, n, dist, g)
-    verdict_at = behind_surface(xa, n, dist, g, xb, has, p, 1.0e-3_rk)
+    verdict_at = face_behind_surface(xa, n, dist, g, xb, has, p, 1.0e-3_rk)
   end function
 
   character(len=40) function ints(k)

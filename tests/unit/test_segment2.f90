@@ -4,21 +4,20 @@
 !> positions), the 3D velocity matching with a segment's two master nodes
 !> (a third of weight 0 takes no part; normal velocities matched, momentum
 !> exact) and the area coordinates in a triangle; where a node behind a
-!> segment's line beyond its end is (segment_behind_surface: a rim, a
+!> segment's line beyond its end is (face_behind_surface: a rim, a
 !> convex or straight corner, the seam of a concave one) and whether it is
-!> outside beside a sharp corner (segment_beside_corner), by hand, and the
-!> face dispatch of both (face_behind_surface, face_beside_sharp_edge).
+!> outside beside a sharp corner (face_beside_sharp_edge), by hand, for a
+!> triangle and a segment in the contact driver's 3D-layout arrays.
 program test_segment2
   use udar_kinds, only: rk
   use udar_strings, only: r2s
   use udar_config, only: contact_weights_distance, contact_weights_area
-  use udar_segment2, only: segment_projection, segment_shares, triangle_coordinates, closest_on_segment, &
-                           segment_behind_surface, segment_beside_corner
-  use udar_contact_kernels, only: match_velocities, contact_point, triangle_projection, behind_surface, &
-                                  beside_sharp_edge, behind_not, behind_face, behind_seam
+  use udar_segment2, only: segment_projection, segment_shares, triangle_coordinates, closest_on_segment
+  use udar_contact_kernels, only: match_velocities, contact_point, triangle_projection, behind_not, behind_face, &
+                                  behind_seam
   use udar_contact_faces, only: face_projection, face_shares, closest_on_face, element_coordinates, &
                                 face_behind_surface, face_beside_sharp_edge
-  use unit_checks, only: check, check_summary
+  use unit_checks, only: check, check_summary, logicals
   implicit none
   real(rk) :: xa(3,2), xs(3), n(3), dist, g(2), r(2), xa0(3,2), xs0(3), p(3), lam(3), tri(3,3)
   real(rk) :: ms, vs(3), mm(3), vm(3,3), g3(3), r3(3), dvs(3), dvm(3,3), dn, dtv(3), vs_after(3), vm_after(3,3), &
@@ -129,7 +128,7 @@ program test_segment2
 contains
 
   !> Where a node behind a segment's line is when its projection falls
-  !> beyond an end (segment_behind_surface), by hand. The master segment
+  !> beyond an end (face_behind_surface), by hand. The master segment
   !> S = (2,0) -> (0,0) is the top of a body below y = 0 (outward n =
   !> (0,1)); a node (x, y) has dist = y and g = (x/2, 1 - x/2): g(1) < 0
   !> (x < 0) is beyond node 2 = (0,0), across which xb(:,:,1) lies; g(2) < 0
@@ -204,7 +203,7 @@ contains
   end subroutine
 
   !> Whether a node behind a segment's line is outside the body beside a
-  !> sharp corner (segment_beside_corner), by hand. S = (2,0) -> (0,0), the
+  !> sharp corner (face_beside_sharp_edge), by hand. S = (2,0) -> (0,0), the
   !> top (outward (0,1), g(1) = x/2); across its node 2 (shares = (F, T)) a
   !> side falling away under it. A wedge of 60 degrees: the side (0,0) ->
   !> (1,-sqrt 3), outward -(sqrt 3, 1)/2, a node's distance from it
@@ -252,16 +251,14 @@ contains
                'on the side / outside it / crossed the top / rising, FFFF wanted: '//trim(logicals(v(1:4))))
   end subroutine
 
-  !> face_behind_surface and face_beside_sharp_edge: a triangle's verdicts
-  !> are behind_surface's and beside_sharp_edge's, a segment's
-  !> segment_behind_surface's and segment_beside_corner's, in arrays laid
-  !> out as the contact driver's (3 corners, 3 faces beside; a segment's
-  !> third entries ignored: filled with junk here). Each on two nodes with
-  !> different answers.
+  !> face_behind_surface and face_beside_sharp_edge on a triangle and on a
+  !> segment, in arrays laid out as the contact driver's (3 corners, 3
+  !> faces beside; a segment's third entries ignored: filled with junk
+  !> here). Each on two nodes with different answers.
   subroutine test_face_dispatch()
-    real(rk) :: tri(3,3), xb(3,3,3), xs1(3,3,1), n(3), dist, g(3), p(3,2), seg(3,2), xb2(3,2,2), xs2(3,2,1)
-    logical :: has(3), shares(3,1), b3(2), bf(2), shares2(2,1)
-    integer :: v3(2), vf(2), k
+    real(rk) :: tri(3,3), xb(3,3,3), xs1(3,3,1), n(3), dist, g(3), p(3,2), seg(3,2)
+    logical :: has(3), shares(3,1), bf(2)
+    integer :: vf(2), k
     ! test_contact_kernels' triangle T = (0,0,0), (1,0.5,0), (0,1,0) (z = 0,
     ! outward +z). Across its edge x = 0 a concave face rising at 45
     ! degrees: (-0.005,0.3,-0.02) in the seam (2), (-0.01,0.3,-0.02) beyond
@@ -275,24 +272,20 @@ contains
     p(:,2) = [-0.01_rk, 0.3_rk, -0.02_rk]
     do k = 1, 2
       call triangle_projection(tri, p(:,k), n, dist, g)
-      v3(k) = behind_surface(tri, n, dist, g, xb, has, p(:,k), 1.0e-3_rk)
       vf(k) = face_behind_surface(tri, n, dist, g, xb, has, p(:,k), 1.0e-3_rk)
     end do
-    call check('face_behind_surface_of_a_triangle_is_the_3d_kernel', all(vf == v3) .and. &
-               all(v3 == [behind_seam, behind_not]), &
-               'face '//trim(ints(vf))//', kernel '//trim(ints(v3))//' (2 0 wanted)')
+    call check('face_behind_surface_of_a_triangle', all(vf == [behind_seam, behind_not]), &
+               'verdicts '//trim(ints(vf))//' (2 0 wanted)')
     shares(:,1) = [.true., .false., .true.]
     xs1(:,:,1) = reshape([0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk, 0.5_rk, 0.5_rk, -1.0_rk], [3, 3])
     p(:,1) = [0.3_rk, 0.5_rk, -0.8_rk]
     p(:,2) = [0.3_rk, 0.5_rk, -0.3_rk]
     do k = 1, 2
       call triangle_projection(tri, p(:,k), n, dist, g)
-      b3(k) = beside_sharp_edge(tri, n, g, xs1, shares, 1, p(:,k), 1.0e-3_rk)
       bf(k) = face_beside_sharp_edge(tri, n, g, xs1, shares, 1, p(:,k), 1.0e-3_rk)
     end do
-    call check('face_beside_sharp_edge_of_a_triangle_is_the_3d_kernel', all(bf .eqv. b3) .and. &
-               all(b3 .eqv. [.true., .false.]), &
-               'face '//trim(logicals(bf))//', kernel '//trim(logicals(b3))//' (TF wanted)')
+    call check('face_beside_sharp_edge_of_a_triangle', all(bf .eqv. [.true., .false.]), &
+               'outside '//trim(logicals(bf))//' (TF wanted)')
     ! a segment: test_segment_seams' step, S = (2,0) -> (0,0) with the wall
     ! (0,0) -> (0,2) across its node 2: (-0.1,-0.3) in the seam (2),
     ! (-0.4,-0.3) beyond the gap (0)
@@ -301,63 +294,47 @@ contains
     xb = 99.0_rk                             ! junk: the third corners and face
     xb(:,1:2,1) = reshape([0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 2.0_rk, 0.0_rk], [3, 2])
     has = [.true., .false., .true.]          ! has(3): junk
-    xb2 = xb(:,1:2,1:2)
     p(:,1) = [-0.1_rk, -0.3_rk, 0.0_rk]
     p(:,2) = [-0.4_rk, -0.3_rk, 0.0_rk]
     do k = 1, 2
       call face_projection(seg, p(:,k), n, dist, g)
-      v3(k) = segment_behind_surface(seg, n, dist, g(1:2), xb2, has(1:2), p(:,k), 1.0e-3_rk)
       vf(k) = face_behind_surface(seg, n, dist, g, xb, has, p(:,k), 1.0e-3_rk)
     end do
-    call check('face_behind_surface_of_a_segment_is_the_2d_kernel', all(vf == v3) .and. &
-               all(v3 == [behind_seam, behind_not]), &
-               'face '//trim(ints(vf))//', kernel '//trim(ints(v3))//' (2 0 wanted)')
+    call check('face_behind_surface_of_a_segment_in_3d_layout', all(vf == [behind_seam, behind_not]), &
+               'verdicts '//trim(ints(vf))//' (2 0 wanted)')
     ! test_segment_corners' 60-degree wedge: (0.2,-0.4) outside (T),
     ! (0.5,-0.2) inside (F); the side shares node 2, as the driver marks it
     ! ([1, 2, 3] /= 1; shares(3) and xs1's third corner ignored)
     shares(:,1) = [.false., .true., .true.]
     xs1 = 99.0_rk
     xs1(:,1:2,1) = reshape([0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, -sqrt(3.0_rk), 0.0_rk], [3, 2])
-    xs2 = xs1(:,1:2,:)
-    shares2 = shares(1:2,:)
     p(:,1) = [0.2_rk, -0.4_rk, 0.0_rk]
     p(:,2) = [0.5_rk, -0.2_rk, 0.0_rk]
     do k = 1, 2
       call face_projection(seg, p(:,k), n, dist, g)
-      b3(k) = segment_beside_corner(seg, n, g(1:2), xs2, shares2, 1, p(:,k), 1.0e-3_rk)
       bf(k) = face_beside_sharp_edge(seg, n, g, xs1, shares, 1, p(:,k), 1.0e-3_rk)
     end do
-    call check('face_beside_sharp_edge_of_a_segment_is_the_2d_kernel', all(bf .eqv. b3) .and. &
-               all(b3 .eqv. [.true., .false.]), &
-               'face '//trim(logicals(bf))//', kernel '//trim(logicals(b3))//' (TF wanted)')
+    call check('face_beside_sharp_edge_of_a_segment_in_3d_layout', all(bf .eqv. [.true., .false.]), &
+               'outside '//trim(logicals(bf))//' (TF wanted)')
   end subroutine
 
-  !> segment_behind_surface of the point p behind segment xa's line.
+  !> face_behind_surface of the point p behind segment xa's line.
   integer function verdict2(xa, xb, has, p)
     real(rk), intent(in) :: xa(3,2), xb(3,2,2), p(3)
     logical, intent(in) :: has(2)
-    real(rk) :: n(3), dist, g(2)
-    call segment_projection(xa, p, n, dist, g)
-    verdict2 = segment_behind_surface(xa, n, dist, g, xb, has, p, 1.0e-3_rk)
+    real(rk) :: n(3), dist, g(3)
+    call face_projection(xa, p, n, dist, g)
+    verdict2 = face_behind_surface(xa, n, dist, g, xb, has, p, 1.0e-3_rk)
   end function
 
-  !> segment_beside_corner of the point p behind segment xa's line.
+  !> face_beside_sharp_edge of the point p behind segment xa's line.
   logical function outside2(xa, xb, shares, nb, p)
     real(rk), intent(in) :: xa(3,2), xb(3,2,1), p(3)
     logical, intent(in) :: shares(2,1)
     integer, intent(in) :: nb
-    real(rk) :: n(3), dist, g(2)
-    call segment_projection(xa, p, n, dist, g)
-    outside2 = segment_beside_corner(xa, n, g, xb, shares, nb, p, 1.0e-3_rk)
-  end function
-
-  character(len=16) function logicals(l)
-    logical, intent(in) :: l(:)
-    integer :: k
-    logicals = ''
-    do k = 1, size(l)
-      logicals(k:k) = merge('T', 'F', l(k))
-    end do
+    real(rk) :: n(3), dist, g(3)
+    call face_projection(xa, p, n, dist, g)
+    outside2 = face_beside_sharp_edge(xa, n, g, xb, shares, nb, p, 1.0e-3_rk)
   end function
 
   character(len=40) function ints(k)

@@ -7,38 +7,23 @@ def deepest_inside(points, x, tets):
     triangle: tets with 3 columns, points in z = 0), 0 if none: the depth of
     a point is its smallest barycentric coordinate times the element's
     smallest altitude (positive only when it is strictly inside)."""
-    if tets.shape[1] == 3:
-        return _deepest_inside_triangles(points, x, tets)
-    a, b, c, d = (x[tets[:, k]] for k in range(4))
-    m = np.stack([b - a, c - a, d - a], axis=2)          # (nt, 3, 3), columns are edges
+    d = tets.shape[1] - 1                                 # 3 (tetrahedra) or 2 (triangles)
+    corners = [x[tets[:, k], :d] for k in range(d + 1)]
+    a = corners[0]
+    m = np.stack([c - a for c in corners[1:]], axis=2)    # (nt, d, d), columns are edges
     inv = np.linalg.inv(m)
-    vol6 = np.abs(np.linalg.det(m))
-    faces = [np.cross(c - b, d - b), np.cross(d - a, c - a), np.cross(b - a, d - a), np.cross(c - a, b - a)]
-    h_min = vol6 / np.max([np.linalg.norm(f, axis=1) for f in faces], axis=0)
-    lo, hi = np.minimum.reduce([a, b, c, d]), np.maximum.reduce([a, b, c, d])
+    size = np.abs(np.linalg.det(m))                       # 6 V, or 2 A
+    if d == 3:
+        b, c, e = corners[1:]
+        faces = [np.cross(c - b, e - b), np.cross(e - a, c - a), np.cross(b - a, e - a), np.cross(c - a, b - a)]
+        h_min = size / np.max([np.linalg.norm(f, axis=1) for f in faces], axis=0)
+    else:
+        b, c = corners[1:]
+        h_min = size / np.max([np.linalg.norm(f, axis=1) for f in (b - a, c - b, a - c)], axis=0)
+    lo, hi = np.minimum.reduce(corners), np.maximum.reduce(corners)
     worst = 0.0
-    # only the points within the tetrahedra's overall box can be inside one
-    points = points[np.all((points >= lo.min(axis=0)) & (points <= hi.max(axis=0)), axis=1)]
-    for p in points:
-        near = np.all((p >= lo) & (p <= hi), axis=1)
-        if not near.any():
-            continue
-        lam = np.einsum('nij,nj->ni', inv[near], p - a[near])
-        bary = np.column_stack([1.0 - lam.sum(axis=1), lam])
-        depth = bary.min(axis=1) * h_min[near]
-        worst = max(worst, depth.max())
-    return worst
-
-
-def _deepest_inside_triangles(points, x, tris):
-    a, b, c = (x[tris[:, k], :2] for k in range(3))
-    m = np.stack([b - a, c - a], axis=2)                 # (nt, 2, 2), columns are edges
-    inv = np.linalg.inv(m)
-    area2 = np.abs(np.linalg.det(m))
-    h_min = area2 / np.max([np.linalg.norm(e, axis=1) for e in (b - a, c - b, a - c)], axis=0)
-    lo, hi = np.minimum.reduce([a, b, c]), np.maximum.reduce([a, b, c])
-    worst = 0.0
-    points = points[:, :2]
+    # only the points within the elements' overall box can be inside one
+    points = points[:, :d]
     points = points[np.all((points >= lo.min(axis=0)) & (points <= hi.max(axis=0)), axis=1)]
     for p in points:
         near = np.all((p >= lo) & (p <= hi), axis=1)
