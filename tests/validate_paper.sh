@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The seed paper's calculations (part of make validate): the compact steel
-# cylinder at 30 degrees with f = 0.18 and f = 0 (Fig. 3), its normal impact,
-# and the yawed W-Ni-Fe rod through a plate (Fig. 4), run two at a time;
+# cylinder at 30 degrees with f = 0.18 and f = 0 (Fig. 3), its normal impact
+# (3D and axisymmetric), and the yawed W-Ni-Fe rod through a plate (Fig. 4),
+# run two at a time;
 # the numbers of doc/validation.md 4j-4l go to doc/validation/paper_decks.csv
 # and the sections at the paper's times to doc/validation/. Then the
 # ricochet deck (not the paper's, the same algorithm at a grazing angle) with
@@ -11,6 +12,7 @@ source "$(dirname "$0")/validate_common.sh" paper
 decks=("oblique_cylinder oblique_cylinder cylinder 0.5 0 -0.8660254"
        "oblique_cylinder_f0 oblique_cylinder cylinder 0.5 0 -0.8660254"
        "normal_cylinder normal_cylinder cylinder 0 0 -1"
+       "normal_cylinder_2d normal_cylinder_2d cylinder 0 -1 0"
        "yawed_rod yawed_rod rod 0.70710678 0 -0.70710678")
 for d in "${decks[@]}"; do
   set -- $d
