@@ -91,6 +91,7 @@ run_test "cli/ranks_bars_head_on_2d_symmetric" tests/cli/rank_invariance.sh bin/
 run_test "cli/ranks_oblique_free" tests/cli/rank_invariance.sh bin/udar oblique_free
 run_test "cli/ranks_spall" tests/cli/rank_invariance.sh bin/udar spall
 run_test "cli/ranks_penetration" tests/cli/rank_invariance.sh bin/udar penetration 2.5e-6
+run_test "cli/ranks_penetration_2d" tests/cli/rank_invariance.sh bin/udar penetration_2d 2.5e-6
 run_test "cli/ranks_self_contact" tests/cli/rank_invariance.sh bin/udar self_contact
 run_test "cli/ranks_self_contact_2d" tests/cli/rank_invariance.sh bin/udar self_contact_2d
 run_test "cli/ranks_crossed_edges" tests/cli/rank_invariance.sh bin/udar crossed_edges 8.0e-6
@@ -143,6 +144,7 @@ run_test "regression/rod_3kms_fast_valleys_off_fails" regression_fails rod_3kms 
 run_test "regression/spall" regression spall bin/udar-debug
 run_test "regression/spall_averaged" regression spall bin/udar-debug spall_averaged
 run_test "regression/penetration" regression penetration bin/udar
+run_test "regression/penetration_2d" regression penetration_2d bin/udar
 run_test "regression/deep_node" regression deep_node bin/udar-debug
 run_test "regression/crossed_edges" regression crossed_edges bin/udar-debug
 run_test "regression/crossed_edges_friction" regression crossed_edges bin/udar-debug crossed_edges_friction

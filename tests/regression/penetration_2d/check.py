@@ -1,6 +1,6 @@
 """Eroding penetration, axisymmetric: the checks of the 3D case
-(tests/regression/penetration/check.py) on the 2D deck; not yet in make
-check (see there).
+(tests/regression/penetration/check.py) on the 2D deck, with the axis's
+own (see there).
 Usage: check.py RUN_DIR [DECK]"""
 import os
 import runpy
