@@ -205,50 +205,46 @@ for spec in "coarse 0.62" "fine 0.31"; do
 done
 echo "# OpenRadioss: 'plain' rows against its default tetrahedron, 'stabilised' against Itetra4=3 (nodal pressure)" | tee -a "$out"
 
-# ---- 2D (issue 14): the OFHC bar axisymmetric (input/taylor_ofhc_2d) against
-# the 3D quarter model at the same mesh size, 80 us, default element: cost
-# per element-cycle, cycles, time to solution and the figures
-echo "# 2D against 3D: OFHC bar, 190 m/s, 80 us, default element; time to solution = wall" | tee -a "$out"
-printf '%-5s %-14s %9s %9s %8s %9s %16s
-' h model elements cycles ns wall_s "Lf/Dm mm" | tee -a "$out"
-for spec in "0.45 3d input/taylor_ofhc/taylor_ofhc" "0.45 2d input/taylor_ofhc_2d/taylor_ofhc_2d" \
-            "0.2 2d input/taylor_ofhc_2d/taylor_ofhc_2d"; do
-  set -- $spec
-  case_name=ofhc_$2_h$1
-  gmsh -3 -v 0 -setnumber h "$1" "$3.geo" -o "$W/$case_name.msh"
-  sed -e "s|file = '[^']*.msh'|file = '$W/$case_name.msh'|" \
-      -e "s|directory = 'out'|directory = '$W/twod', case_name = '$case_name'|" \
-      -e "s|cycle_print = 500|cycle_print = 1000000|" -e "s|dt_field = 10.0e-6|dt_field = 80.0e-6|" \
+# ---- 2D (issue 14) against 3D at the same mesh size, default element: a
+# deck run to its end on a mesh of size H, with one field step at T_END;
+# sets els, cyc, ns, wall (cost per element-cycle, cycles, time to solution)
+#   full_run H MODEL DECK_PATH_WITHOUT_EXTENSION CASE_NAME T_END
+full_run() {
+  gmsh -3 -v 0 -setnumber h "$1" "$3.geo" -o "$W/$4.msh"
+  sed -e "s|file = '[^']*.msh'|file = '$W/$4.msh'|" \
+      -e "s|directory = 'out'|directory = '$W/twod', case_name = '$4'|" \
+      -e "s|cycle_print = 500|cycle_print = 1000000|" -e "s|dt_field = 10.0e-6|dt_field = $5|" \
       "$3.nml" > "$W/twod.nml"
   bin/udar "$W/twod.nml" > "$W/log" 2>&1
   els=$(grep -o 'start: [0-9]* elements' "$W/log" | awk '{print $2}')
   cyc=$(grep -o 'done: [0-9]* cycles' "$W/log" | awk '{print $2}')
   ns=$(grep -o '[0-9.]* ns per element-cycle' "$W/log" | cut -d' ' -f1)
   wall=$(grep -o '[0-9.]* s wall' "$W/log" | cut -d' ' -f1)
+}
+# the OFHC bar (input/taylor_ofhc quarter model, input/taylor_ofhc_2d
+# axisymmetric), 80 us: final length and footprint
+echo "# 2D against 3D: OFHC bar, 190 m/s, 80 us, default element; time to solution = wall" | tee -a "$out"
+printf '%-5s %-14s %9s %9s %8s %9s %16s\n' h model elements cycles ns wall_s "Lf/Dm mm" | tee -a "$out"
+for spec in "0.45 3d input/taylor_ofhc/taylor_ofhc" "0.45 2d input/taylor_ofhc_2d/taylor_ofhc_2d" \
+            "0.2 2d input/taylor_ofhc_2d/taylor_ofhc_2d"; do
+  set -- $spec
+  case_name=ofhc_$2_h$1
+  full_run "$1" "$2" "$3" "$case_name" 80.0e-6
   m=$($PYTHON postproc/taylor.py "$W/twod/$case_name.h5" | grep -o 'length_m=[0-9.e-]* footprint_diameter_m=[0-9.e-]*' | \
       awk -F'[= ]' '{printf "%.2f/%.2f", 1000*$2, 1000*$4}')
   printf '%-5s %-14s %9s %9s %8s %9s %16s\n' "$1" "$2" "$els" "$cyc" "$ns" "$wall" "$m" | tee -a "$out"
 done
 # the long rod (input/long_rod quarter model, input/long_rod_2d axisymmetric)
 # at 2 km/s to 90 us at the same mesh size, 1 mm (2.5 elements across the
-# rod's radius), and the 2D deck's 0.5 mm: time to solution and P/L
+# rod's radius), and the 2D deck's 0.5 mm: P/L
 echo "# 2D against 3D: long rod, W alloy into steel, 2 km/s, 90 us, default element; time to solution = wall" | tee -a "$out"
 printf '%-5s %-14s %9s %9s %8s %9s %8s\n' h model elements cycles ns wall_s "P/L" | tee -a "$out"
 for spec in "1.0e-3 3d input/long_rod/long_rod" "1.0e-3 2d input/long_rod_2d/long_rod_2d" \
             "0.5e-3 2d input/long_rod_2d/long_rod_2d"; do
   set -- $spec
   case_name=long_rod_$2_h$1
-  gmsh -3 -v 0 -setnumber h "$1" "$3.geo" -o "$W/$case_name.msh"
-  sed -e "s|file = '[^']*.msh'|file = '$W/$case_name.msh'|" \
-      -e "s|directory = 'out'|directory = '$W/rod', case_name = '$case_name'|" \
-      -e "s|cycle_print = 500|cycle_print = 1000000|" -e "s|dt_field = 10.0e-6|dt_field = 90.0e-6|" \
-      "$3.nml" > "$W/rod.nml"
-  bin/udar "$W/rod.nml" > "$W/log" 2>&1
-  els=$(grep -o 'start: [0-9]* elements' "$W/log" | awk '{print $2}')
-  cyc=$(grep -o 'done: [0-9]* cycles' "$W/log" | awk '{print $2}')
-  ns=$(grep -o '[0-9.]* ns per element-cycle' "$W/log" | cut -d' ' -f1)
-  wall=$(grep -o '[0-9.]* s wall' "$W/log" | cut -d' ' -f1)
-  pl=$($PYTHON postproc/penetration.py "$W/rod/$case_name.h5" --radius 1.25e-3 --length 0.05 | tail -1 | awk '{print $NF}')
+  full_run "$1" "$2" "$3" "$case_name" 90.0e-6
+  pl=$($PYTHON postproc/penetration.py "$W/twod/$case_name.h5" --radius 1.25e-3 --length 0.05 | tail -1 | awk '{print $NF}')
   printf '%-5s %-14s %9s %9s %8s %9s %8s\n' "$1" "$2" "$els" "$cyc" "$ns" "$wall" "$pl" | tee -a "$out"
 done
 echo "saved in $out"
