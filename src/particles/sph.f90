@@ -1,0 +1,363 @@
+!> Kernels of the particles that failed material becomes (issue 15,
+!> theory.md section 15): smoothed particle hydrodynamics in Monaghan's
+!> symmetric form with the cubic B-spline kernel, the particles' pressure
+!> from the material's EOS with no tension (failed material carries
+!> compression only), and the conversion of an element into a particle.
+!> Pure procedures on plain arrays: no domain, no MPI, no module state.
+!> Every pair sum runs over a pair list in the order given, so a caller
+!> that gives the pairs in one order gets one result whatever its ranks.
+module udar_sph
+  use udar_kinds, only: rk, pi, block_size
+  use udar_config, only: material_cfg_t, eos_mie_gruneisen
+  use udar_hydro, only: volumetric_update
+  use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
+  implicit none
+  private
+  public :: spline_w, spline_dw, sph_forces, sph_rates, particle_update, particle_pressure, element_to_particle, sph_pairs, &
+            smoothing_length, sph_stable_dt
+
+  !> Monaghan's viscosity's quadratic term's guard: mu = h v.r / (r^2 + eta2 h^2)
+  real(rk), parameter :: eta2 = 0.01_rk
+
+contains
+
+  !> The cubic B-spline kernel (Monaghan and Lattanzio 1985) in dim = 2 or
+  !> 3 dimensions, support 2h: W = sigma/h^dim f(r/h),
+  !> f = 1 - 3/2 q^2 + 3/4 q^3 (q < 1), (2 - q)^3/4 (q < 2), 0 beyond;
+  !> sigma = 1/pi (3D), 10/(7 pi) (2D), so that W integrates to one.
+  pure elemental real(rk) function spline_w(r, h, dim) result(w)
+    real(rk), intent(in) :: r, h
+    integer, intent(in) :: dim
+    real(rk) :: q
+    q = r/h
+    if (q < 1.0_rk) then
+      w = 1.0_rk - 1.5_rk*q**2 + 0.75_rk*q**3
+    else if (q < 2.0_rk) then
+      w = 0.25_rk*(2.0_rk - q)**3
+    else
+      w = 0.0_rk
+    end if
+    w = w*spline_sigma(dim)/h**dim
+  end function
+
+  !> dW/dr of spline_w.
+  pure elemental real(rk) function spline_dw(r, h, dim) result(dw)
+    real(rk), intent(in) :: r, h
+    integer, intent(in) :: dim
+    real(rk) :: q
+    q = r/h
+    if (q < 1.0_rk) then
+      dw = -3.0_rk*q + 2.25_rk*q**2
+    else if (q < 2.0_rk) then
+      dw = -0.75_rk*(2.0_rk - q)**2
+    else
+      dw = 0.0_rk
+    end if
+    dw = dw*spline_sigma(dim)/h**(dim + 1)
+  end function
+
+  pure real(rk) function spline_sigma(dim) result(sigma)
+    integer, intent(in) :: dim
+    sigma = merge(1.0_rk/pi, 10.0_rk/(7.0_rk*pi), dim == 3)
+  end function
+
+  !> A particle's smoothing length from its mass and density: factor times
+  !> the side of the cube (square, 2D) of its volume.
+  pure elemental real(rk) function smoothing_length(m, rho, factor, dim) result(h)
+    real(rk), intent(in) :: m, rho, factor
+    integer, intent(in) :: dim
+    h = factor*(m/rho)**(1.0_rk/dim)
+  end function
+
+  !> The pressure and sound speed of a particle of material mat at density
+  !> rho and specific internal energy e (J/kg): the element's EOS at
+  !> J = rho0/rho, with no tension (p >= 0: the particle is failed
+  !> material, which still resists compression).
+  pure elemental subroutine particle_pressure(mat, rho, e, p, c)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: rho, e
+    real(rk), intent(out) :: p, c
+    real(rk) :: j, a, b
+    j = mat%rho0/rho
+    if (mat%eos == eos_mie_gruneisen) then
+      call eos_mie_gruneisen_ab(mat%rho0, mat%c0, mat%s, mat%gamma0, j, a, b)
+      p = max(a + b*e, 0.0_rk)
+      c = sqrt(eos_mie_gruneisen_c2(mat%rho0, mat%c0, mat%s, mat%gamma0, j, p))
+    else
+      call eos_linear_ab(mat%bulk_modulus, j, a, b)
+      p = max(a + b*e, 0.0_rk)
+      c = sqrt(eos_linear_c2(mat%bulk_modulus, mat%rho0))
+    end if
+  end subroutine
+
+  !> The accelerations of the particles over the pair list pairs(2,np)
+  !> (each pair once, i /= j; pairs beyond 2 h_ij, h_ij = (h_i + h_j)/2,
+  !> take no part):
+  !>   dv_i/dt = - sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad_i W_ij
+  !> (Monaghan 1992, eq. 3.3), with Monaghan's viscosity
+  !> Pi_ij = (-alpha cbar mu + beta mu^2)/rhobar for approaching pairs,
+  !> mu = h_ij v_ij.x_ij/(x_ij^2 + 0.01 h_ij^2). The pair terms are equal
+  !> and opposite along x_ij: momentum and angular momentum are exact.
+  !> Added to acc (zero it first); visc(k) keeps pair k's Pi for
+  !> sph_rates; vsig is raised to each particle's largest signal speed
+  !> c_i + c_j - 3 min(v_ij . x_ij/|x_ij|, 0) (Monaghan 1997), for the step.
+  pure subroutine sph_forces(dim, alpha, beta, np, pairs, x, v, m, rho, p, c, h, visc, acc, vsig)
+    integer, intent(in) :: dim, np, pairs(:,:)
+    real(rk), intent(in) :: alpha, beta
+    real(rk), intent(in) :: x(:,:), v(:,:), m(:), rho(:), p(:), c(:), h(:)
+    real(rk), intent(out) :: visc(:)
+    real(rk), intent(inout) :: acc(:,:), vsig(:)
+    integer :: k, i, j
+    real(rk) :: g(3), vij(3), vr, d, mu, coef, speed, hij
+    do k = 1, np
+      i = pairs(1,k)
+      j = pairs(2,k)
+      call pair_gradient(dim, x(:,i), x(:,j), h(i), h(j), g, d, hij)
+      visc(k) = 0
+      if (all(g == 0.0_rk)) cycle
+      vij = v(:,i) - v(:,j)
+      vr = dot_product(vij, x(:,i) - x(:,j))
+      if (vr < 0.0_rk) then
+        mu = hij*vr/(d**2 + eta2*hij**2)
+        visc(k) = (-alpha*0.5_rk*(c(i) + c(j))*mu + beta*mu**2)/(0.5_rk*(rho(i) + rho(j)))
+      end if
+      coef = p(i)/rho(i)**2 + p(j)/rho(j)**2 + visc(k)
+      acc(:,i) = acc(:,i) - (m(j)*coef)*g
+      acc(:,j) = acc(:,j) + (m(i)*coef)*g
+      speed = c(i) + c(j) - 3.0_rk*min(vr/d, 0.0_rk)
+      vsig(i) = max(vsig(i), speed)
+      vsig(j) = max(vsig(j), speed)
+    end do
+  end subroutine
+
+  !> The rates of the particles' density and viscous heating over the
+  !> pairs of sph_forces (its visc), at the velocities v the forces' step
+  !> has just given (v^{n+1/2}), the kernel's gradient at the middle of the
+  !> step, x + dt/2 v (at x^n the density would lag the positions by half
+  !> a step: a head-on pair then lost 0.9 % of its energy at Courant 0.2,
+  !> in proportion to the step):
+  !>   drho_i/dt = sum_j m_j v_ij . grad_i W_ij            (Monaghan 1992, eq. 2.17),
+  !>   heat_i    = 1/2 sum_j m_j Pi_ij v_ij . grad_i W_ij  (J/(kg s), >= 0),
+  !> so that de_i/dt = p_i/rho_i^2 drho_i/dt + heat_i (the thermodynamic
+  !> form of eq. 3.7, which particle_update integrates with the EOS as the
+  !> elements do). For the same v and positions (dt = 0),
+  !> sum_i m_i (v_i . dv_i/dt + de_i/dt) = 0: the internal energy gains
+  !> what the pressures and the viscosity take from the motion. Added to
+  !> drho and heat (zero them first).
+  pure subroutine sph_rates(dim, dt, np, pairs, x, v, m, h, visc, drho, heat)
+    integer, intent(in) :: dim, np, pairs(:,:)
+    real(rk), intent(in) :: dt, x(:,:), v(:,:), m(:), h(:), visc(:)
+    real(rk), intent(inout) :: drho(:), heat(:)
+    integer :: k, i, j
+    real(rk) :: g(3), d, hij, vg
+    do k = 1, np
+      i = pairs(1,k)
+      j = pairs(2,k)
+      call pair_gradient(dim, x(:,i) + (0.5_rk*dt)*v(:,i), x(:,j) + (0.5_rk*dt)*v(:,j), h(i), h(j), g, d, hij)
+      vg = dot_product(v(:,i) - v(:,j), g)
+      drho(i) = drho(i) + m(j)*vg
+      drho(j) = drho(j) + m(i)*vg
+      heat(i) = heat(i) + m(j)*0.5_rk*visc(k)*vg
+      heat(j) = heat(j) + m(i)*0.5_rk*visc(k)*vg
+    end do
+  end subroutine
+
+  !> The particles' density and energy over a step dt from their rates
+  !> (sph_rates): rho(n+1) = rho(n) exp(dt drho/rho(n)) (the exact
+  !> solution at a constant rate of dilatation: never negative), then the
+  !> energy equation with the EOS solved exactly as the elements do
+  !> (volumetric_update: de = heat dt - (p(n) + p(n+1))/2 d(1/rho), no
+  !> tension, no element viscosity), and the sound speed. p, c in: of
+  !> step n; out: of step n+1.
+  pure subroutine particle_update(mat, n, dt, m, drho, heat, rho, e, p, c)
+    type(material_cfg_t), intent(in) :: mat
+    integer, intent(in) :: n
+    real(rk), intent(in) :: dt, m(:), drho(:), heat(:)
+    real(rk), intent(inout) :: rho(:), e(:), p(:), c(:)
+    real(rk), dimension(block_size) :: vol, zero, j_old, j_new, w_visc, q, bulk_tan, stiff, pp
+    logical :: no_tension(block_size)
+    integer :: first, nb, i, k
+    zero = 0
+    no_tension = .true.
+    do first = 1, n, block_size
+      nb = min(block_size, n - first + 1)
+      do i = 1, nb
+        k = first + i - 1
+        j_old(i) = mat%rho0/rho(k)
+        rho(k) = rho(k)*exp(dt*drho(k)/rho(k))
+        j_new(i) = mat%rho0/rho(k)
+        vol(i) = m(k)/rho(k)
+        ! heat dt per unit mass, as work per unit volume for volumetric_update
+        w_visc(i) = heat(k)*dt*rho(k)
+      end do
+      pp(1:nb) = p(first:first+nb-1)
+      call volumetric_update(mat, 0.0_rk, 0.0_rk, nb, dt, vol(1:nb), zero(1:nb), zero(1:nb), m(first:first+nb-1), &
+                             j_old(1:nb), j_new(1:nb), w_visc(1:nb), no_tension(1:nb), e(first:first+nb-1), pp(1:nb), &
+                             q(1:nb), bulk_tan(1:nb), stiff(1:nb))
+      do i = 1, nb
+        k = first + i - 1
+        call particle_pressure(mat, rho(k), e(k), p(k), c(k))
+      end do
+    end do
+  end subroutine
+
+  !> grad_i W_ij = dW/dr(|x_ij|, h_ij) x_ij/|x_ij| (= - grad_j W_ij), the
+  !> distance d and h_ij; g = 0 for coincident particles and beyond 2 h_ij.
+  pure subroutine pair_gradient(dim, xi, xj, hi, hj, g, d, hij)
+    integer, intent(in) :: dim
+    real(rk), intent(in) :: xi(3), xj(3), hi, hj
+    real(rk), intent(out) :: g(3), d, hij
+    hij = 0.5_rk*(hi + hj)
+    d = norm2(xi - xj)
+    g = 0
+    if (d > 0.0_rk .and. d < 2.0_rk*hij) g = (spline_dw(d, hij, dim)/d)*(xi - xj)
+  end subroutine
+
+  !> The particles' stable step: courant times the smallest h_i over the
+  !> particle's signal speed (vsig from sph_rates, at least its own c);
+  !> huge() without particles.
+  pure real(rk) function sph_stable_dt(n, courant, h, c, vsig) result(dt)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: courant, h(:), c(:), vsig(:)
+    integer :: i
+    dt = huge(1.0_rk)
+    do i = 1, n
+      dt = min(dt, courant*h(i)/max(vsig(i), c(i), tiny(1.0_rk)))
+    end do
+  end function
+
+  !> The pairs of n particles within 2 h_ij of each other, every pair once
+  !> as (i, j) with i < j, in ascending (i, j): a grid of cells of side
+  !> 2 max h over the particles' box, each particle tested against the
+  !> particles of its own and the 26 (2D: 8) cells around it. Work arrays
+  !> (the caller keeps them between calls): cell_start(ncell+1), order(n),
+  !> cand(n); np returns the pair count, and -1 when pairs(2,:) is too
+  !> small (call again with room for more).
+  pure subroutine sph_pairs(dim, n, x, h, ncell_max, cell_start, order, cand, pairs, np)
+    integer, intent(in) :: dim, n, ncell_max
+    real(rk), intent(in) :: x(:,:), h(:)
+    integer, intent(inout) :: cell_start(:), order(:), cand(:)
+    integer, intent(out) :: pairs(:,:), np
+    real(rk) :: lo(3), side, hij
+    integer :: nc(3), i, j, k, a, b, cz, cell, ci(3), nn, lo_c(3), hi_c(3), ncell
+    np = 0
+    if (n < 2) return
+    lo = minval(x(:,1:n), dim=2)
+    side = 2.0_rk*maxval(h(1:n))
+    nc = 1
+    do a = 1, dim
+      nc(a) = max(1, min(int((maxval(x(a,1:n)) - lo(a))/side) + 1, int(real(ncell_max, rk)**(1.0_rk/dim))))
+    end do
+    ! a box wider than the cells can cover: larger cells (the pairs are the same)
+    side = max(side, maxval((maxval(x(1:dim,1:n), dim=2) - lo(1:dim))/nc(1:dim)))
+    ncell = product(nc)
+    ! counting sort of the particles by cell, stable (ascending i in a cell)
+    cell_start(1:ncell+1) = 0
+    do i = 1, n
+      cell = cell_of(x(:,i))
+      cell_start(cell+1) = cell_start(cell+1) + 1
+    end do
+    cell_start(1) = 1
+    do cell = 1, ncell
+      cell_start(cell+1) = cell_start(cell+1) + cell_start(cell)
+    end do
+    ! cand as each cell's fill pointer
+    cand(1:ncell) = cell_start(1:ncell)
+    do i = 1, n
+      cell = cell_of(x(:,i))
+      order(cand(cell)) = i
+      cand(cell) = cand(cell) + 1
+    end do
+    do i = 1, n
+      ci = cell_index(x(:,i))
+      ! nc(3) = 1 in 2D: one layer
+      lo_c = max(ci - 1, 0)
+      hi_c = min(ci + 1, nc - 1)
+      nn = 0
+      do cz = lo_c(3), hi_c(3)
+        do b = lo_c(2), hi_c(2)
+          do a = lo_c(1), hi_c(1)
+            cell = 1 + a + nc(1)*(b + nc(2)*cz)
+            do k = cell_start(cell), cell_start(cell+1) - 1
+              j = order(k)
+              if (j <= i) cycle
+              hij = 0.5_rk*(h(i) + h(j))
+              if (norm2(x(1:dim,i) - x(1:dim,j)) >= 2.0_rk*hij) cycle
+              nn = nn + 1
+              cand(nn) = j
+            end do
+          end do
+        end do
+      end do
+      call sort_ints(cand(1:nn))
+      if (np + nn > size(pairs, 2)) then
+        np = -1
+        return
+      end if
+      do k = 1, nn
+        pairs(:, np + k) = [i, cand(k)]
+      end do
+      np = np + nn
+    end do
+  contains
+    pure function cell_index(y) result(cidx)
+      real(rk), intent(in) :: y(3)
+      integer :: cidx(3)
+      cidx = 0
+      cidx(1:dim) = min(int((y(1:dim) - lo(1:dim))/side), nc(1:dim) - 1)
+    end function
+    pure integer function cell_of(y)
+      real(rk), intent(in) :: y(3)
+      integer :: cidx(3)
+      cidx = cell_index(y)
+      cell_of = 1 + cidx(1) + nc(1)*(cidx(2) + nc(2)*cidx(3))
+    end function
+  end subroutine
+
+  !> Ascending insertion sort (a particle's few dozen neighbours).
+  pure subroutine sort_ints(a)
+    integer, intent(inout) :: a(:)
+    integer :: i, k, t
+    do i = 2, size(a)
+      t = a(i)
+      k = i - 1
+      do while (k >= 1)
+        if (a(k) <= t) exit
+        a(k+1) = a(k)
+        k = k - 1
+      end do
+      a(k+1) = t
+    end do
+  end subroutine
+
+  !> An element of nc corners becomes a particle: the corners' mass shares
+  !> m_a (what the element lumped onto its nodes, which they lose) make its
+  !> mass, their momentum its momentum (v = sum m_a v_a / m, at the centre
+  !> of mass x = sum m_a x_a / m); the kinetic energy the corners' relative
+  !> motion had, sum m_a |v_a - v|^2 / 2 >= 0, is added to the internal
+  !> energy, so mass, momentum and energy are exact through the conversion
+  !> (the element's rotation about its centre is not: that energy is heat
+  !> now). e_elem: the element's specific internal energy (J/kg); rho its
+  !> density. e, ke_to_heat: the particle's specific internal energy and the
+  !> kinetic energy made heat (J).
+  pure subroutine element_to_particle(nc, m_a, x_a, v_a, e_elem, m, x, v, e, ke_to_heat)
+    integer, intent(in) :: nc
+    real(rk), intent(in) :: m_a(:), x_a(:,:), v_a(:,:), e_elem
+    real(rk), intent(out) :: m, x(3), v(3), e, ke_to_heat
+    integer :: a
+    m = sum(m_a(1:nc))
+    x = 0
+    v = 0
+    do a = 1, nc
+      x = x + m_a(a)*x_a(:,a)
+      v = v + m_a(a)*v_a(:,a)
+    end do
+    x = x/m
+    v = v/m
+    ke_to_heat = 0
+    do a = 1, nc
+      ke_to_heat = ke_to_heat + 0.5_rk*m_a(a)*sum((v_a(:,a) - v)**2)
+    end do
+    e = e_elem + ke_to_heat/m
+  end subroutine
+end module udar_sph
