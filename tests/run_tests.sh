@@ -91,6 +91,7 @@ run_test "cli/ranks_bars_head_on_2d_symmetric" tests/cli/rank_invariance.sh bin/
 run_test "cli/ranks_oblique_free" tests/cli/rank_invariance.sh bin/udar oblique_free
 run_test "cli/ranks_spall" tests/cli/rank_invariance.sh bin/udar spall
 run_test "cli/ranks_penetration" tests/cli/rank_invariance.sh bin/udar penetration 2.5e-6
+run_test "cli/ranks_penetration_particles" tests/cli/rank_invariance.sh bin/udar penetration 1.5e-6 - penetration_particles
 run_test "cli/ranks_penetration_2d" tests/cli/rank_invariance.sh bin/udar penetration_2d 2.5e-6
 run_test "cli/ranks_self_contact" tests/cli/rank_invariance.sh bin/udar self_contact
 run_test "cli/ranks_self_contact_2d" tests/cli/rank_invariance.sh bin/udar self_contact_2d
@@ -101,6 +102,7 @@ run_test "cli/restart_erosion" tests/cli/restart_erosion.sh bin/udar
 run_test "cli/restart_erosion_anti_locking" tests/cli/restart_erosion.sh bin/udar anti_locking
 run_test "cli/restart_erosion_stabilised" tests/cli/restart_erosion.sh bin/udar stabilised
 run_test "cli/restart_erosion_edges" tests/cli/restart_erosion.sh bin/udar edges
+run_test "cli/restart_erosion_particles" tests/cli/restart_erosion.sh bin/udar particles
 run_test "cli/tracking_rod_3kms" tests/cli/tracking.sh bin/udar rod_3kms 0.6e-6
 run_test "cli/tracking_oblique_friction" tests/cli/tracking.sh bin/udar oblique_friction
 run_test "cli/contact_mirrored" tests/cli/contact_mirrored.sh bin/udar
@@ -144,6 +146,7 @@ run_test "regression/rod_3kms_fast_valleys_off_fails" regression_fails rod_3kms 
 run_test "regression/spall" regression spall bin/udar-debug
 run_test "regression/spall_averaged" regression spall bin/udar-debug spall_averaged
 run_test "regression/penetration" regression penetration bin/udar
+run_test "regression/penetration_particles" regression penetration bin/udar penetration_particles
 run_test "regression/penetration_2d" regression penetration_2d bin/udar
 run_test "regression/deep_node" regression deep_node bin/udar-debug
 run_test "regression/crossed_edges" regression crossed_edges bin/udar-debug

@@ -10,7 +10,8 @@ module udar_contact
   use udar_kinds, only: rk, i8, pi
   use udar_exact_sum, only: exact_limbs, exact_add
   use udar_domain, only: domain_t
-  use udar_contact_model, only: contact_t, interface_t, neighbour_across
+  use udar_particle_model, only: particles_t
+  use udar_contact_model, only: contact_t, interface_t, neighbour_across, contact_grow_nodes
   use udar_contact_search, only: grid_build, grid_cell, ensure
   use udar_contact_kernels, only: match_velocities, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
                                   edge_crossing, behind_not, behind_face, behind_seam
@@ -22,7 +23,7 @@ module udar_contact
   implicit none
   private
   public :: contact_distribute, contact_enforce, contact_overlaps, contact_settle, contact_pressure, contact_extent, &
-            contact_keep_velocities, contact_work
+            contact_keep_velocities, contact_work, contact_add_particles, contact_refresh_masses
 
   !> a projection this far outside a triangle (in area coordinates) still
   !> counts as on it: no slave node slips through the seam of two triangles
@@ -128,26 +129,107 @@ contains
   !> mean master edge) behind a newly exposed face are put on it (a node
   !> flush against an element that is gone); deeper ones came through an
   !> element that is gone, and the next pass takes them with the velocities.
-  subroutine contact_settle(ct, dom)
+  subroutine contact_settle(ct, dom, pt)
     type(contact_t), intent(inout) :: ct
     type(domain_t), intent(inout) :: dom
+    type(particles_t), intent(inout) :: pt
     integer :: i, n_found, worst
-    real(rk) :: depth
+    real(rk) :: depth, vmax
     if (ct%n_interfaces == 0) return
     call gather_state(ct, dom)
+    call particles_in(ct, pt, vmax)
     do i = 1, ct%n_interfaces
       call detect(ct, ct%ifc(i), 0.01_rk*ct%ifc(i)%h_mean, .true., 0.0_rk, stage_both, n_found, depth, worst)
     end do
     call scatter_state(ct, dom)
+    call particles_out(ct, pt)
+  end subroutine
+
+  !> The particles made since the last call join the contact nodes
+  !> (n_mesh + q is particle q), with their part, mass and size (their
+  !> smoothing length bounds their returns as an element's altitude bounds
+  !> a node's).
+  subroutine contact_add_particles(ct, pt)
+    type(contact_t), intent(inout) :: ct
+    type(particles_t), intent(in) :: pt
+    integer :: q, p, old
+    integer, allocatable :: parts(:)
+    if (ct%n_interfaces == 0) return
+    old = ct%n_nodes - ct%n_mesh
+    if (pt%n <= old) return
+    call contact_grow_nodes(ct, ct%n_mesh + pt%n)
+    allocate(parts(pt%n), source=0)
+    if (old > 0) parts(1:old) = ct%particle_part(1:old)
+    call move_alloc(parts, ct%particle_part)
+    do q = old + 1, pt%n
+      p = ct%n_mesh + q
+      ct%x0(:,p) = pt%x(:,q)
+      ct%x(:,p) = pt%x(:,q)
+      ct%v(:,p) = pt%v(:,q)
+      ct%m(p) = pt%m(q)
+      ! (its smoothing length, fixed at conversion: a restart sets the same)
+      ct%h(p) = pt%h(q)
+      ct%particle_part(q) = pt%part(q)
+    end do
+  end subroutine
+
+  !> The masses of the mesh's contact nodes again from their owners, where
+  !> they changed (nodes that lost elements to particles; collective).
+  subroutine contact_refresh_masses(ct, dom)
+    type(contact_t), intent(inout) :: ct
+    type(domain_t), intent(in) :: dom
+    integer :: k, p, n_send, r
+    if (ct%n_interfaces == 0) return
+    call ensure(ct%rec_send, 2*size(ct%owned_pos))
+    n_send = 0
+    do k = 1, size(ct%owned_pos)
+      p = ct%owned_pos(k)
+      if (ct%m(p) == dom%nd_mass(ct%local(p))) cycle
+      ct%rec_send(n_send+1:n_send+2) = [real(p, rk), dom%nd_mass(ct%local(p))]
+      n_send = n_send + 2
+    end do
+    call gather_records(ct, n_send)
+    do r = 0, sum(ct%rec_counts) - 2, 2
+      ct%m(nint(ct%rec_recv(r+1))) = ct%rec_recv(r+2)
+    end do
+  end subroutine
+
+  !> The particles' state into the contact nodes n_mesh + q (every rank
+  !> has them all: fresh on every rank); vmax raised to the fastest.
+  subroutine particles_in(ct, pt, vmax)
+    type(contact_t), intent(inout) :: ct
+    type(particles_t), intent(in) :: pt
+    real(rk), intent(inout) :: vmax
+    integer :: q, p
+    do q = 1, ct%n_nodes - ct%n_mesh
+      p = ct%n_mesh + q
+      ct%x(:,p) = pt%x(:,q)
+      ct%v(:,p) = pt%v(:,q)
+      ct%fresh(p) = ct%stamp
+      vmax = max(vmax, norm2(pt%v(:,q)))
+    end do
+  end subroutine
+
+  !> The particles' corrected state back.
+  subroutine particles_out(ct, pt)
+    type(contact_t), intent(in) :: ct
+    type(particles_t), intent(inout) :: pt
+    integer :: q, p
+    do q = 1, ct%n_nodes - ct%n_mesh
+      p = ct%n_mesh + q
+      pt%x(:,q) = ct%x(:,p)
+      pt%v(:,q) = ct%v(:,p)
+    end do
   end subroutine
 
   !> One contact pass: each rank searches for its share of the slave
   !> nodes in its neighbourhood of the surfaces; every rank matches the
   !> velocities of all the nodes found, in one order.
-  subroutine contact_enforce(ct, dom, dt)
+  subroutine contact_enforce(ct, dom, dt, pt)
     type(contact_t), intent(inout) :: ct
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
+    type(particles_t), intent(inout) :: pt
     integer :: i, k, last, n_found, worst
     real(rk) :: vmax, margin(2), depth
     real(rk) :: t0
@@ -158,11 +240,17 @@ contains
     if (ct%full_state .or. comms_size() == 1) then
       call gather_state(ct, dom)
       vmax = 0
-      do i = 1, ct%n_nodes
+      do i = 1, ct%n_mesh
         vmax = max(vmax, norm2(ct%v(:,i)))
       end do
+      call particles_in(ct, pt, vmax)
     else
+      ! (the particles first: the exchange's regions take in their share
+      ! of them, and its reach their speed; fresh after it)
+      vmax = 0
+      call particles_in(ct, pt, vmax)
       call exchange_neighbourhood(ct, dom, dt, vmax)
+      call particles_in(ct, pt, vmax)
     end if
     ct%seconds_exchange = ct%seconds_exchange + (comms_wtime() - t0)
     ct%impulse = 0
@@ -188,6 +276,7 @@ contains
       i = last + 1
     end do
     call scatter_state(ct, dom)
+    call particles_out(ct, pt)
   end subroutine
 
   !> Edge-to-edge contact (&contact edges): every slave feature edge that
@@ -1362,9 +1451,9 @@ contains
     ct%stamp = ct%stamp + 1
     ct%fresh = ct%stamp
     if (comms_size() == 1) then
-      ct%x = dom%nd_x(:, ct%local)
-      ct%v = dom%nd_v(:, ct%local)
-      do p = 1, ct%n_nodes
+      ct%x(:,1:ct%n_mesh) = dom%nd_x(:, ct%local(1:ct%n_mesh))
+      ct%v(:,1:ct%n_mesh) = dom%nd_v(:, ct%local(1:ct%n_mesh))
+      do p = 1, ct%n_mesh
         if (ct%returns(p)) ct%h(p) = node_altitude(dom, ct%local(p))
       end do
       return
@@ -1377,7 +1466,7 @@ contains
       if (ct%returns(ct%owned_pos(k))) ct%send(7*k) = node_altitude(dom, n)
     end do
     call comms_allgatherv_real(ct%send, ct%counts, ct%recv)
-    do k = 1, ct%n_nodes
+    do k = 1, ct%n_mesh
       p = ct%gather_pos(k)
       ct%x(:,p) = ct%recv(7*k-6:7*k-4)
       ct%v(:,p) = ct%recv(7*k-3:7*k-1)
@@ -1393,18 +1482,18 @@ contains
   !> and the element under it (at the start of the step, size_local, plus
   !> what its nodes can move since) and what the pass can move the nodes.
   !> Those nodes are fresh (ct%fresh = ct%stamp); the search uses no other.
-  !> vmax: the fastest contact node (every rank).
+  !> vmax: in, the fastest of the other contact nodes (the particles);
+  !> out, the fastest contact node (every rank).
   subroutine exchange_neighbourhood(ct, dom, dt, vmax)
     type(contact_t), intent(inout) :: ct
     type(domain_t), intent(in) :: dom
     real(rk), intent(in) :: dt
-    real(rk), intent(out) :: vmax
+    real(rk), intent(inout) :: vmax
     integer :: k, p, n, q, i, me, np, pass, r
     real(rk) :: lo(3), hi(3), widen, reach
     np = comms_size()
     me = comms_rank()
     ct%stamp = ct%stamp + 1
-    vmax = 0
     do k = 1, size(ct%owned_pos)
       p = ct%owned_pos(k)
       n = ct%local(p)

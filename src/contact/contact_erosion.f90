@@ -5,6 +5,7 @@
 !> list of eroded elements to the same replicated surfaces, so the surfaces
 !> (and the contact pass) stay the same on any number of ranks.
 module udar_contact_erosion
+  use udar_ordering, only: find_sorted
   use udar_comms, only: comms_rank, comms_size
   use udar_contact_model, only: contact_t, interface_t, size_interface_work, surface_neighbours, on_symmetry_plane, self_neighbourhoods, &
                                 assign_slaves, mark_returns
@@ -39,21 +40,7 @@ contains
     !> Index in ct%tet of global element g (ascending tet_gidx), 0 if none.
     integer function tet_index(g)
       integer, intent(in) :: g
-      integer :: lo, hi, mid
-      tet_index = 0
-      lo = 1
-      hi = ct%n_tets
-      do while (lo <= hi)
-        mid = (lo + hi)/2
-        if (ct%tet_gidx(mid) == g) then
-          tet_index = mid
-          return
-        else if (ct%tet_gidx(mid) < g) then
-          lo = mid + 1
-        else
-          hi = mid - 1
-        end if
-      end do
+      tet_index = find_sorted(ct%tet_gidx(1:ct%n_tets), g)
     end function
   end subroutine
 
@@ -176,11 +163,18 @@ contains
           if (face_part(j) == ip) mark(faces(:,j)) = .true.
         end do
       end if
-      do t = 1, ct%n_tets
-        if (ct%tet_part(t) /= ip) cycle
-        do c = 1, nc
-          if (ct%alive_count(ct%tet(c,t)) == 0) mark(ct%tet(c,t)) = .true.
+      ! free nodes keep the mass of their eroded elements, unless those
+      ! became particles (which are slave nodes instead)
+      if (.not. ct%part_converts(ip)) then
+        do t = 1, ct%n_tets
+          if (ct%tet_part(t) /= ip) cycle
+          do c = 1, nc
+            if (ct%alive_count(ct%tet(c,t)) == 0) mark(ct%tet(c,t)) = .true.
+          end do
         end do
+      end if
+      do j = 1, ct%n_nodes - ct%n_mesh
+        if (ct%particle_part(j) == ip) mark(ct%n_mesh + j) = .true.
       end do
       nodes = pack([(j, j = 1, ct%n_nodes)], mark)
     end function

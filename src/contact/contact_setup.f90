@@ -3,7 +3,7 @@
 !> the list of contact nodes whose state the contact pass needs.
 module udar_contact_setup
   use udar_kinds, only: rk
-  use udar_config, only: config_t, overlap_move
+  use udar_config, only: config_t, overlap_move, eroded_particles
   use udar_gmsh, only: gmsh_mesh_t
   use udar_domain, only: domain_t
   use udar_input_errors, only: input_errors_t
@@ -186,6 +186,13 @@ contains
       call assign_slaves(ct%ifc(i), ct%x0, comms_rank(), comms_size())
     end do
     call mark_returns(ct)
+    ! particles (eroded = 'particles') join the contact nodes as they are made
+    ct%n_mesh = ct%n_nodes
+    allocate(ct%particle_part(0))
+    allocate(ct%part_converts(size(cfg%parts)), source=.false.)
+    do e = 1, glob%n_elems
+      if (glob%mat(glob%el_mat(e))%eroded == eroded_particles) ct%part_converts(glob%el_part(e)) = .true.
+    end do
 
   contains
 

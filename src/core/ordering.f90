@@ -1,12 +1,13 @@
 !> Cache-friendly orderings: Morton (Z-order) keys of points and a stable
 !> merge sort. Used once at set-up so that nodes and elements that are close
 !> in space are close in memory; pure and deterministic (the same mesh gives
-!> the same order on every rank).
+!> the same order on every rank). Also the small sorts and searches of
+!> ascending integer lists the drivers share.
 module udar_ordering
   use udar_kinds, only: rk, i8
   implicit none
   private
-  public :: morton_keys, stable_sort_permutation
+  public :: morton_keys, stable_sort_permutation, sorted_ints, find_sorted
 
   integer, parameter :: bits = 20    !< per axis: 60-bit keys
 
@@ -35,6 +36,44 @@ contains
       keys(i) = key
     end do
   end subroutine
+
+  !> The values in ascending order (insertion sort: for short lists, a
+  !> face's nodes, a graph row, a particle's neighbours).
+  pure function sorted_ints(v) result(w)
+    integer, intent(in) :: v(:)
+    integer :: w(size(v)), i, j, t
+    w = v
+    do i = 2, size(w)
+      t = w(i)
+      j = i - 1
+      do while (j >= 1)
+        if (w(j) <= t) exit
+        w(j+1) = w(j)
+        j = j - 1
+      end do
+      w(j+1) = t
+    end do
+  end function
+
+  !> Position of value g in the ascending array a (0: absent), by bisection.
+  pure integer function find_sorted(a, g) result(k)
+    integer, intent(in) :: a(:), g
+    integer :: lo, hi, mid
+    k = 0
+    lo = 1
+    hi = size(a)
+    do while (lo <= hi)
+      mid = (lo + hi)/2
+      if (a(mid) == g) then
+        k = mid
+        return
+      else if (a(mid) < g) then
+        lo = mid + 1
+      else
+        hi = mid - 1
+      end if
+    end do
+  end function
 
   !> perm such that keys(perm) is ascending; equal keys keep their order.
   pure subroutine stable_sort_permutation(keys, perm)

@@ -8,7 +8,10 @@
 !>   run_state_t (@t, @cycle, ...);  hashes int64 (2): model, mesh;
 !>   wall_work, contact_work int64 (67): exact work accumulators;  /provenance @n_ranks;
 !>   nodes/{x,v,f} (n_nodes,3), nodes/vref (n_nodes); elems/h (the altitudes the contact bounds its returns by);  elems/{vol,j,e,wp,p,q,eps_p,temp,hard,soft}
-!>   (n_elems), elems/s (n_elems,6);  checksum int64 (1).
+!>   (n_elems), elems/s (n_elems,6);  with particles (eroded = 'particles'):
+!>   @n_particles and particles (n_particles+1, particle_width): row 1 the
+!>   heat made at conversion and the count, then one row per particle;
+!>   checksum int64 (1).
 !> Reading: every rank reads the global arrays and keeps its local entries.
 !> The checksum covers every number the restart uses: the scalars, the
 !> small datasets and every row (dataset name, global index, values) of the
@@ -20,6 +23,7 @@ module udar_checkpoint
   use udar_kinds, only: rk, i8
   use udar_domain, only: domain_t
   use udar_run_state, only: run_state_t
+  use udar_particle_model, only: particles_t, particles_reserve
   use udar_exact_sum, only: exact_limbs
   use udar_hash, only: fnv_offset, hash_text, hash_ints, hash_i8s, hash_reals
   use udar_comms, only: comms_world_handle, comms_info_null_handle, comms_is_root, comms_size, comms_max_int, &
@@ -39,6 +43,9 @@ module udar_checkpoint
       'provenance/checkpoints_written', 'n_nodes', 'n_elems', 'history_rows']
   character(len=*), parameter :: elem_names(14) = [character(len=8) :: 'vol', 'j', 'e', 'wp', 'p', 'q', 'eps_p', &
       'temp', 'hard', 'soft', 'state', 'damage', 'eps_tot', 'h']
+
+  !> a particle's row: x(3), v(3), m, rho, e, p, c, h, temp, eps_p, material, part, element
+  integer, parameter :: particle_width = 17
 
   type :: ckpt_file_t
     integer(hid_t) :: id = -1, dxpl = -1
@@ -111,10 +118,11 @@ contains
 
   !> Collective. Owned rows of every rank, in global numbering; st%wall_work
   !> must already hold the global sum.
-  subroutine checkpoint_write(path, dom, st, ok, errmsg)
+  subroutine checkpoint_write(path, dom, st, pt, ok, errmsg)
     character(len=*), intent(in) :: path
     type(domain_t), intent(in) :: dom
     type(run_state_t), intent(in) :: st
+    type(particles_t), intent(in) :: pt
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
     type(ckpt_file_t) :: f
@@ -190,6 +198,8 @@ contains
       buf = transpose(dom%el_s(dom%el_owned_list,:))
       call write_rows(f, 'elems/s', dom%n_global_elems, 6, elem_first, elem_count, &
                       dom%el_gidx(dom%el_owned_list), buf)
+      ! the particles: every rank has them all, the root writes them
+      if (pt%enabled) call write_particles()
       hashes(1) = ieor(scalars_hash(reals, ints, [st%model_hash, st%mesh_hash], st%wall_work, st%contact_work), &
                        comms_xor_i8(f%rows_hash))
       call write_small_i8(f, 'checksum', hashes(1:1))
@@ -215,16 +225,39 @@ contains
       if (.not. f%ok) errmsg = errmsg//': '//f%errmsg
     end if
     call comms_barrier()
+  contains
+    subroutine write_particles()
+      integer(hsize_t), allocatable :: p_first(:), p_count(:)
+      integer, allocatable :: p_gidx(:)
+      integer :: q
+      call attr_int(f, f%id, 'n_particles', pt%n)
+      deallocate(buf)
+      if (comms_is_root()) then
+        allocate(buf(particle_width, pt%n + 1), p_gidx(pt%n + 1))
+        p_gidx = [(q, q = 1, pt%n + 1)]
+        buf = 0
+        buf(1:2,1) = [pt%heat, real(pt%n, rk)]
+        do q = 1, pt%n
+          buf(:,q+1) = [pt%x(:,q), pt%v(:,q), pt%m(q), pt%rho(q), pt%e(q), pt%p(q), pt%c(q), pt%h(q), pt%temp(q), &
+                        pt%eps_p(q), real(pt%mat(q), rk), real(pt%part(q), rk), real(pt%elem(q), rk)]
+        end do
+      else
+        allocate(buf(particle_width, 0), p_gidx(0))
+      end if
+      call runs(p_gidx, p_first, p_count)
+      call write_rows(f, 'particles', pt%n + 1, particle_width, p_first, p_count, p_gidx, buf)
+    end subroutine
   end subroutine
 
   ! -------------------------------------------------------------------- read
 
   !> Collective. Fills st (hashes included, for the caller to compare) and
   !> the state of every local node and element from a checkpoint.
-  subroutine checkpoint_read(path, dom, st, ok, errmsg)
+  subroutine checkpoint_read(path, dom, st, pt, ok, errmsg)
     character(len=*), intent(in) :: path
     type(domain_t), intent(inout) :: dom
     type(run_state_t), intent(inout) :: st
+    type(particles_t), intent(inout) :: pt   !< read if pt%enabled (the deck converts)
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
     type(ckpt_file_t) :: f
@@ -310,6 +343,7 @@ contains
     allocate(a(6, dom%n_global_elems))
     if (f%ok) call read_all(f, 'elems/s', a)
     if (f%ok) dom%el_s = transpose(a(:,dom%el_gidx))
+    if (f%ok .and. pt%enabled) call read_particles()
     if (f%ok) then
       if (ieor(scalars_hash(reals, ints, hashes, st%wall_work, st%contact_work), f%rows_hash) /= stored_sum(1)) &
         call fail(f, 'it is damaged: its content does not match the checksum written with it (bytes changed '// &
@@ -325,6 +359,34 @@ contains
         errmsg = 'checkpoint '//path//': '//f%errmsg
       end if
     end if
+  contains
+    subroutine read_particles()
+      integer :: q, n
+      call read_attr_int(f, 'n_particles', n)
+      if (.not. f%ok) then
+        call fail(f, 'it holds no particles, but this deck''s eroded elements become particles (a checkpoint '// &
+                  'of a run with eroded = ''free_nodes''?)')
+        return
+      end if
+      deallocate(a)
+      allocate(a(particle_width, n + 1))
+      call read_all(f, 'particles', a)
+      if (.not. f%ok) return
+      if (nint(a(2,1)) /= n) then
+        call fail(f, 'its particle count does not match its particles')
+        return
+      end if
+      call particles_reserve(pt, max(n, 1))
+      pt%n = n
+      pt%heat = a(1,1)
+      do q = 1, n
+        pt%x(:,q) = a(1:3,q+1)
+        pt%v(:,q) = a(4:6,q+1)
+        pt%m(q) = a(7,q+1); pt%rho(q) = a(8,q+1); pt%e(q) = a(9,q+1); pt%p(q) = a(10,q+1); pt%c(q) = a(11,q+1)
+        pt%h(q) = a(12,q+1); pt%temp(q) = a(13,q+1); pt%eps_p(q) = a(14,q+1)
+        pt%mat(q) = nint(a(15,q+1)); pt%part(q) = nint(a(16,q+1)); pt%elem(q) = nint(a(17,q+1))
+      end do
+    end subroutine
   end subroutine
 
   !> The newest readable checkpoint among BASE_ckpt1.h5 .. BASE_ckptK.h5

@@ -30,6 +30,7 @@ module udar_deck
        wall_coulomb, &
        jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
        overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook, &
+       eroded_free_nodes, eroded_particles, &
        geometry_solid, geometry_axisymmetric, geometry_plane_strain
   use udar_input_errors, only: input_errors_t
   use udar_file_kind, only: not_regular_file
@@ -88,6 +89,8 @@ module udar_deck
   character(len=20), parameter :: fracture_words(3) = [character(len=20) :: 'none', 'plastic_strain', &
        'johnson_cook']
   integer, parameter :: fracture_codes(3) = [fracture_none, fracture_plastic_strain, fracture_johnson_cook]
+  character(len=20), parameter :: eroded_words(2) = [character(len=20) :: 'free_nodes', 'particles']
+  integer, parameter :: eroded_codes(2) = [eroded_free_nodes, eroded_particles]
   character(len=20), parameter :: geometry_words(3) = [character(len=20) :: 'solid', 'axisymmetric', 'plane_strain']
   integer, parameter :: geometry_codes(3) = [geometry_solid, geometry_axisymmetric, geometry_plane_strain]
 
@@ -155,6 +158,7 @@ module udar_deck
        var_t('material', 'jc_d5', 'r', 1, 0, '-', ''), &
        var_t('material', 'p_spall', 'r', 1, 0, 'Pa', '>= 0'), &
        var_t('material', 'eps_erode', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'eroded', 'c', 1, code_len, '', ''), &
        var_t('part', 'group', 'c', 1, max_name_len, '', ''), &
        var_t('part', 'material', 'c', 1, max_name_len, '', ''), &
        var_t('part', 'velocity', 'r', 3, 0, 'm/s', 'finite numbers'), &
@@ -229,6 +233,7 @@ module udar_deck
     character(len=code_len) :: weights = 'area'
     character(len=code_len) :: initial_overlap = 'report'
     character(len=code_len) :: fracture = 'none'
+    character(len=code_len) :: eroded = 'free_nodes'
     character(len=code_len) :: tet_formulation = 'stabilised'
     character(len=code_len) :: geometry = 'solid'
   end type
@@ -319,7 +324,8 @@ contains
     character(len=512) :: msg
     character(len=:), allocatable :: text
     character(len=code_len), allocatable :: eos_txt(:), str_txt(:), kind_txt(:), wall_txt(:), rate_txt(:), &
-                                            weights_txt(:), overlap_txt(:), frac_txt(:)
+                                            weights_txt(:), overlap_txt(:), frac_txt(:), &
+                                            eroded_txt(:)
     character(len=code_len) :: tet_txt, geometry_txt
     integer :: ios, k, j, ig, gk, first(n_group_kinds), cnt(n_group_kinds), nread(n_group_kinds)
     logical :: misspelled(n_group_kinds)
@@ -379,7 +385,7 @@ contains
     allocate(cfg%materials(cnt(g_material)), cfg%parts(cnt(g_part)), &
              cfg%boundaries(cnt(g_boundary)), cfg%contacts(cnt(g_contact)))
     allocate(eos_txt(cnt(g_material)), str_txt(cnt(g_material)), rate_txt(cnt(g_material)), &
-             frac_txt(cnt(g_material)), kind_txt(cnt(g_boundary)), &
+             frac_txt(cnt(g_material)), eroded_txt(cnt(g_material)), kind_txt(cnt(g_boundary)), &
              wall_txt(cnt(g_boundary)), weights_txt(cnt(g_contact)), overlap_txt(cnt(g_contact)))
     do gk = 1, n_group_kinds
       if (group_once(gk)) then
@@ -413,6 +419,7 @@ contains
         str_txt(k) = v%strength
         rate_txt(k) = v%jc_rate_form
         frac_txt(k) = v%fracture
+        eroded_txt(k) = v%eroded
       case (g_part)
         cfg%parts(k) = v%part
       case (g_boundary)
@@ -438,7 +445,7 @@ contains
       if (runs(1)%line > 0) call check_run(ctx, runs(1), cfg)
       if (meshes(1)%line > 0) call check_mesh(ctx, meshes(1), cfg%mesh, trim(path), geometry_txt)
       do k = 1, size(mats)
-        call check_material(ctx, mats(k), cfg, k, eos_txt(k), str_txt(k), rate_txt(k), frac_txt(k), &
+        call check_material(ctx, mats(k), cfg, k, eos_txt(k), str_txt(k), rate_txt(k), frac_txt(k), eroded_txt(k), &
                             mats(1:k-1))
       end do
       do k = 1, size(parts)
@@ -629,7 +636,7 @@ contains
              v%strength, m%shear_modulus, m%youngs_modulus, m%poisson_ratio, m%yield_stress, &
              m%hardening_modulus, m%jc_a, m%jc_b, m%jc_n, m%jc_c, m%jc_m, m%jc_rate0, v%jc_rate_form, &
              m%t_melt, m%t_room, m%specific_heat, m%taylor_quinney, m%initial_temperature, &
-             v%fracture, m%eps_f, m%jc_d1, m%jc_d2, m%jc_d3, m%jc_d4, m%jc_d5, m%p_spall, m%eps_erode)
+             v%fracture, m%eps_f, m%jc_d1, m%jc_d2, m%jc_d3, m%jc_d4, m%jc_d5, m%p_spall, m%eps_erode, v%eroded)
       end associate
     case ('part')
       call part_nml(v%part%group, v%part%material, v%part%velocity)
@@ -675,8 +682,8 @@ contains
                             youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
                             jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, t_melt, t_room, specific_heat, &
                             taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
-                            jc_d4, jc_d5, p_spall, eps_erode)
-      character(len=*), intent(inout) :: name, eos, strength, jc_rate_form, fracture
+                            jc_d4, jc_d5, p_spall, eps_erode, eroded)
+      character(len=*), intent(inout) :: name, eos, strength, jc_rate_form, fracture, eroded
       real(rk), intent(inout) :: rho0, bulk_modulus, c0, s, gamma0, shear_modulus, youngs_modulus, &
            poisson_ratio, yield_stress, hardening_modulus, jc_a, jc_b, jc_n, jc_c, jc_m, jc_rate0, &
            t_melt, t_room, specific_heat, taylor_quinney, initial_temperature, eps_f, jc_d1, jc_d2, &
@@ -685,7 +692,7 @@ contains
                           youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
                           jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, t_melt, t_room, specific_heat, &
                           taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
-                          jc_d4, jc_d5, p_spall, eps_erode
+                          jc_d4, jc_d5, p_spall, eps_erode, eroded
       read(text, nml=material, iostat=ios, iomsg=msg)
     end subroutine material_nml
 
@@ -786,12 +793,12 @@ contains
   !> Material models: ranges, what each EOS / strength / fracture model needs,
   !> parameters set for a model that is not selected, and the derived elastic
   !> moduli.
-  subroutine check_material(ctx, inst, cfg, k, eos_txt, str_txt, rate_txt, frac_txt, earlier_inst)
+  subroutine check_material(ctx, inst, cfg, k, eos_txt, str_txt, rate_txt, frac_txt, eroded_txt, earlier_inst)
     type(ctx_t), intent(inout) :: ctx
     type(inst_t), intent(in) :: inst
     type(config_t), intent(inout) :: cfg
     integer, intent(in) :: k
-    character(len=*), intent(in) :: eos_txt, str_txt, rate_txt, frac_txt
+    character(len=*), intent(in) :: eos_txt, str_txt, rate_txt, frac_txt, eroded_txt
     type(inst_t), intent(in) :: earlier_inst(:)    !< of materials 1 .. k-1
 
     logical :: eos_ok, str_ok, rate_ok, frac_ok, e_set, nu_set, en_ok, plastic, elastic_needed, jc_fracture
@@ -970,6 +977,14 @@ contains
       if (frac_ok .and. m%fracture == fracture_none .and. m%p_spall == 0 .and. positive(m%eps_erode) &
           .and. .not. is_bad(inst, 'p_spall')) &
            call complain(ctx, inst, 'eps_erode', 'erosion needs a fracture criterion: set fracture or p_spall')
+      if (choice(ctx, inst, 'eroded', eroded_txt, eroded_words, eroded_codes, m%eroded)) then
+        if (m%eroded == eroded_particles .and. .not. positive(m%eps_erode) .and. .not. is_bad(inst, 'eps_erode')) &
+             call complain(ctx, inst, 'eroded', "'particles' is what eroded elements become: set eps_erode > 0 "// &
+             '(the material does not erode)')
+        if (m%eroded == eroded_particles .and. cfg%mesh%geometry /= geometry_solid) &
+             call complain(ctx, inst, 'eroded', "'particles' is 3D only for now (geometry = 'solid'); "// &
+             "2D runs erode to 'free_nodes'")
+      end if
     end associate
 
   contains
@@ -1512,7 +1527,7 @@ contains
                 choice_val(m%jc_rate_form, rate_words, rate_codes), val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), &
                 val(m%initial_temperature, 't_room'), choice_val(m%fracture, fracture_words, fracture_codes), &
                 val(m%eps_f), val(m%jc_d1), val(m%jc_d2), val(m%jc_d3), val(m%jc_d4), val(m%jc_d5), &
-                val(m%p_spall), val(m%eps_erode)]
+                val(m%p_spall), val(m%eps_erode), choice_val(m%eroded, eroded_words, eroded_codes)]
       end associate
     case (g_part)
       associate(p => cfg%parts(k))

@@ -37,7 +37,11 @@ module udar_field_output
   private
 
   public :: fw_open, fw_reopen, fw_begin_step, fw_node_vector, fw_node_scalar, &
-            fw_elem_scalar, fw_end_step, fw_close
+            fw_elem_scalar, fw_particles, fw_end_step, fw_close
+
+  !> The particles' scalar fields (fw_particles; /steps/NNNNNN/particles/...)
+  character(len=*), parameter, public :: particle_scalars(8) = [character(len=24) :: 'mass', 'density', 'pressure', &
+      'specific_internal_energy', 'temperature', 'plastic_strain', 'part_id', 'element']
 
   ! Field kinds, used to pick Center/AttributeType in the XDMF.
   integer, parameter :: fk_node_vector = 1, fk_node_scalar = 2, fk_elem_scalar = 3
@@ -55,6 +59,7 @@ module udar_field_output
     character(len=step_digits) :: group = ''
     integer :: n_fields = 0
     type(field_rec_t), allocatable :: fields(:)
+    integer :: n_particles = -1            !< particles written with the step (-1: none, no group)
   end type step_rec_t
 
   !> The rows of one kind (nodes or elements) this rank writes: runs of
@@ -387,6 +392,7 @@ contains
     w%cur%cycle = cycle
     w%cur%group = gname
     w%cur%n_fields = 0
+    w%cur%n_particles = -1
     if (.not. allocated(w%cur%fields)) allocate(w%cur%fields(8))
 
     call attr_num(w, w%step_gid, 'time', time, ok, errmsg); if (.not. ok) return
@@ -424,6 +430,82 @@ contains
     character(len=:), allocatable, intent(out) :: errmsg
     call write_field(w, name, fk_elem_scalar, size(a) == w%elem_rows%n, ok, errmsg, scalar=a)
   end subroutine fw_elem_scalar
+
+  !> The particles of the step (collective; every rank passes them all, the
+  !> root writes them): group /steps/NNNNNN/particles with @count, its
+  !> coordinates and velocity (count,3) and the scalars particle_scalars
+  !> (count) as values(:, k); listed in <case>_particles.xmf (a point set,
+  !> which ParaView shows beside the mesh).
+  subroutine fw_particles(w, x, v, values, ok, errmsg)
+    type(field_writer_t), intent(inout) :: w
+    real(rk), intent(in) :: x(:,:), v(:,:), values(:,:)
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: errmsg
+    integer(hid_t) :: gid
+    integer :: k, n
+    ok = .false.
+    errmsg = ''
+    if (.not. w%in_step) then
+      errmsg = 'field_output: fw_particles outside a step'
+      return
+    end if
+    n = size(x, 2)
+    call make_group(w, w%step_gid, 'particles', gid, ok, errmsg); if (.not. ok) return
+    call attr_num(w, gid, 'count', int(n, i8), ok, errmsg)
+    if (ok .and. n > 0) then
+      call write_whole(gid, 'coordinates', 3, x)
+      if (ok) call write_whole(gid, 'velocity', 3, v)
+      do k = 1, size(particle_scalars)
+        if (.not. ok) exit
+        call write_whole(gid, trim(particle_scalars(k)), 0, reshape(values(:,k), [1, n]))
+      end do
+    end if
+    call end_group(w, gid, 'particles', ok, errmsg)
+    if (ok) w%cur%n_particles = n
+  contains
+    !> A dataset of all n rows (width 0: 1-D), written by the root alone.
+    subroutine write_whole(loc, name, width, a)
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: width
+      real(rk), intent(in), target :: a(:,:)
+      integer(hid_t) :: fsid, msid, did
+      integer :: err, e2, rank
+      integer(hsize_t) :: dims(2)
+      real(rk), target :: dummy(1)
+      type(c_ptr) :: p
+      rank = merge(1, 2, width == 0)
+      dims = [int(max(width, 1), hsize_t), int(n, hsize_t)]
+      if (rank == 1) dims(1) = int(n, hsize_t)
+      call h5screate_simple_f(rank, dims(1:rank), fsid, err)
+      call h5dcreate_f(loc, name, H5T_IEEE_F64LE, fsid, did, err)
+      if (err < 0) then
+        ok = .false.
+        errmsg = op_err(w, 'create dataset particles/'//name)
+        call h5sclose_f(fsid, e2)
+        return
+      end if
+      if (comms_is_root()) then
+        call h5screate_simple_f(rank, dims(1:rank), msid, err)
+        p = c_loc(a)
+      else
+        call h5sselect_none_f(fsid, err)
+        call h5screate_simple_f(1, [1_hsize_t], msid, err)
+        call h5sselect_none_f(msid, err)
+        p = c_loc(dummy)
+      end if
+      call h5dwrite_f(did, h5kind_to_type(rk, H5_REAL_KIND), p, err, mem_space_id=msid, file_space_id=fsid, &
+                      xfer_prp=w%dxpl)
+      err = comms_min_int(err)
+      if (err < 0) then
+        ok = .false.
+        errmsg = op_err(w, 'write dataset particles/'//name)
+      end if
+      call h5sclose_f(msid, e2)
+      call h5sclose_f(fsid, e2)
+      call h5dclose_f(did, e2)
+    end subroutine
+  end subroutine fw_particles
 
   !> Commit the current step: close its group, bump /steps@count, flush the
   !> file (collective) and, on rank 0, atomically replace the .xmf.
@@ -465,6 +547,7 @@ contains
     call flush_file(w, ok, errmsg); if (.not. ok) return
 
     if (comms_is_root()) call write_xmf(w, ok, errmsg)
+    if (ok .and. comms_is_root() .and. any(w%steps(1:w%n_steps)%n_particles >= 0)) call write_particles_xmf(w, ok, errmsg)
   end subroutine fw_end_step
 
   !> Close the file and reset the writer (collective when open).  Safe on a
@@ -744,6 +827,13 @@ contains
         has_coords = .true.
         cycle
       end if
+      if (name == 'particles') then
+        call read_attr(w, w%file_id, gpath//'/particles', 'count', h5kind_to_type(i8, H5_INTEGER_KIND), c_loc(cyc), &
+                       ok, errmsg)
+        if (.not. ok) exit
+        st%n_particles = int(cyc)
+        cycle
+      end if
       call field_kind(w, gid, gpath, name, kind, errmsg)
       if (kind == 0) exit
       st%n_fields = st%n_fields + 1
@@ -1021,20 +1111,8 @@ contains
     write(sn, '(i0)') w%n_nodes
     write(se, '(i0)') w%n_elems
 
-    open(newunit=u, file=tmp_path, status='replace', action='write', &
-         form='formatted', iostat=ios, iomsg=iomsg)
-    if (ios /= 0) then
-      errmsg = 'field_output: cannot open "'//tmp_path//'" for writing: '//trim(iomsg)
-      return
-    end if
-
-    write(u, '(a)', iostat=ios, iomsg=iomsg) '<?xml version="1.0" ?>'
-    if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
-      '<Xdmf Version="3.0" xmlns:xi="http://www.w3.org/2001/XInclude">'
-    if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '  <Domain>'
-    if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
-      '    <Grid Name="'//xml_escape(w%title)// &
-      '" GridType="Collection" CollectionType="Temporal">'
+    call xmf_begin(tmp_path, w%title, u, ios, iomsg, errmsg)
+    if (len(errmsg) > 0) return
 
     do s = 1, w%n_steps
       if (ios /= 0) exit
@@ -1071,6 +1149,42 @@ contains
       end associate
     end do
 
+    call xmf_end(u, tmp_path, w%xmf_path, ios, iomsg, ok, errmsg)
+  end subroutine write_xmf
+
+  !> Opens tmp_path and writes an XDMF index's head, up to the temporal
+  !> collection named title (errmsg set when it cannot be opened).
+  subroutine xmf_begin(tmp_path, title, u, ios, iomsg, errmsg)
+    character(len=*), intent(in) :: tmp_path, title
+    integer, intent(out) :: u, ios
+    character(len=*), intent(inout) :: iomsg
+    character(len=:), allocatable, intent(out) :: errmsg
+    errmsg = ''
+    open(newunit=u, file=tmp_path, status='replace', action='write', &
+         form='formatted', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      errmsg = 'field_output: cannot open "'//tmp_path//'" for writing: '//trim(iomsg)
+      return
+    end if
+    write(u, '(a)', iostat=ios, iomsg=iomsg) '<?xml version="1.0" ?>'
+    if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
+      '<Xdmf Version="3.0" xmlns:xi="http://www.w3.org/2001/XInclude">'
+    if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '  <Domain>'
+    if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
+      '    <Grid Name="'//xml_escape(title)//'" GridType="Collection" CollectionType="Temporal">'
+  end subroutine xmf_begin
+
+  !> Closes an index xmf_begin opened (ios: how its writes went) and renames
+  !> it over path, so a reader never sees a partial file.
+  subroutine xmf_end(u, tmp_path, path, ios, iomsg, ok, errmsg)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: tmp_path, path
+    integer, intent(inout) :: ios
+    character(len=*), intent(inout) :: iomsg
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: errmsg
+    ok = .false.
+    errmsg = ''
     if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '    </Grid>'
     if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '  </Domain>'
     if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '</Xdmf>'
@@ -1084,13 +1198,67 @@ contains
       errmsg = 'field_output: close of "'//tmp_path//'" failed: '//trim(iomsg)
       return
     end if
-
-    if (.not. rename_file(tmp_path, w%xmf_path)) then
-      errmsg = 'field_output: rename "'//tmp_path//'" -> "'//w%xmf_path//'" failed'
+    if (.not. rename_file(tmp_path, path)) then
+      errmsg = 'field_output: rename "'//tmp_path//'" -> "'//path//'" failed'
       return
     end if
     ok = .true.
-  end subroutine write_xmf
+  end subroutine xmf_end
+
+  !> The particles' index, <case>_particles.xmf beside <case>.xmf (written
+  !> as write_xmf writes that one): a temporal collection of point sets
+  !> (Polyvertex), one per step that has particles.
+  subroutine write_particles_xmf(w, ok, errmsg)
+    type(field_writer_t), intent(in) :: w
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: errmsg
+    character(len=:), allocatable :: path, tmp_path, h5, gp
+    character(len=512) :: iomsg
+    character(len=32) :: st, sn
+    integer :: u, ios, s, k
+    ok = .false.
+    errmsg = ''
+    path = w%xmf_path(1:len(w%xmf_path)-4)//'_particles.xmf'
+    tmp_path = path//'.tmp'
+    h5 = xml_escape(w%h5_ref)
+    call xmf_begin(tmp_path, w%title//' particles', u, ios, iomsg, errmsg)
+    if (len(errmsg) > 0) return
+    do s = 1, w%n_steps
+      if (ios /= 0) exit
+      associate (rec => w%steps(s))
+        if (rec%n_particles <= 0) cycle
+        write(st, '(es24.16e3)') rec%time
+        write(sn, '(i0)') rec%n_particles
+        gp = h5//':/steps/'//rec%group//'/particles/'
+        write(u, '(a)', iostat=ios, iomsg=iomsg) '      <Grid Name="particles_'//rec%group//'" GridType="Uniform">'
+        if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '        <Time Value="'//trim(adjustl(st))//'"/>'
+        if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
+          '        <Topology TopologyType="Polyvertex" NumberOfElements="'//trim(sn)//'" NodesPerElement="1"/>'
+        if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '        <Geometry GeometryType="XYZ">'
+        if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
+          '          <DataItem Dimensions="'//trim(sn)//' 3" NumberType="Float" Precision="8" Format="HDF">'// &
+          gp//'coordinates</DataItem>'
+        if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '        </Geometry>'
+        if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
+          '        <Attribute Name="velocity" AttributeType="Vector" Center="Node">'
+        if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
+          '          <DataItem Dimensions="'//trim(sn)//' 3" NumberType="Float" Precision="8" Format="HDF">'// &
+          gp//'velocity</DataItem>'
+        if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '        </Attribute>'
+        do k = 1, size(particle_scalars)
+          if (ios /= 0) exit
+          write(u, '(a)', iostat=ios, iomsg=iomsg) '        <Attribute Name="'//trim(particle_scalars(k))// &
+            '" AttributeType="Scalar" Center="Node">'
+          if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
+            '          <DataItem Dimensions="'//trim(sn)//'" NumberType="Float" Precision="8" Format="HDF">'// &
+            gp//trim(particle_scalars(k))//'</DataItem>'
+          if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '        </Attribute>'
+        end do
+        if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '      </Grid>'
+      end associate
+    end do
+    call xmf_end(u, tmp_path, path, ios, iomsg, ok, errmsg)
+  end subroutine write_particles_xmf
 
   subroutine write_xmf_field(u, h5, group, fld, sn, se, ios, iomsg)
     integer, intent(in) :: u

@@ -13,7 +13,7 @@ module udar_config
             tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
             jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
             overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook, &
-            geometry_solid, geometry_axisymmetric, geometry_plane_strain
+            geometry_solid, geometry_axisymmetric, geometry_plane_strain, eroded_free_nodes, eroded_particles
 
   ! integer codes the kernels dispatch on (strings stay in the deck)
   integer, parameter :: eos_linear = 1, eos_mie_gruneisen = 2
@@ -27,6 +27,10 @@ module udar_config
   integer, parameter :: contact_weights_distance = 1, contact_weights_area = 2
   integer, parameter :: overlap_report = 1, overlap_move = 2
   integer, parameter :: fracture_none = 0, fracture_plastic_strain = 1, fracture_johnson_cook = 2
+  !> what an eroded element becomes: nothing (its mass stays at its nodes,
+  !> which move freely once all their elements are gone) or a particle
+  !> (its mass, momentum, energy and state; theory.md section 15)
+  integer, parameter :: eroded_free_nodes = 0, eroded_particles = 1
   !> what the mesh is (&mesh geometry): 3D tetrahedra, or 2D triangles in
   !> the (r, z) half plane about the y axis or in the (x, y) plane per metre
   integer, parameter :: geometry_solid = 1, geometry_axisymmetric = 2, geometry_plane_strain = 3
@@ -82,6 +86,7 @@ module udar_config
     real(rk) :: p_spall = 0.0_rk               !< Pa, spall strength: a mean stress below -p_spall fractures an element; 0 = no spall criterion
     real(rk) :: eps_erode = 0.0_rk             !< -, a fractured element is eroded when its accumulated equivalent
                                                !< (deviatoric) total strain passes this; 0 = never by strain
+    integer  :: eroded = eroded_free_nodes     !< what an eroded element becomes (eroded_*)
   end type
 
   type :: part_cfg_t

@@ -12,7 +12,7 @@ module udar_contact_model
   use udar_config, only: contact_weights_area
   implicit none
   private
-  public :: size_interface_work, on_symmetry_plane, any_eroding, self_neighbourhoods, feature_edges, assign_slaves, mark_returns, &
+  public :: contact_grow_nodes, size_interface_work, on_symmetry_plane, any_eroding, self_neighbourhoods, feature_edges, assign_slaves, mark_returns, &
             surface_neighbours, neighbour_across
 
   !> One direction of an interface: slave nodes against master triangles.
@@ -120,6 +120,12 @@ module udar_contact_model
     integer :: n_interfaces = 0
     type(interface_t), allocatable :: ifc(:)
     integer :: n_nodes = 0                 !< contact nodes: every master-triangle node and slave node
+    !> the mesh's contact nodes (1..n_mesh); beyond them, contact node
+    !> n_mesh + q is particle q (eroded = 'particles'), a slave node of the
+    !> interfaces whose slave part is its part
+    integer :: n_mesh = 0
+    integer, allocatable :: particle_part(:)   !< (particles) the part each particle's element belonged to
+    logical, allocatable :: part_converts(:)   !< (parts) its eroded elements become particles (its free nodes have no mass)
     integer, allocatable :: gidx(:)        !< their global node indices, ascending
     real(rk), allocatable :: x(:,:), v(:,:), m(:)   !< (3,n), (3,n), (n): gathered state, masses
     real(rk), allocatable :: x0(:,:)       !< (3,n) m, initial positions (the feature edges are judged on them)
@@ -198,6 +204,64 @@ contains
     end do
     on_symmetry_plane = bits /= 0
   end function
+
+  !> Room for n contact nodes (the new ones beyond the old count: particles,
+  !> no mesh node, at rest and massless until set).
+  subroutine contact_grow_nodes(ct, n)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: n
+    integer :: i, old
+    old = ct%n_nodes
+    if (n <= old) return
+    call grow2(ct%x); call grow2(ct%v); call grow2(ct%x0); call grow2(ct%v_sweep); call grow2(ct%mirror)
+    call grow1(ct%m); call grow1(ct%h, huge(1.0_rk)); call grow1(ct%impulse); call grow1(ct%pressure)
+    call grow1(ct%work_area)
+    call growi(ct%gidx); call growi(ct%sym_planes); call growi(ct%alive_count); call growi(ct%local)
+    call growi(ct%fresh)
+    call growl(ct%returns)
+    do i = 1, ct%n_interfaces
+      call grow2(ct%ifc(i)%x_built)
+      call growl(ct%ifc(i)%near)
+      ! the candidate lists know only the old nodes: search again
+      ct%ifc(i)%reach_built = -1.0_rk
+    end do
+    ct%n_nodes = n
+  contains
+    subroutine grow2(a)
+      real(rk), allocatable, intent(inout) :: a(:,:)
+      real(rk), allocatable :: t(:,:)
+      if (.not. allocated(a)) return
+      allocate(t(size(a, 1), n), source=0.0_rk)
+      t(:,1:old) = a(:,1:old)
+      call move_alloc(t, a)
+    end subroutine
+    subroutine grow1(a, fill)
+      real(rk), allocatable, intent(inout) :: a(:)
+      real(rk), intent(in), optional :: fill
+      real(rk), allocatable :: t(:)
+      if (.not. allocated(a)) return
+      allocate(t(n), source=0.0_rk)
+      if (present(fill)) t = fill
+      t(1:old) = a(1:old)
+      call move_alloc(t, a)
+    end subroutine
+    subroutine growi(a)
+      integer, allocatable, intent(inout) :: a(:)
+      integer, allocatable :: t(:)
+      if (.not. allocated(a)) return
+      allocate(t(n), source=0)
+      t(1:old) = a(1:old)
+      call move_alloc(t, a)
+    end subroutine
+    subroutine growl(a)
+      logical, allocatable, intent(inout) :: a(:)
+      logical, allocatable :: t(:)
+      if (.not. allocated(a)) return
+      allocate(t(n), source=.false.)
+      t(1:old) = a(1:old)
+      call move_alloc(t, a)
+    end subroutine
+  end subroutine
 
   !> ct%returns: the slave nodes and the slave edges' nodes of every
   !> interface (the nodes whose altitude bounds a return).

@@ -84,6 +84,10 @@ module udar_domain
     integer, allocatable :: sym_nodes(:)        !< one entry per (node, plane)
     real(rk), allocatable :: sym_normal(:,:)    !< (n_sym,3)
     type(wall_t), allocatable :: walls(:)
+    !> the symmetry planes as frictionless walls facing the body (their
+    !> normals into it): what keeps particles, which are no mesh nodes, on
+    !> the body's side, and across which they meet their mirror images
+    type(wall_t), allocatable :: sym_walls(:)
     logical :: anti_locking = .true.             !< any nodal-averaged formulation (not the plain tet)
     integer :: tet_formulation = 2               !< udar_config tet_*: plain, nodal, stabilised, stabilised_linear
     real(rk) :: stab_beta = 0.0_rk        !< -, weight of the element's own volume ratio near its nodes' (stabilised only)

@@ -133,6 +133,7 @@ contains
       loc%sym_normal(:,a) = pack(glob%sym_normal(:,a), node_l(glob%sym_nodes) /= 0)
     end do
     loc%walls = glob%walls
+    loc%sym_walls = glob%sym_walls
     loc%anti_locking = glob%anti_locking
     loc%tet_formulation = glob%tet_formulation
     loc%stab_beta = glob%stab_beta

@@ -18,6 +18,7 @@
 module udar_partition
   use, intrinsic :: iso_c_binding, only: c_int, c_int32_t, c_float, c_ptr, c_null_ptr, c_loc
   use udar_kinds, only: rk, i8
+  use udar_ordering, only: sorted_ints
   implicit none
   private
   public :: partition_elements, partition_stats_t, metis_idx_width_ok
@@ -191,7 +192,7 @@ contains
     do e = 1, n_elems
       do j = 1, nc
         f = nc*(e - 1) + j
-        key(:, f) = sorted(pack(conn(e, :), [(i /= j, i = 1, nc)]))
+        key(:, f) = sorted_ints(pack(conn(e, :), [(i /= j, i = 1, nc)]))
       end do
     end do
     ! stable LSD counting sort on the nodes, last first: O(faces + nodes), fully deterministic
@@ -267,7 +268,7 @@ contains
     m = 0
     do v = 1, n
       lo = xadj(v) + 1; hi = xadj(v + 1)
-      tmp(lo:hi) = sorted(tmp(lo:hi))
+      tmp(lo:hi) = sorted_ints(tmp(lo:hi))
       xadj(v) = m
       do i = lo, hi
         if (i > lo) then
@@ -423,23 +424,6 @@ contains
                                  nparts, c_loc(tpwgts), c_null_ptr, options, objval, part)
     if (rc /= metis_ok) return
     ok = all(part >= 0 .and. part <= 1)
-  end function
-
-  !> The values in ascending order (insertion sort: for short lists, a face's nodes or a graph row).
-  pure function sorted(v) result(w)
-    integer, intent(in) :: v(:)
-    integer :: w(size(v)), i, j, t
-    w = v
-    do i = 2, size(w)
-      t = w(i)
-      j = i - 1
-      do while (j >= 1)
-        if (w(j) <= t) exit
-        w(j+1) = w(j)
-        j = j - 1
-      end do
-      w(j+1) = t
-    end do
   end function
 
   pure subroutine grow2(a, b)

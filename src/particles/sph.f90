@@ -8,6 +8,7 @@
 !> that gives the pairs in one order gets one result whatever its ranks.
 module udar_sph
   use udar_kinds, only: rk, pi, block_size
+  use udar_ordering, only: sorted_ints
   use udar_config, only: material_cfg_t, eos_mie_gruneisen
   use udar_hydro, only: volumetric_update
   use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
@@ -72,7 +73,10 @@ contains
   !> The pressure and sound speed of a particle of material mat at density
   !> rho and specific internal energy e (J/kg): the element's EOS at
   !> J = rho0/rho, with no tension (p >= 0: the particle is failed
-  !> material, which still resists compression).
+  !> material, which still resists compression); the sound speed at
+  !> min(J, 1) (expanded failed material has no stiffness of its own: the
+  !> EOS's tension branch, extrapolated far, would give sound speeds that
+  !> grow without bound as particles part).
   pure elemental subroutine particle_pressure(mat, rho, e, p, c)
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: rho, e
@@ -82,7 +86,7 @@ contains
     if (mat%eos == eos_mie_gruneisen) then
       call eos_mie_gruneisen_ab(mat%rho0, mat%c0, mat%s, mat%gamma0, j, a, b)
       p = max(a + b*e, 0.0_rk)
-      c = sqrt(eos_mie_gruneisen_c2(mat%rho0, mat%c0, mat%s, mat%gamma0, j, p))
+      c = sqrt(eos_mie_gruneisen_c2(mat%rho0, mat%c0, mat%s, mat%gamma0, min(j, 1.0_rk), p))
     else
       call eos_linear_ab(mat%bulk_modulus, j, a, b)
       p = max(a + b*e, 0.0_rk)
@@ -168,13 +172,17 @@ contains
   !> energy equation with the EOS solved exactly as the elements do
   !> (volumetric_update: de = heat dt - (p(n) + p(n+1))/2 d(1/rho), no
   !> tension, no element viscosity), and the sound speed. p, c in: of
-  !> step n; out: of step n+1.
+  !> step n; out: of step n+1. A particle without pressure at both ends of
+  !> the step keeps its density if it would fall: failed material does not
+  !> expand in tension, it parts (no pressure: the volume change would do
+  !> no work either way); without this, particles that fly apart thin out
+  !> and must then be squeezed back to their density before they push.
   pure subroutine particle_update(mat, n, dt, m, drho, heat, rho, e, p, c)
     type(material_cfg_t), intent(in) :: mat
     integer, intent(in) :: n
     real(rk), intent(in) :: dt, m(:), drho(:), heat(:)
     real(rk), intent(inout) :: rho(:), e(:), p(:), c(:)
-    real(rk), dimension(block_size) :: vol, zero, j_old, j_new, w_visc, q, bulk_tan, stiff, pp
+    real(rk), dimension(block_size) :: vol, zero, j_old, j_new, w_visc, q, bulk_tan, stiff, pp, rho_old
     logical :: no_tension(block_size)
     integer :: first, nb, i, k
     zero = 0
@@ -184,6 +192,7 @@ contains
       do i = 1, nb
         k = first + i - 1
         j_old(i) = mat%rho0/rho(k)
+        rho_old(i) = rho(k)
         rho(k) = rho(k)*exp(dt*drho(k)/rho(k))
         j_new(i) = mat%rho0/rho(k)
         vol(i) = m(k)/rho(k)
@@ -196,6 +205,7 @@ contains
                              q(1:nb), bulk_tan(1:nb), stiff(1:nb))
       do i = 1, nb
         k = first + i - 1
+        if (p(k) == 0.0_rk .and. pp(i) == 0.0_rk) rho(k) = max(rho(k), rho_old(i))
         call particle_pressure(mat, rho(k), e(k), p(k), c(k))
       end do
     end do
@@ -289,7 +299,7 @@ contains
           end do
         end do
       end do
-      call sort_ints(cand(1:nn))
+      cand(1:nn) = sorted_ints(cand(1:nn))
       if (np + nn > size(pairs, 2)) then
         np = -1
         return
@@ -312,22 +322,6 @@ contains
       cidx = cell_index(y)
       cell_of = 1 + cidx(1) + nc(1)*(cidx(2) + nc(2)*cidx(3))
     end function
-  end subroutine
-
-  !> Ascending insertion sort (a particle's few dozen neighbours).
-  pure subroutine sort_ints(a)
-    integer, intent(inout) :: a(:)
-    integer :: i, k, t
-    do i = 2, size(a)
-      t = a(i)
-      k = i - 1
-      do while (k >= 1)
-        if (a(k) <= t) exit
-        a(k+1) = a(k)
-        k = k - 1
-      end do
-      a(k+1) = t
-    end do
   end subroutine
 
   !> An element of nc corners becomes a particle: the corners' mass shares

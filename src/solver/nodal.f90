@@ -4,13 +4,13 @@
 !> halo brings the ghosts.
 module udar_nodal
   use udar_kinds, only: rk
-  use udar_domain, only: domain_t
+  use udar_domain, only: domain_t, wall_t
   use udar_config, only: wall_sticking, wall_coulomb, geometry_axisymmetric
   use udar_exact_sum, only: exact_limbs, exact_add
   use udar_kinds, only: i8
   implicit none
   private
-  public :: update_velocities, apply_velocity_conditions, apply_rigid_walls, apply_axis, update_positions, &
+  public :: update_velocities, apply_velocity_conditions, apply_rigid_walls, walls_on_points, apply_axis, update_positions, &
             keep_constrained_positions, restore_constrained_positions
 
 contains
@@ -22,7 +22,8 @@ contains
     integer :: n
     real(rk) :: r
     do n = 1, dom%n_owned_nodes
-      r = dt_v/dom%nd_mass(n)
+      ! a node whose elements all became particles has no mass and no force
+      r = dt_v/max(dom%nd_mass(n), tiny(1.0_rk))
       dom%nd_v(1,n) = dom%nd_v(1,n) + r*dom%nd_f(1,n)
       dom%nd_v(2,n) = dom%nd_v(2,n) + r*dom%nd_f(2,n)
       dom%nd_v(3,n) = dom%nd_v(3,n) + r*dom%nd_f(3,n)
@@ -91,17 +92,28 @@ contains
     real(rk), intent(in) :: dt      !< the coming step
     integer(i8), intent(inout) :: work_acc(0:exact_limbs)           !< J, wall work (all walls)
     integer(i8), intent(inout) :: impulse_acc(0:exact_limbs, size(dom%walls))  !< N s, normal impulse per wall
-    integer :: iw, n
+    call walls_on_points(dom%walls, dom%n_owned_nodes, dom%nd_x, dom%nd_v, dom%nd_mass, dt, work_acc, impulse_acc)
+  end subroutine
+
+  !> The rigid walls' rule (apply_rigid_walls) for n points of masses m at
+  !> x (the start of the step) with velocities v (the step's, corrected).
+  subroutine walls_on_points(walls, n, x, v, m, dt, work_acc, impulse_acc)
+    type(wall_t), intent(in) :: walls(:)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: x(:,:), m(:), dt
+    real(rk), intent(inout) :: v(:,:)
+    integer(i8), intent(inout) :: work_acc(0:exact_limbs), impulse_acc(0:exact_limbs, size(walls))
+    integer :: iw, k
     real(rk) :: gap, vn, vn_new, vt(3), dvt(3), vt_mag
-    do iw = 1, size(dom%walls)
-      associate (wall => dom%walls(iw))
-        do n = 1, dom%n_owned_nodes
-          gap = dot_product(dom%nd_x(:,n) - wall%point, wall%normal)
-          vn = dot_product(dom%nd_v(:,n), wall%normal)
+    do iw = 1, size(walls)
+      associate (wall => walls(iw))
+        do k = 1, n
+          gap = dot_product(x(:,k) - wall%point, wall%normal)
+          vn = dot_product(v(:,k), wall%normal)
           if (gap + dt*vn >= 0.0_rk) cycle
-          ! lands on the wall at the end of the step (a node found behind it is put back)
+          ! lands on the wall at the end of the step (a point found behind it is put back)
           vn_new = -gap/dt
-          vt = dom%nd_v(:,n) - vn*wall%normal
+          vt = v(:,k) - vn*wall%normal
           select case (wall%wall_type)
           case (wall_sticking)
             dvt = -vt
@@ -116,10 +128,10 @@ contains
           case default
             dvt = 0.0_rk
           end select
-          dom%nd_v(:,n) = vt + dvt + vn_new*wall%normal
-          call exact_add(impulse_acc(:,iw), dom%nd_mass(n)*(vn_new - vn))
-          ! work of the wall's normal and tangential impulses over the node's motion
-          call exact_add(work_acc, dom%nd_mass(n)*((vn_new - vn)*vn_new + dot_product(dvt, vt + dvt)))
+          v(:,k) = vt + dvt + vn_new*wall%normal
+          call exact_add(impulse_acc(:,iw), m(k)*(vn_new - vn))
+          ! work of the wall's normal and tangential impulses over the point's motion
+          call exact_add(work_acc, m(k)*((vn_new - vn)*vn_new + dot_product(dvt, vt + dvt)))
         end do
       end associate
     end do

@@ -23,11 +23,14 @@ module udar_run
       element_altitudes
   use udar_fracture, only: fracture_enabled, erosion_enabled, el_intact, el_eroded
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, apply_axis, update_positions, &
-      keep_constrained_positions, restore_constrained_positions
+      keep_constrained_positions, restore_constrained_positions, walls_on_points
+  use udar_particle_model, only: particles_t
+  use udar_particle_driver, only: particles_init, particles_convert, particles_forces, particles_finish_step, &
+      particles_converting, particles_contact_work
   use udar_strength, only: von_mises
   use udar_history, only: history_t, history_open, history_reopen, history_write, history_sync, history_close
   use udar_field_output, only: field_writer_t, fw_open, fw_reopen, fw_begin_step, fw_node_vector, fw_node_scalar, &
-      fw_elem_scalar, &
+      fw_elem_scalar, fw_particles, particle_scalars, &
       fw_end_step, fw_close
   use udar_version, only: program_version
   use udar_run_state, only: run_state_t
@@ -37,7 +40,7 @@ module udar_run
   use udar_strings, only: itoa, fixed
   use udar_contact_model, only: contact_t
   use udar_contact, only: contact_enforce, contact_overlaps, contact_settle, contact_pressure, contact_keep_velocities, &
-      contact_work, contact_extent
+      contact_work, contact_extent, contact_add_particles, contact_refresh_masses
   use udar_contact_erosion, only: contact_erode
   use udar_files, only: rename_file, remove_if_present, make_directories
   implicit none
@@ -71,6 +74,11 @@ module udar_run
     real(rk) :: angular_momentum(3) = 0      !< kg m2/s, sum m x x v about the centre of mass
     real(rk) :: eroded_energy = 0            !< J, internal energy of the eroded elements (in total)
     integer :: n_fractured = 0, n_eroded = 0 !< elements fractured (eroded ones included), eroded
+    !> particles (eroded = 'particles'): how many, their mass, kinetic and
+    !> internal energy (in kinetic and internal too), and the kinetic
+    !> energy made heat at conversion (J)
+    integer :: n_particles = 0
+    real(rk) :: particle_mass = 0, particle_kinetic = 0, particle_internal = 0, conversion_heat = 0
     real(rk), allocatable :: contact_normal(:), contact_friction(:)   !< N, per interface
     real(rk), allocatable :: contact_slip(:)                          !< m/s, per interface
     real(rk), allocatable :: contact_deep(:)                          !< slave nodes found inside a master element, per interface
@@ -114,6 +122,11 @@ contains
     type(balance_t) :: bal
     type(wall_sums_t) :: walls
     type(run_state_t) :: st
+    type(particles_t) :: pt
+    integer(i8), allocatable :: wall_work_dummy(:), wall_impulse_dummy(:,:)   !< the walls' sums of particles off the root rank
+    integer(i8), allocatable :: sym_impulse_dummy(:,:)   !< the symmetry planes' impulses on particles (not booked)
+    real(rk) :: dt_conv
+    integer :: n_conv
     real(rk), allocatable :: work_svm(:), work_rho(:), row(:), work_node(:,:), work_elem(:), work_step(:)
     real(rk), allocatable :: x_constrained(:,:)   !< positions of the constrained nodes before the contact pass
     real(rk) :: dt, dt_v, wall0, elapsed, loop0, last_print_wall, left, ckpt_seconds, cycle_seconds, &
@@ -139,6 +152,7 @@ contains
 
     wall0 = comms_wtime()
     fracture_on = any_fracture(dom)
+    pt%enabled = particles_converting(dom)
     no = size(dom%el_owned_list)
     base = trim(cfg%output%directory)//'/'//trim(cfg%output%case_name)
     res%field_file = base//'.h5'
@@ -146,6 +160,8 @@ contains
     allocate(work_node(dom%n_owned_nodes,3))
     allocate(x_constrained(3, size(dom%sym_nodes) + size(dom%fixed_nodes)))
     allocate(row(size(history_columns(dom, ct))))
+    allocate(wall_work_dummy(0:exact_limbs), wall_impulse_dummy(0:exact_limbs, size(dom%walls)), &
+             sym_impulse_dummy(0:exact_limbs, size(dom%sym_walls)))
     allocate(walls%impulse(0:exact_limbs, size(dom%walls)))
     walls%impulse = 0
     st%model_hash = model_hash
@@ -154,7 +170,7 @@ contains
 
     if (len_trim(restart_path) > 0) then
       ! ---- restart: the checkpoint is checked before any output is touched
-      call checkpoint_read(trim(restart_path), dom, st, ok, errmsg)
+      call checkpoint_read(trim(restart_path), dom, st, pt, ok, errmsg)
       if (ok .and. st%model_hash /= model_hash) then
         ok = .false.
         errmsg = 'checkpoint '//trim(restart_path)//' belongs to another deck (model hash '// &
@@ -178,7 +194,7 @@ contains
       ! a run that ended by the kinetic-energy criterion checkpointed at its end
       ended = .false.
       if (cfg%run%end_kinetic_fraction > 0.0_rk .and. mod(st%cycle, balance_interval) == 0) then
-        call compute_balance(dom, walls, ct, bal)
+        call compute_balance(dom, walls, ct, pt, bal)
         ended = bal%kinetic < cfg%run%end_kinetic_fraction*st%ke_peak
       end if
       if (ended) then
@@ -198,7 +214,7 @@ contains
       walls%contact_work = 0
       if (comms_is_root()) walls%work = st%wall_work
       if (comms_is_root()) walls%contact_work = st%contact_work
-      u_prev = element_energy(dom)
+      u_prev = element_energy(dom, pt)
       u_prev_cycle = st%cycle
       write(line, '(a,i0,a,es12.5,a,i0,a)') 'restart from '//trim(restart_path)//' at cycle ', st%cycle, &
         ', t = ', st%t, ' s, on ', comms_size(), trim(merge(' rank ', ' ranks', comms_size() == 1))
@@ -217,7 +233,7 @@ contains
       call nodal_stable_dt(dom, st%dt_stable, dt_node)
       st%dt_stable = comms_min(st%dt_stable)
       st%dt0 = st%dt_stable
-      call compute_balance(dom, walls, ct, bal)
+      call compute_balance(dom, walls, ct, pt, bal)
       st%e0 = bal%kinetic + bal%internal
       st%e_ref = max(abs(st%e0), tiny(1.0_rk))
       u_prev = bal%internal + bal%eroded_energy
@@ -236,6 +252,12 @@ contains
     dom%erode_dt_limit = cfg%numerics%erode_dt_ratio*st%dt0
     dom%keep_volumes = any(erosion_enabled(dom%mat))
     dom%keep_altitudes = ct%n_interfaces > 0
+    call particles_init(pt, dom)
+    ! (a restart's particles are contact nodes, and the nodes' masses without their elements)
+    if (pt%n > 0) then
+      call contact_refresh_masses(ct, dom)
+      call contact_add_particles(ct, pt)
+    end if
     call nodal_reference_volumes(dom, rebase=.false.)
     ! the altitudes of the last element pass (a restart reads them: slave
     ! nodes settled after that pass have moved since)
@@ -281,15 +303,33 @@ contains
       end do
       call apply_rigid_walls(dom, dt, walls%work, walls%impulse)
       call apply_axis(dom, dt, walls%work)
+      ! the particles, every one on every rank: forces at x(n), the walls
+      ! (their sums on one rank), x(n+1) and their state at n+1
+      if (pt%n > 0) then
+        call particles_forces(pt, dom%sym_walls, dt_v)
+        if (comms_is_root()) then
+          call walls_on_points(dom%walls, pt%n, pt%x, pt%v, pt%m, dt, walls%work, walls%impulse)
+        else
+          call walls_on_points(dom%walls, pt%n, pt%x, pt%v, pt%m, dt, wall_work_dummy, wall_impulse_dummy)
+        end if
+        ! the symmetry planes as frictionless walls (their impulses are no wall's force)
+        if (comms_is_root()) then
+          call walls_on_points(dom%sym_walls, pt%n, pt%x, pt%v, pt%m, dt, walls%work, sym_impulse_dummy)
+        else
+          call walls_on_points(dom%sym_walls, pt%n, pt%x, pt%v, pt%m, dt, wall_work_dummy, sym_impulse_dummy)
+        end if
+        call particles_finish_step(pt, dom, dt)
+      end if
       walls%dt_v = dt_v
       call update_positions(dom, dt)
       elapsed = comms_wtime()
       call contact_keep_velocities(ct, dom, 2)
       if (ct%n_interfaces > 0) call keep_constrained_positions(dom, x_constrained)
-      call contact_enforce(ct, dom, dt)
+      call contact_enforce(ct, dom, dt, pt)
       ! the contact pass knows no velocity conditions: they hold again after it
       if (ct%n_interfaces > 0) call restore_constrained_positions(dom, x_constrained)
       call contact_work(ct, dom, walls%contact_work)
+      if (pt%n > 0 .and. ct%n_interfaces > 0 .and. comms_is_root()) call particles_contact_work(pt, walls%contact_work)
       contact_seconds = contact_seconds + (comms_wtime() - elapsed)
       call comms_halo_exchange(halo, dom%nd_x, dom%nd_v)
       st%t = st%t + dt
@@ -304,6 +344,16 @@ contains
       end if
       call element_update(dom, dt, bad, bad_avg, n_eroded_now, eroded_any, st%dt_stable, dt_node)
       n_eroded_by = n_eroded_by + n_eroded_now
+      ! eroded elements of converting materials become particles; the step
+      ! then respects the nodes that lost their mass
+      if (pt%enabled) then
+        call particles_convert(pt, dom, n_conv, dt_conv)
+        st%dt_stable = min(st%dt_stable, dt_conv)
+        if (n_conv > 0) then
+          call contact_refresh_masses(ct, dom)
+          call contact_add_particles(ct, pt)
+        end if
+      end if
       if (eroded_any) then
         call nodal_reference_volumes(dom, rebase=dom%anti_locking)
         ! the nodal pressures again with the new reference volumes
@@ -332,6 +382,7 @@ contains
         call comms_halo_exchange_scalar(halo, dom%nd_p)
         call element_forces_averaged(dom)
       end if
+      if (pt%n > 0) st%dt_stable = min(st%dt_stable, pt%dt_stable)
       dt_local = st%dt_stable
       st%dt_stable = comms_min(st%dt_stable)
       if (cfg%run%dt_warn_ratio > 0.0_rk) then
@@ -344,7 +395,7 @@ contains
       print_due = print_due_at(st%cycle, done)
       ! the balance costs a pass over the mesh: every few cycles is enough to catch a blow-up
       if (history_due .or. print_due .or. mod(st%cycle, balance_interval) == 0) then
-        call compute_balance(dom, walls, ct, bal)
+        call compute_balance(dom, walls, ct, pt, bal)
         e_mid = balance_energy(bal, u_prev, u_prev_cycle == st%cycle - 1)
         ! a deck that starts at rest (no energy) measures against the largest
         ! energy seen: energy from nothing then reads 1, not 1e303
@@ -457,7 +508,7 @@ contains
       ! the next cycle's balance takes this cycle's end: kept when it is due
       if (.not. done .and. u_prev_cycle /= st%cycle) then
         if (balance_due_next()) then
-          u_prev = element_energy(dom)
+          u_prev = element_energy(dom, pt)
           u_prev_cycle = st%cycle
         end if
       end if
@@ -575,7 +626,7 @@ contains
       ! the face its removal exposed: onto it before the next step
       if (settle) then
         call keep_constrained_positions(dom, x_constrained)
-        call contact_settle(ct, dom)
+        call contact_settle(ct, dom, pt)
         call restore_constrained_positions(dom, x_constrained)
       end if
     end subroutine
@@ -733,7 +784,7 @@ contains
       errmsg = ''
       if (comms_is_root()) call history_sync(hist, ok, errmsg)
       call output_check(ok, errmsg)
-      call checkpoint_write(checkpoint_path(st%checkpoints_written), dom, st, ok, errmsg)
+      call checkpoint_write(checkpoint_path(st%checkpoints_written), dom, st, pt, ok, errmsg)
       if (.not. ok) call output_failed(errmsg, .not. comms_is_root())   ! the same verdict everywhere: root says it
       ckpt_seconds = comms_wtime() - w0
       write(line, '(a,i0,a,es12.5,a)') 'checkpoint at cycle ', st%cycle, ', t = ', st%t, ' s: '// &
@@ -843,8 +894,25 @@ contains
         end do
         call fw_node_scalar(fw, 'contact_pressure', work_node(:,1), ok, msg)
       end if
+      if (ok .and. pt%enabled) call write_particles(fw, ok, msg)
       if (ok) call fw_end_step(fw, ok, msg)
       call output_check(ok, msg)
+    end subroutine
+
+    !> The particles' fields into the step being written (every rank has
+    !> them; the root writes).
+    subroutine write_particles(fw, ok, msg)
+      type(field_writer_t), intent(inout) :: fw
+      logical, intent(out) :: ok
+      character(len=:), allocatable, intent(out) :: msg
+      real(rk), allocatable :: values(:,:)
+      integer :: q
+      allocate(values(pt%n, size(particle_scalars)))
+      do q = 1, pt%n
+        values(q,:) = [pt%m(q), pt%rho(q), pt%p(q), pt%e(q), pt%temp(q), pt%eps_p(q), real(pt%part(q), rk), &
+                       real(pt%elem(q) - 1, rk)]
+      end do
+      call fw_particles(fw, pt%x(:,1:pt%n), pt%v(:,1:pt%n), values, ok, msg)
     end subroutine
   end subroutine
 
@@ -981,8 +1049,11 @@ contains
       'plastic_work', 'wall_work', 'total', 'energy_error', 'momentum_x', 'momentum_y', 'momentum_z', 'wall_force', &
       'angular_momentum_x', 'angular_momentum_y', 'angular_momentum_z']
     nc = per_interface*ct%n_interfaces + merge(1, 0, ct%n_interfaces > 0)
-    allocate(cols(n_base + 4*dom%n_parts + nc + merge(4, 0, any_fracture(dom))))
-    if (any_fracture(dom)) cols(size(cols)-3:) = [character(len=80) :: 'fractured', 'eroded', 'eroded_energy', 'mass']
+    allocate(cols(n_base + 4*dom%n_parts + nc + merge(4, 0, any_fracture(dom)) + merge(5, 0, particles_converting(dom))))
+    if (any_fracture(dom)) cols(n_base + 4*dom%n_parts + nc + 1:n_base + 4*dom%n_parts + nc + 4) = &
+      [character(len=80) :: 'fractured', 'eroded', 'eroded_energy', 'mass']
+    if (particles_converting(dom)) cols(size(cols)-4:) = [character(len=80) :: 'particles', 'particle_mass', &
+      'particle_kinetic', 'particle_internal', 'conversion_heat']
     cols(1:n_base) = base
     do ip = 1, dom%n_parts
       cols(n_base + 4*ip - 3) = 'ke_'//trim(dom%part_name(ip))
@@ -1018,8 +1089,11 @@ contains
       row(n_base + 4*ip - 3) = bal%part_ke(ip)
       row(n_base + 4*ip - 2:n_base + 4*ip) = bal%part_com(ip,:)
     end do
-    if (size(row) > n_base + 4*np + per_interface*size(bal%contact_normal) + merge(1, 0, size(bal%contact_normal) > 0)) &
-      row(size(row)-3:) = [real(bal%n_fractured, rk), real(bal%n_eroded, rk), bal%eroded_energy, sum(bal%part_mass)]
+    ip = n_base + 4*np + per_interface*size(bal%contact_normal) + merge(1, 0, size(bal%contact_normal) > 0)
+    if (size(row) > ip) row(ip+1:ip+4) = [real(bal%n_fractured, rk), real(bal%n_eroded, rk), bal%eroded_energy, &
+                                          sum(bal%part_mass)]
+    if (size(row) > ip + 4) row(ip+5:ip+9) = [real(bal%n_particles, rk), bal%particle_mass, bal%particle_kinetic, &
+                                              bal%particle_internal, bal%conversion_heat]
     do ip = 1, size(bal%contact_normal)
       row(n_base + 4*np + per_interface*(ip-1) + 1:n_base + 4*np + per_interface*ip) = &
         [bal%contact_normal(ip), bal%contact_friction(ip), bal%contact_slip(ip), bal%contact_deep(ip), &
@@ -1071,25 +1145,33 @@ contains
   !> The elements' energy, internal and eroded (global, the same on every
   !> rank and bitwise equal to compute_balance's internal + eroded_energy):
   !> what the next cycle's balance needs from this cycle's end.
-  real(rk) function element_energy(dom) result(u)
+  real(rk) function element_energy(dom, pt) result(u)
     type(domain_t), intent(in) :: dom
+    type(particles_t), intent(in) :: pt
     integer(i8) :: acc(0:exact_limbs, 2)
-    integer :: n_ero, n_frac
+    integer :: n_ero, n_frac, k
     acc = 0
     call add_element_energies(dom, acc(:,1), acc(:,2), n_ero, n_frac)
+    ! the particles' (every rank has them all: one adds)
+    if (comms_is_root()) then
+      do k = 1, pt%n
+        call exact_add(acc(:,1), pt%m(k)*pt%e(k))
+      end do
+    end if
     call comms_sum_exact(acc)
     u = exact_value(acc(:,1)) + exact_value(acc(:,2))
   end function
 
   !> Global sums over the owned nodes and elements, exact (udar_exact_sum),
   !> hence the same for any partition. Collective.
-  subroutine compute_balance(dom, walls, ct, bal)
+  subroutine compute_balance(dom, walls, ct, pt, bal)
     type(domain_t), intent(in) :: dom
     type(wall_sums_t), intent(in) :: walls
     type(contact_t), intent(in) :: ct
+    type(particles_t), intent(in) :: pt
     type(balance_t), intent(inout) :: bal
     integer, parameter :: c_kin = 1, c_int = 2, c_pla = 3, c_mom = 4, c_work = 7, c_ero = 8, c_cwork = 9, &
-                          c_ang = 10, c_mx = 13, c_m = 16, c_wall = 17
+                          c_ang = 10, c_mx = 13, c_m = 16, c_pm = 17, c_pk = 18, c_pi = 19, c_wall = 20
     integer :: n, ip, i, np, nw, c_part, n_frac, n_ero
     real(rk) :: ke, mx(3), p(3), lo(3)
     np = dom%n_parts
@@ -1099,20 +1181,18 @@ contains
                                                bal%acc(0:exact_limbs, c_part + 5*np - 1))
     bal%acc = 0
     do n = 1, dom%n_owned_nodes
-      ke = 0.5_rk*dom%nd_mass(n)*(dom%nd_v(1,n)**2 + dom%nd_v(2,n)**2 + dom%nd_v(3,n)**2)
-      ip = c_part + 5*(dom%nd_part(n) - 1)
-      call exact_add(bal%acc(:,c_kin), ke)
-      call exact_add(bal%acc(:,ip), ke)
-      lo = dom%nd_mass(n)*cross(dom%nd_x(:,n), dom%nd_v(:,n))
-      do i = 1, 3
-        call exact_add(bal%acc(:,c_mom+i-1), dom%nd_mass(n)*dom%nd_v(i,n))
-        call exact_add(bal%acc(:,ip+i), dom%nd_mass(n)*dom%nd_x(i,n))
-        call exact_add(bal%acc(:,c_mx+i-1), dom%nd_mass(n)*dom%nd_x(i,n))
-        call exact_add(bal%acc(:,c_ang+i-1), lo(i))
-      end do
-      call exact_add(bal%acc(:,ip+4), dom%nd_mass(n))
-      call exact_add(bal%acc(:,c_m), dom%nd_mass(n))
+      call add_point(dom%nd_mass(n), dom%nd_x(:,n), dom%nd_v(:,n), dom%nd_part(n), ke)
     end do
+    ! the particles: every rank has them all, one adds them (to their parts too)
+    if (comms_is_root()) then
+      do n = 1, pt%n
+        call add_point(pt%m(n), pt%x(:,n), pt%v(:,n), pt%part(n), ke)
+        call exact_add(bal%acc(:,c_pk), ke)
+        call exact_add(bal%acc(:,c_int), pt%m(n)*pt%e(n))
+        call exact_add(bal%acc(:,c_pi), pt%m(n)*pt%e(n))
+        call exact_add(bal%acc(:,c_pm), pt%m(n))
+      end do
+    end if
     call add_element_energies(dom, bal%acc(:,c_int), bal%acc(:,c_ero), n_ero, n_frac, bal%acc(:,c_pla))
     bal%n_fractured = int(comms_sum_int(int(n_frac, i8)))
     bal%n_eroded = int(comms_sum_int(int(n_ero, i8)))
@@ -1137,6 +1217,11 @@ contains
     bal%wall_work = exact_value(bal%acc(:,c_work))
     bal%eroded_energy = exact_value(bal%acc(:,c_ero))
     bal%contact_work = exact_value(bal%acc(:,c_cwork))
+    bal%n_particles = pt%n
+    bal%particle_mass = exact_value(bal%acc(:,c_pm))
+    bal%particle_kinetic = exact_value(bal%acc(:,c_pk))
+    bal%particle_internal = exact_value(bal%acc(:,c_pi))
+    bal%conversion_heat = pt%heat
     ! the wall corrections are part of the velocity update, so they span dt_v
     bal%wall_force = 0.0_rk
     do i = 1, nw
@@ -1163,5 +1248,28 @@ contains
       bal%contact_deep(i) = real(ct%ifc(i)%n_deep, rk)
       bal%contact_force(:,i) = ct%ifc(i)%master_impulse/walls%dt_v
     end do
+  contains
+    !> A point of mass m (a node or a particle) of part ip at x moving at v
+    !> into the sums: kinetic energy (ke, also returned), momentum, mass
+    !> moments, angular momentum, mass; its part's too.
+    subroutine add_point(m, x, v, part, ke)
+      real(rk), intent(in) :: m, x(3), v(3)
+      integer, intent(in) :: part
+      real(rk), intent(out) :: ke
+      integer :: c, k
+      ke = 0.5_rk*m*(v(1)**2 + v(2)**2 + v(3)**2)
+      c = c_part + 5*(part - 1)
+      call exact_add(bal%acc(:,c_kin), ke)
+      call exact_add(bal%acc(:,c), ke)
+      lo = m*cross(x, v)
+      do k = 1, 3
+        call exact_add(bal%acc(:,c_mom+k-1), m*v(k))
+        call exact_add(bal%acc(:,c+k), m*x(k))
+        call exact_add(bal%acc(:,c_mx+k-1), m*x(k))
+        call exact_add(bal%acc(:,c_ang+k-1), lo(k))
+      end do
+      call exact_add(bal%acc(:,c+4), m)
+      call exact_add(bal%acc(:,c_m), m)
+    end subroutine
   end subroutine
 end module udar_run

@@ -9,11 +9,11 @@ module udar_setup
   use udar_kinds, only: rk, i8, max_name_len
   use udar_ordering, only: morton_keys, stable_sort_permutation
   use udar_strings, only: itoa, r2s
-  use udar_config, only: config_t, bc_fixed, bc_symmetry, bc_rigid_wall, tet_plain, tet_stabilised, &
+  use udar_config, only: config_t, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, tet_plain, tet_stabilised, &
       tet_stabilised_linear, geometry_solid, geometry_axisymmetric
   use udar_gmsh, only: gmsh_mesh_t
   use udar_nodal, only: apply_velocity_conditions
-  use udar_domain, only: domain_t, block_size
+  use udar_domain, only: domain_t, block_size, wall_t
   use udar_input_errors, only: input_errors_t
   use udar_deck, only: deck_where
   use udar_tet4, only: tet_volume
@@ -350,8 +350,9 @@ contains
     integer :: ib, ig, n_walls, iw, n
     integer, allocatable :: nodes(:), sym(:), fix(:)
     real(rk), allocatable :: symn(:,:)
-    real(rk) :: normal(3), dev
+    real(rk) :: normal(3), dev, point(3)
     allocate(sym(0), fix(0), symn(0,3))
+    allocate(dom%sym_walls(0))
     n_walls = 0
     if (allocated(cfg%boundaries)) n_walls = count(cfg%boundaries%kind == bc_rigid_wall)
     allocate(dom%walls(n_walls))
@@ -372,9 +373,13 @@ contains
         case (bc_symmetry)
           ig = find_group(mesh, cfg%boundaries(ib)%surface, mesh%dim - 1)
           call group_nodes(mesh, ig, node_new, nodes)
-          call plane_of_group(mesh, ig, normal, dev)
+          call plane_of_group(mesh, ig, normal, dev, point)
           sym = [sym, nodes]
           symn = append_rows(symn, normal, size(nodes))
+          ! the plane as a frictionless wall facing the body, for what is no
+          ! mesh node (particles): the body is on the side of its nodes
+          if (sum(matmul(mesh%x(:,1:3) - spread(point, 1, size(mesh%x, 1)), normal)) < 0.0_rk) normal = -normal
+          dom%sym_walls = [dom%sym_walls, wall_t(point=point, normal=normal, wall_type=wall_frictionless)]
         end select
       end do
     end if
@@ -413,10 +418,11 @@ contains
   !> Area-weighted unit normal of a surface group (2D: length-weighted, of a
   !> curve group, in the plane z = 0) and the largest distance of its nodes
   !> from the mean plane (line) relative to the group's extent.
-  subroutine plane_of_group(mesh, ig, normal, dev)
+  subroutine plane_of_group(mesh, ig, normal, dev, point)
     type(gmsh_mesh_t), intent(in) :: mesh
     integer, intent(in) :: ig
     real(rk), intent(out) :: normal(3), dev
+    real(rk), intent(out), optional :: point(3)   !< the group's mean corner (on the plane)
     real(rk) :: c(3), a(3), b(3), x0(3), ext, lo(3), hi(3)
     integer :: t, k, cnt
     normal = 0.0_rk; x0 = 0.0_rk; cnt = 0
@@ -439,10 +445,12 @@ contains
     dev = 0.0_rk
     if (cnt == 0 .or. norm2(normal) == 0.0_rk) then
       normal = [0.0_rk, 0.0_rk, 1.0_rk]; dev = huge(1.0_rk)
+      if (present(point)) point = 0.0_rk
       return
     end if
     normal = normal/norm2(normal)
     x0 = x0/cnt
+    if (present(point)) point = x0
     ext = max(norm2(hi - lo), tiny(1.0_rk))
     do t = 1, mesh%n_facets
       if (mesh%facet_group(t) /= ig) cycle

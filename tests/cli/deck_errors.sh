@@ -31,6 +31,13 @@ expect missing_deck 1 'missing.nml' missing.nml
 printf '%s\n&numerics stabilisation = 0.2 /\n' "$good" > "$W/bad_share.nml"
 expect share_above_the_large_share 1 "bad_share.nml:6: &numerics.*stabilisation = 0.2 : must be at most stabilisation_large = 0.1" bad_share.nml
 
+# eroded elements become particles only where elements erode
+sed 's/&material name = "steel"/\&material name = "steel", eroded = "particles"/' "$W/good.nml" > "$W/particles_no_erosion.nml"
+expect particles_without_erosion 1 "particles_no_erosion.nml:3: &material #1 'steel': eroded = .particles. : 'particles' is what eroded elements become.*set eps_erode > 0" \
+  particles_no_erosion.nml
+sed 's/&material name = "steel"/\&material name = "steel", eroded = "dust"/' "$W/good.nml" > "$W/eroded_word.nml"
+expect eroded_unknown_word 1 "eroded_word.nml:3: &material #1 'steel': eroded = .dust. : unknown choice.*'free_nodes', 'particles'" eroded_word.nml
+
 (cd "$W" && "$EXE" --check good.nml) > "$W/check.txt" 2>&1; rc=$?
 if [ $rc -eq 0 ] && grep -q 'rho0' "$W/check.txt" && grep -q 'default' "$W/check.txt" && [ ! -e "$W/out/good.h5" ]
 then ok "check_prints_resolved_deck"; else bad "check_prints_resolved_deck (exit $rc)"; cat "$W/check.txt"; fi
@@ -88,6 +95,10 @@ good2d='&run t_end = 1e-6 /
 &output directory = "out" /'
 printf '%s\n' "$good2d" > "$W/good2d.nml"
 expect axisymmetric_deck_checks 0 '' "--check good2d.nml"
+sed 's/&material name = "steel"/\&material name = "steel", fracture = "plastic_strain", eps_f = 1, eps_erode = 2, eroded = "particles"/' \
+  "$W/good2d.nml" > "$W/particles2d.nml"
+expect particles_in_2d 1 "particles2d.nml:3: &material #1 'steel': eroded = .particles. : 'particles' is 3D only for now" \
+  "--check particles2d.nml"
 sed 's/bar2d.msh/bar.msh/' "$W/good2d.nml" > "$W/mesh3d.nml"
 expect 3d_mesh_with_a_2d_deck 1 "mesh3d.nml:2: &mesh: file = .*the mesh is 3D but a 2D calculation was asked for" "--check mesh3d.nml"
 sed 's/velocity = 0.0, -10.0/velocity = 0.0, 0.0, -10.0/' "$W/good2d.nml" > "$W/vel3.nml"

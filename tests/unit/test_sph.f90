@@ -12,6 +12,7 @@
 !> exact and energy kept to the time integration's error.
 program test_sph
   use udar_kinds, only: rk, pi
+  use udar_vectors, only: cross
   use udar_strings, only: r2s, itoa
   use udar_config, only: material_cfg_t, eos_linear, eos_mie_gruneisen
   use udar_sph, only: spline_w, spline_dw, sph_forces, sph_rates, particle_update, particle_pressure, element_to_particle, sph_pairs, &
@@ -296,9 +297,4 @@ contains
                ', lowest '//r2s(e_low/e0)//' (kinetic at half steps)')
   end subroutine
 
-  pure function cross(a, b) result(cr)
-    real(rk), intent(in) :: a(3), b(3)
-    real(rk) :: cr(3)
-    cr = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-  end function
 end program test_sph

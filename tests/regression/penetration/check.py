@@ -30,6 +30,11 @@ import udar_results  # noqa: E402
 from check_geometry import deepest_inside, slave_and_master  # noqa: E402
 
 deck = sys.argv[2] if len(sys.argv) > 2 else 'penetration'
+if deck.endswith('_particles'):
+    # eroded elements become particles: their own checks (particles_check.py)
+    import particles_check  # noqa: E402
+    particles_check.main(sys.argv[1], deck)
+    checks.finish()
 out = os.path.join(sys.argv[1], 'out')
 with h5py.File(os.path.join(out, deck + '.h5'), 'r') as f:
     conn, x0, rod_nodes, plate, h_plate = slave_and_master(f, 1, 2)

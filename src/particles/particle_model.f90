@@ -1,0 +1,101 @@
+!> The particles that eroded elements of `eroded = 'particles'` materials
+!> become (issue 15, theory.md section 15): structure of arrays, the same
+!> on every rank (every rank holds and advances all of them, in the order
+!> they were made: by cycle, then ascending element id), and the work
+!> arrays of their step. Grown by doubling when a conversion needs room,
+!> never in a cycle without one.
+module udar_particle_model
+  use udar_kinds, only: rk
+  implicit none
+  private
+  public :: particles_t, particles_reserve, particles_pair_room
+
+  type :: particles_t
+    logical :: enabled = .false.          !< some material's eroded elements become particles
+    integer :: n = 0                      !< particles made so far
+    real(rk), allocatable :: x(:,:), v(:,:)   !< (3,n) m, m/s: position x(n), velocity v(n-1/2) as the nodes'
+    real(rk), allocatable :: m(:)         !< kg
+    real(rk), allocatable :: rho(:)       !< kg/m3, density (continuity equation)
+    real(rk), allocatable :: e(:)         !< J/kg, specific internal energy
+    real(rk), allocatable :: p(:), c(:)   !< Pa, m/s: pressure (no tension) and sound speed at rho, e
+    real(rk), allocatable :: h(:)         !< m, smoothing length (fixed at conversion)
+    real(rk), allocatable :: temp(:), eps_p(:)   !< K, -: the element's at conversion (output)
+    integer, allocatable :: mat(:), part(:)      !< material and part of the element it was
+    integer, allocatable :: elem(:)       !< global element index (1-based) it was
+    logical, allocatable :: converted(:)  !< (local elements) already made a particle
+    real(rk) :: heat = 0                  !< J, kinetic energy of the corners' relative motion made heat at conversion
+    real(rk) :: dt_stable = huge(1.0_rk)  !< s, the particles' stable step after their last step
+    ! work arrays of a step
+    real(rk), allocatable :: acc(:,:), drho(:), dheat(:), vsig(:), visc(:)
+    real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3,n) m/s: v(n-1/2), and v(n+1/2) before the contact pass
+    integer, allocatable :: pairs(:,:), cell_start(:), order(:), cand(:)
+    integer :: n_pairs = 0
+    !> mirror images across the symmetry planes (in the arrays after the
+    !> particles, n+1..n+n_ghosts, for one step): whose image, and across
+    !> which planes (bit k: plane k)
+    integer :: n_ghosts = 0
+    integer, allocatable :: ghost_of(:), ghost_planes(:)
+  end type
+
+contains
+
+  !> Room for at least n particles (kept contents; capacity doubles).
+  subroutine particles_reserve(pt, n)
+    type(particles_t), intent(inout) :: pt
+    integer, intent(in) :: n
+    integer :: cap
+    if (allocated(pt%m)) then
+      if (size(pt%m) >= n) return
+    end if
+    cap = max(n, 64)
+    if (allocated(pt%m)) cap = max(cap, 2*size(pt%m))
+    call grow2(pt%x, cap); call grow2(pt%v, cap); call grow2(pt%acc, cap); call grow2(pt%v_prev, cap)
+    call grow2(pt%v_pre, cap)
+    call grow1(pt%m, cap); call grow1(pt%rho, cap); call grow1(pt%e, cap); call grow1(pt%p, cap)
+    call grow1(pt%c, cap); call grow1(pt%h, cap); call grow1(pt%temp, cap); call grow1(pt%eps_p, cap)
+    call grow1(pt%drho, cap); call grow1(pt%dheat, cap); call grow1(pt%vsig, cap)
+    call growi(pt%mat, cap); call growi(pt%part, cap); call growi(pt%elem, cap)
+    call growi(pt%order, cap); call growi(pt%cand, cap); call growi(pt%cell_start, 2*cap + 2)
+    call growi(pt%ghost_of, cap); call growi(pt%ghost_planes, cap)
+  contains
+    subroutine grow2(a, c)
+      real(rk), allocatable, intent(inout) :: a(:,:)
+      integer, intent(in) :: c
+      real(rk), allocatable :: t(:,:)
+      allocate(t(3,c))
+      t = 0
+      if (allocated(a)) t(:,1:size(a,2)) = a
+      call move_alloc(t, a)
+    end subroutine
+    subroutine grow1(a, c)
+      real(rk), allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: c
+      real(rk), allocatable :: t(:)
+      allocate(t(c))
+      t = 0
+      if (allocated(a)) t(1:size(a)) = a
+      call move_alloc(t, a)
+    end subroutine
+    subroutine growi(a, c)
+      integer, allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: c
+      integer, allocatable :: t(:)
+      allocate(t(c))
+      t = 0
+      if (allocated(a)) t(1:size(a)) = a
+      call move_alloc(t, a)
+    end subroutine
+  end subroutine
+
+  !> Room for at least np pairs (contents not kept: the pairs are found
+  !> again each step).
+  subroutine particles_pair_room(pt, np)
+    type(particles_t), intent(inout) :: pt
+    integer, intent(in) :: np
+    if (allocated(pt%pairs)) then
+      if (size(pt%pairs, 2) >= np) return
+      deallocate(pt%pairs, pt%visc)
+    end if
+    allocate(pt%pairs(2, max(np, 1024)), pt%visc(max(np, 1024)))
+  end subroutine
+end module udar_particle_model

@@ -1,0 +1,108 @@
+!> Unit test of the particles' symmetry planes (udar_particle_driver,
+!> issue 15): a cloud of particles symmetric about the planes x = 0 and
+!> y = 0 (a full model) against its quarter with the two planes as
+!> symmetry walls (mirror images made by the driver). The quarter's
+!> particles must get the full model's accelerations, density rates and
+!> heating to round-off, including the particles near the planes' common
+!> line (three images each); without the images the quarter's particles
+!> next to a plane feel nothing from across it (shown failing: the test
+!> below with no planes).
+program test_particle_ghosts
+  use udar_kinds, only: rk
+  use udar_strings, only: r2s, itoa
+  use udar_config, only: material_cfg_t, eos_linear, eroded_particles
+  use udar_domain, only: domain_t, wall_t
+  use udar_particle_model, only: particles_t, particles_reserve
+  use udar_particle_driver, only: particles_forces, particles_finish_step
+  use unit_checks, only: check, check_summary
+  implicit none
+  integer, parameter :: nq = 60
+  type(particles_t) :: quarter, full, lone
+  type(domain_t) :: dom_q, dom_f, dom_n
+  real(rk) :: u(3), xq(3,nq), vq(3,nq), err_a, err_r, err_h, scale_a, scale_r, scale_h, dt
+  integer :: i, k, s, q
+
+  call random_seed(put=[(4711 + 13*i, i = 1, 64)])
+  do i = 1, nq
+    call random_number(u)
+    xq(:,i) = [1.5e-3_rk*u(1), 1.5e-3_rk*u(2), 3e-3_rk*u(3)]
+    call random_number(u)
+    vq(:,i) = 300.0_rk*(u - 0.5_rk)
+  end do
+  call material(dom_q)
+  call material(dom_f)
+  call material(dom_n)
+  allocate(dom_q%sym_walls(2), dom_f%sym_walls(0), dom_n%sym_walls(0))
+  dom_q%sym_walls(1) = wall_t(point=[0.0_rk, 0.0_rk, 0.0_rk], normal=[1.0_rk, 0.0_rk, 0.0_rk])
+  dom_q%sym_walls(2) = wall_t(point=[0.0_rk, 0.0_rk, 0.0_rk], normal=[0.0_rk, 1.0_rk, 0.0_rk])
+  ! the quarter, and the full model: the quarter and its three mirror images
+  call fill(quarter, nq)
+  call fill(lone, nq)
+  call fill(full, 4*nq)
+  do i = 1, nq
+    do s = 0, 3
+      q = s*nq + i
+      full%x(:,q) = xq(:,i)*[merge(-1, 1, btest(s, 0)), merge(-1, 1, btest(s, 1)), 1]
+      full%v(:,q) = vq(:,i)*[merge(-1, 1, btest(s, 0)), merge(-1, 1, btest(s, 1)), 1]
+    end do
+    quarter%x(:,i) = xq(:,i)
+    quarter%v(:,i) = vq(:,i)
+    lone%x(:,i) = xq(:,i)
+    lone%v(:,i) = vq(:,i)
+  end do
+  dt = 1e-9_rk
+  call particles_forces(quarter, dom_q%sym_walls, dt)
+  call particles_forces(full, dom_f%sym_walls, dt)
+  call particles_forces(lone, dom_n%sym_walls, dt)
+  call check('images_made', quarter%n_ghosts > nq/4, itoa(quarter%n_ghosts)//' images of '//itoa(nq)//' particles')
+  err_a = maxval(abs(quarter%acc(:,1:nq) - full%acc(:,1:nq)))
+  scale_a = maxval(abs(full%acc(:,1:nq)))
+  call check('quarter_accelerations_are_the_full_models', err_a < 1e-12_rk*scale_a, &
+             'largest difference '//r2s(err_a/scale_a)//' of the largest acceleration')
+  err_a = maxval(abs(lone%acc(:,1:nq) - full%acc(:,1:nq)))
+  call check('without_images_they_differ', err_a > 1e-3_rk*scale_a, &
+             'no planes: largest difference '//r2s(err_a/scale_a)//' of the largest acceleration')
+  call particles_finish_step(quarter, dom_q, dt)
+  call particles_finish_step(full, dom_f, dt)
+  err_r = maxval(abs(quarter%drho(1:nq) - full%drho(1:nq)))
+  scale_r = maxval(abs(full%drho(1:nq)))
+  err_h = maxval(abs(quarter%dheat(1:nq) - full%dheat(1:nq)))
+  scale_h = maxval(abs(full%dheat(1:nq)))
+  call check('quarter_density_rates_are_the_full_models', err_r < 1e-12_rk*scale_r, &
+             'largest difference '//r2s(err_r/scale_r)//' of the largest rate')
+  call check('quarter_heating_is_the_full_models', err_h < 1e-12_rk*scale_h .and. scale_h > 0.0_rk, &
+             'largest difference '//r2s(err_h/scale_h)//' of the largest heating')
+  err_a = 0
+  do k = 1, nq
+    err_a = max(err_a, norm2(quarter%x(:,k) - full%x(:,k)))
+  end do
+  call check('quarter_positions_are_the_full_models', err_a < 1e-15_rk, 'largest difference '//r2s(err_a)//' m')
+  call check_summary()
+
+contains
+
+  subroutine material(dom)
+    type(domain_t), intent(inout) :: dom
+    allocate(dom%mat(1))
+    dom%mat(1)%rho0 = 7850.0_rk
+    dom%mat(1)%eos = eos_linear
+    dom%mat(1)%bulk_modulus = 160e9_rk
+    dom%mat(1)%eroded = eroded_particles
+  end subroutine
+
+  !> n steel particles of 1 mg, compressed by 2 % (they push).
+  subroutine fill(pt, n)
+    type(particles_t), intent(inout) :: pt
+    integer, intent(in) :: n
+    call particles_reserve(pt, n)
+    pt%n = n
+    pt%m(1:n) = 1e-6_rk
+    pt%rho(1:n) = 1.02_rk*7850.0_rk
+    pt%e(1:n) = 0
+    pt%p(1:n) = 160e9_rk*0.02_rk
+    pt%c(1:n) = sqrt(160e9_rk/7850.0_rk)
+    pt%h(1:n) = 0.7e-3_rk
+    pt%mat(1:n) = 1
+    pt%part(1:n) = 1
+  end subroutine
+end program test_particle_ghosts
