@@ -7,7 +7,7 @@ module udar_ordering
   use udar_kinds, only: rk, i8
   implicit none
   private
-  public :: morton_keys, stable_sort_permutation, sorted_ints, find_sorted
+  public :: morton_keys, stable_sort_permutation, sorted_ints, sort_ints, find_sorted
 
   integer, parameter :: bits = 20    !< per axis: 60-bit keys
 
@@ -41,8 +41,15 @@ contains
   !> face's nodes, a graph row, a particle's neighbours).
   pure function sorted_ints(v) result(w)
     integer, intent(in) :: v(:)
-    integer :: w(size(v)), i, j, t
+    integer :: w(size(v))
     w = v
+    call sort_ints(w)
+  end function
+
+  !> sorted_ints in place (no temporary: for the cycle's short lists).
+  pure subroutine sort_ints(w)
+    integer, intent(inout) :: w(:)
+    integer :: i, j, t
     do i = 2, size(w)
       t = w(i)
       j = i - 1
@@ -53,7 +60,7 @@ contains
       end do
       w(j+1) = t
     end do
-  end function
+  end subroutine
 
   !> Position of value g in the ascending array a (0: absent), by bisection.
   pure integer function find_sorted(a, g) result(k)

@@ -225,7 +225,10 @@ contains
     logical :: near(size(sym))
     pt%n_ghosts = 0
     if (size(sym) == 0) return
-    reach = 2.0_rk*maxval(pt%h(1:pt%n))
+    reach = 0
+    do i = 1, pt%n
+      reach = max(reach, 2.0_rk*pt%h(i))
+    end do
     call particles_reserve(pt, pt%n*2**size(sym))
     g = pt%n
     do i = 1, pt%n
@@ -235,7 +238,7 @@ contains
       if (.not. any(near)) cycle
       ! every non-empty set of the planes it is near
       do mask = 1, 2**size(sym) - 1
-        if (any([(btest(mask, k-1) .and. .not. near(k), k = 1, size(sym))])) cycle
+        if (.not. all_near(mask)) cycle
         g = g + 1
         pt%ghost_of(g - pt%n) = i
         pt%ghost_planes(g - pt%n) = mask
@@ -246,6 +249,15 @@ contains
     end do
     pt%n_ghosts = g - pt%n
   contains
+    !> Whether the particle is near every plane of mask.
+    logical function all_near(mask)
+      integer, intent(in) :: mask
+      integer :: kk
+      all_near = .true.
+      do kk = 1, size(sym)
+        if (btest(mask, kk-1) .and. .not. near(kk)) all_near = .false.
+      end do
+    end function
     !> y reflected in the planes of mask (a position, or a velocity: no offset).
     function mirrored(y, mask, position) result(z)
       real(rk), intent(in) :: y(3)
@@ -302,7 +314,10 @@ contains
                            pt%e(i:j), pt%p(i:j), pt%c(i:j))
       i = j + 1
     end do
-    pt%dt_stable = critical_share*minval(pt%h(1:pt%n)/max(pt%vsig(1:pt%n), 2.0_rk*pt%c(1:pt%n)))
+    pt%dt_stable = huge(1.0_rk)
+    do i = 1, pt%n
+      pt%dt_stable = min(pt%dt_stable, critical_share*pt%h(i)/max(pt%vsig(i), 2.0_rk*pt%c(i)))
+    end do
   end subroutine
 
   !> The contact pass's work on the particles into the exact accumulator

@@ -8,7 +8,7 @@
 !> that gives the pairs in one order gets one result whatever its ranks.
 module udar_sph
   use udar_kinds, only: rk, pi, block_size
-  use udar_ordering, only: sorted_ints
+  use udar_ordering, only: sort_ints
   use udar_config, only: material_cfg_t, eos_mie_gruneisen
   use udar_hydro, only: volumetric_update
   use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
@@ -292,14 +292,15 @@ contains
               j = order(k)
               if (j <= i) cycle
               hij = 0.5_rk*(h(i) + h(j))
-              if (norm2(x(1:dim,i) - x(1:dim,j)) >= 2.0_rk*hij) cycle
+              ! (2D: z = 0 for all, the third term 0)
+              if ((x(1,i) - x(1,j))**2 + (x(2,i) - x(2,j))**2 + (x(3,i) - x(3,j))**2 >= (2.0_rk*hij)**2) cycle
               nn = nn + 1
               cand(nn) = j
             end do
           end do
         end do
       end do
-      cand(1:nn) = sorted_ints(cand(1:nn))
+      call sort_ints(cand(1:nn))
       if (np + nn > size(pairs, 2)) then
         np = -1
         return

@@ -495,6 +495,8 @@ contains
         if (fracture_on) then
           write(line, '(a,i0,a,i0,a,es10.3,a)') '         fracture: ', bal%n_fractured, ' elements fractured, ', &
             bal%n_eroded, ' eroded (', bal%eroded_energy, ' J of internal energy eroded)'
+          if (pt%enabled) write(line, '(a,i0,a,i0,a,i0,a,es10.3,a)') '         fracture: ', bal%n_fractured, &
+            ' elements fractured, ', bal%n_eroded, ' eroded, become ', pt%n, ' particles (', bal%particle_mass, ' kg)'
           call log_info(line)
         end if
         do k = 1, ct%n_interfaces
