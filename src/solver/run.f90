@@ -9,7 +9,7 @@ module udar_run
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use udar_kinds, only: rk, max_path_len
   use udar_config, only: config_t, geometry_axisymmetric, geometry_plane_strain
-  use udar_domain, only: domain_t
+  use udar_domain, only: domain_t, wall_t
   use udar_kinds, only: i8
   use udar_vectors, only: cross
   use udar_comms, only: comms_barrier, comms_wtime, comms_size, comms_min, comms_max, comms_min_int, comms_max_int, comms_max_i8, comms_is_root, &
@@ -307,17 +307,9 @@ contains
       ! (their sums on one rank), x(n+1) and their state at n+1
       if (pt%n > 0) then
         call particles_forces(pt, dom%sym_walls, dt_v)
-        if (comms_is_root()) then
-          call walls_on_points(dom%walls, pt%n, pt%x, pt%v, pt%m, dt, walls%work, walls%impulse)
-        else
-          call walls_on_points(dom%walls, pt%n, pt%x, pt%v, pt%m, dt, wall_work_dummy, wall_impulse_dummy)
-        end if
+        call walls_on_particles(dom%walls, walls%impulse, wall_impulse_dummy)
         ! the symmetry planes as frictionless walls (their impulses are no wall's force)
-        if (comms_is_root()) then
-          call walls_on_points(dom%sym_walls, pt%n, pt%x, pt%v, pt%m, dt, walls%work, sym_impulse_dummy)
-        else
-          call walls_on_points(dom%sym_walls, pt%n, pt%x, pt%v, pt%m, dt, wall_work_dummy, sym_impulse_dummy)
-        end if
+        call walls_on_particles(dom%sym_walls, sym_impulse_dummy, sym_impulse_dummy)
         call particles_finish_step(pt, dom, dt)
       end if
       walls%dt_v = dt_v
@@ -901,6 +893,19 @@ contains
       call output_check(ok, msg)
     end subroutine
 
+    !> The rigid walls wl on the particles at this cycle's step: their
+    !> work and impulses into the run's sums on the root rank (impulse), into
+    !> dummies on the others (every rank has every particle).
+    subroutine walls_on_particles(wl, impulse, impulse_dummy)
+      type(wall_t), intent(in) :: wl(:)
+      integer(i8), intent(inout) :: impulse(0:, :), impulse_dummy(0:, :)
+      if (comms_is_root()) then
+        call walls_on_points(wl, pt%n, pt%x, pt%v, pt%m, dt, walls%work, impulse)
+      else
+        call walls_on_points(wl, pt%n, pt%x, pt%v, pt%m, dt, wall_work_dummy, impulse_dummy)
+      end if
+    end subroutine
+
     !> The particles' fields into the step being written (every rank has
     !> them; the root writes).
     subroutine write_particles(fw, ok, msg)
@@ -1041,7 +1046,10 @@ contains
   !> Decks with contact get, after the parts, each interface's normal and
   !> friction force and its largest slip velocity left after the pass;
   !> decks with fracture then the fractured and eroded element counts, the
-  !> eroded internal energy and the mass of the mesh (erosion keeps it).
+  !> eroded internal energy and the mass (the mesh's and the particles':
+  !> erosion and conversion keep it); decks whose eroded elements become
+  !> particles then their count, mass, kinetic and internal energy and the
+  !> kinetic energy conversion made heat.
   function history_columns(dom, ct) result(cols)
     type(domain_t), intent(in) :: dom
     type(contact_t), intent(in) :: ct
@@ -1144,9 +1152,10 @@ contains
     end do
   end subroutine
 
-  !> The elements' energy, internal and eroded (global, the same on every
-  !> rank and bitwise equal to compute_balance's internal + eroded_energy):
-  !> what the next cycle's balance needs from this cycle's end.
+  !> The elements' energy, internal and eroded, and the particles' internal
+  !> energy (global, the same on every rank and bitwise equal to
+  !> compute_balance's internal + eroded_energy): what the next cycle's
+  !> balance needs from this cycle's end.
   real(rk) function element_energy(dom, pt) result(u)
     type(domain_t), intent(in) :: dom
     type(particles_t), intent(in) :: pt
