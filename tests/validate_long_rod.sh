@@ -11,6 +11,9 @@
 #   tests/validate_long_rod.sh 0.7e-3; VELOCITIES=2000 tests/validate_long_rod.sh 0.5e-3
 #   VELOCITIES=2000 tests/validate_long_rod.sh 2d 0.25e-3
 # 2d: the axisymmetric deck input/long_rod_2d (csv long_rod_2d_hH.csv).
+# ERODED=particles: eroded elements become particles (issue 15; csv
+# long_rod_particles[_hH].csv, 3D only), e.g.
+#   VELOCITIES=2000 ERODED=particles tests/validate_long_rod.sh
 dim=3d
 if [ "${1:-}" = 2d ]; then dim=2d; shift; fi
 source "$(dirname "$0")/validate_common.sh" long_rod_$dim
@@ -31,6 +34,10 @@ for v in ${VELOCITIES:-1500 2000 2500}; do
   sed -e "s|file = '$name.msh'|file = '$W/${name}_h$H.msh'|" -e "s|directory = 'out'|directory = '$W/$run'|" \
       -e "s|velocity = ${vel3}-2000.0|velocity = ${vel3}-$v.0|" -e "s|2.0 km/s|$v m/s|" \
       input/$name/$name.nml > "$W/$run.nml"
+  if [ "${ERODED:-}" = particles ]; then
+    sed -i "s|eps_erode = 2.0$|eps_erode = 2.0, eroded = 'particles'|" "$W/$run.nml"
+    [ "$(grep -c "eroded = 'particles'" "$W/$run.nml")" = 2 ] || { echo "deck edit failed: eroded"; exit 1; }
+  fi
   grep -q "velocity = ${vel3}-$v.0" "$W/$run.nml" || { echo "deck edit failed for $v m/s"; exit 1; }
   runs+=("$run")
 done
@@ -39,7 +46,7 @@ mm=$(awk -v h=$H 'BEGIN{print h*1000}')
 if [ $dim = 2d ]; then
   csv=doc/validation/long_rod_2d_h$mm.csv
 else
-  csv=doc/validation/long_rod$([ "$mm" = 1 ] || echo _h$mm).csv
+  csv=doc/validation/long_rod$([ "${ERODED:-}" = particles ] && echo _particles)$([ "$mm" = 1 ] || echo _h$mm).csv
 fi
 echo "velocity_m_s,mesh_mm,tet_formulation,$([ $dim = 2d ] && echo triangles || echo tets),cycles,wall_s,crater_depth_mm,P_over_L,lanz_odermatt,difference_percent,energy_error" > $csv
 form=$(grep -o "tet_formulation = '[a-z_]*'" input/$name/$name.nml | cut -d"'" -f2)

@@ -56,6 +56,7 @@ contains
     call particles_reserve(pt, max(pt%n, 1))
     if (allocated(pt%converted)) deallocate(pt%converted)
     allocate(pt%converted(dom%n_elems))
+    if (.not. allocated(pt%counts)) allocate(pt%counts(0:comms_size()-1), pt%send(1024))
     do e = 1, dom%n_elems
       pt%converted(e) = dom%el_state(e) == el_eroded .and. dom%mat(dom%el_mat(e))%eroded == eroded_particles
     end do
@@ -78,9 +79,9 @@ contains
     integer, intent(out) :: n_new
     real(rk), intent(out) :: dt_nodes
     integer :: i, e, a, nl, q, r, k, n, first, rec
-    integer, allocatable :: counts(:), perm(:)
+    integer, allocatable :: perm(:)
     integer(i8), allocatable :: keys(:)
-    real(rk), allocatable :: send(:), recv(:)
+    real(rk), allocatable :: recv(:)
     real(rk) :: m_a(4), x_a(3,4), v_a(3,4), heat
     rec = rec_head + rec_corner*dom%corners
     n_new = 0
@@ -92,27 +93,31 @@ contains
       if (dom%el_state(e) == el_eroded .and. .not. pt%converted(e) .and. &
           dom%mat(dom%el_mat(e))%eroded == eroded_particles) nl = nl + 1
     end do
-    allocate(counts(0:comms_size()-1), send(rec*nl))
+    ! (the records' buffer grows when needed: no allocation in a cycle without conversions)
+    if (size(pt%send) < rec*nl) then
+      deallocate(pt%send)
+      allocate(pt%send(2*rec*nl))
+    end if
     nl = 0
     do i = 1, size(dom%el_owned_list)
       e = dom%el_owned_list(i)
       if (.not. (dom%el_state(e) == el_eroded .and. .not. pt%converted(e) .and. &
           dom%mat(dom%el_mat(e))%eroded == eroded_particles)) cycle
-      send(nl+1:nl+rec_head) = [real(dom%el_gidx(e), rk), real(dom%el_mat(e), rk), real(dom%el_part(e), rk), &
+      pt%send(nl+1:nl+rec_head) = [real(dom%el_gidx(e), rk), real(dom%el_mat(e), rk), real(dom%el_part(e), rk), &
                                 dom%el_e(e), dom%el_temp(e), dom%el_eps_p(e), dom%el_j(e)]
       do a = 1, dom%corners
         n = dom%el_conn(e,a)
         r = nl + rec_head + rec_corner*(a-1)
-        send(r+1:r+rec_corner) = [real(dom%nd_gidx(n), rk), dom%corner_share*dom%el_mass(e), dom%nd_x(:,n), dom%nd_v(:,n)]
+        pt%send(r+1:r+rec_corner) = [real(dom%nd_gidx(n), rk), dom%corner_share*dom%el_mass(e), dom%nd_x(:,n), dom%nd_v(:,n)]
       end do
       nl = nl + rec
     end do
-    call comms_allgather_count(nl, counts)
-    if (sum(counts) == 0) return
-    allocate(recv(sum(counts)))
-    call comms_allgatherv_real(send, counts, recv)
+    call comms_allgather_count(nl, pt%counts)
+    if (sum(pt%counts) == 0) return
+    allocate(recv(sum(pt%counts)))
+    call comms_allgatherv_real(pt%send(1:nl), pt%counts, recv)
     ! every rank makes them in ascending element id
-    n_new = sum(counts)/rec
+    n_new = sum(pt%counts)/rec
     allocate(keys(n_new), perm(n_new))
     do k = 1, n_new
       keys(k) = nint(recv(rec*(k-1)+1), i8)

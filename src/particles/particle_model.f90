@@ -23,6 +23,8 @@ module udar_particle_model
     integer, allocatable :: mat(:), part(:)      !< material and part of the element it was
     integer, allocatable :: elem(:)       !< global element index (1-based) it was
     logical, allocatable :: converted(:)  !< (local elements) already made a particle
+    integer, allocatable :: counts(:)     !< (0:ranks-1) work: reals of conversion records from each rank
+    real(rk), allocatable :: send(:)      !< work: this rank's conversion records (grown when needed)
     real(rk) :: heat = 0                  !< J, kinetic energy of the corners' relative motion made heat at conversion
     real(rk) :: dt_stable = huge(1.0_rk)  !< s, the particles' stable step after their last step
     ! work arrays of a step
