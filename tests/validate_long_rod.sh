@@ -62,7 +62,7 @@ for run in "${runs[@]}"; do
   echo "$v,$mm,${form:-stabilised},$tets,$cyc,$wall,$depth,$pl,${ref[$v]},$diff,$err" | tee -a $csv
 done
 # section of the 2 km/s run on the deck's mesh at 30 us, by part and by plastic strain
-if [ $dim = 3d ] && [ "$mm" = 1 ] && last=$(printf '%s\n' "${runs[@]}" | grep '^v2000'); then
+if [ $dim = 3d ] && [ "$mm" = 1 ] && [ -z "${ERODED:-}" ] && last=$(printf '%s\n' "${runs[@]}" | grep '^v2000'); then
   $PYTHON postproc/section.py "$W/$last/$last.h5" --plane y=0 --color part --time 30 -o doc/validation/long_rod_2000_30us_parts.png
   $PYTHON postproc/section.py "$W/$last/$last.h5" --plane y=0 --color plastic_strain --time 30 -o doc/validation/long_rod_2000_30us_eps.png
 fi
