@@ -17,7 +17,9 @@ along -y), and every "z" below is y, every distance from the axis |x|. At each s
 * deepest crater point anywhere: minus the lowest centroid of the upward-facing boundary
   faces of the target material still there (the crater floor); crater diameter: twice
   the smallest distance from the z axis of those faces within --radius of the impact
-  face's level (the hole's rim, for an impact on the axis).
+  face's level (the hole's rim, for an impact on the axis);
+* with particles (&material eroded = 'particles'), at the end of each row: the number and
+  mass of the rod's particles and of the target's, and the lowest z of the rod's particles.
 
     /usr/bin/python3 postproc/penetration.py out/long_rod.h5 --rod rod --target block --radius 1.25e-3
     /usr/bin/python3 postproc/penetration.py out/long_rod_2d.h5 --radius 1.25e-3     (2D: axis y)
@@ -72,7 +74,10 @@ def upward_boundary(x, conn, elements, up_axis=2):
 def measure(ff, rod, target, radius, axis=(0.0, 0.0, -1.0)):
     """Per step: time (s), crater depth (m), residual rod length (m), rod velocity (m/s),
     rod tip z (m), eroded rod and target elements, intact rod length (m), deepest crater
-    point anywhere (m), crater diameter (m)."""
+    point anywhere (m), crater diameter (m); when the file has particles also the rod's and
+    the target's particles (rod_particles, target_particles), their mass (rod_particle_mass,
+    target_particle_mass, kg) and the lowest z of the rod's particles (rod_particle_tip, m;
+    nan without any)."""
     conn = ff.connectivity
     planar = conn.shape[1] == 3          # a 2D file: the axis is y, the radius x
     k = 1 if planar else 2               # the coordinate along the axis
@@ -82,8 +87,10 @@ def measure(ff, rod, target, radius, axis=(0.0, 0.0, -1.0)):
 
     def off_axis(p):
         return np.abs(p[..., 0]) if planar else np.hypot(p[..., 0], p[..., 1])
-    rod_el = ff.part_id == part_id(ff, rod)
-    tgt_el = ff.part_id == part_id(ff, target)
+    rod_pid, tgt_pid = part_id(ff, rod), part_id(ff, target)
+    rod_el = ff.part_id == rod_pid
+    tgt_el = ff.part_id == tgt_pid
+    with_particles = ff.has_particles
     rows = []
     for i in range(ff.n_steps):
         st = ff.step(i)
@@ -122,7 +129,43 @@ def measure(ff, rod, target, radius, axis=(0.0, 0.0, -1.0)):
                          rod_eroded=int(np.count_nonzero(rod_el & ~alive)),
                          target_eroded=int(np.count_nonzero(tgt_el & ~alive)),
                          rod_intact_length=intact_length, crater_deepest=deepest, crater_diameter=diameter))
+        if with_particles:
+            pt = st.particles
+            if pt is not None and pt.count:
+                pp, mass, z = pt["part_id"], pt["mass"], pt.coordinates[:, k]
+            else:  # a step without any (yet)
+                pp, mass, z = np.zeros(0, int), np.zeros(0), np.zeros(0)
+            rod_p, tgt_p = pp == rod_pid, pp == tgt_pid
+            rows[-1].update(rod_particles=int(np.count_nonzero(rod_p)),
+                            rod_particle_mass=float(mass[rod_p].sum()),
+                            target_particles=int(np.count_nonzero(tgt_p)),
+                            target_particle_mass=float(mass[tgt_p].sum()),
+                            rod_particle_tip=float(z[rod_p].min()) if rod_p.any() else float("nan"))
     return rows
+
+
+def _stack_file(path, particles=None):
+    """The 3D self-test file: a stack of single tets along z, target in [-4, 0] (part 2
+    'block'), rod in [0, 4] (part 1 'rod'); at the second step the top two target tets and
+    the rod's two lowest are eroded. ``particles``: the two steps' particles groups."""
+    xs, conn = [], []
+    for k in range(8):
+        z0 = -4.0 + k
+        base = len(xs)
+        # base on top (an upward-facing face at z0 + 1), apex below
+        xs += [[0, 0, z0 + 1], [0.1, 0, z0 + 1], [0, 0.1, z0 + 1], [0, 0, z0]]
+        conn.append([base, base + 1, base + 2, base + 3])
+    x0 = np.array(xs, float)
+    part = np.array([2] * 4 + [1] * 4, dtype=np.int32)
+    deck = "&part group = 'rod', material = 'w' /\n&part group = 'block', material = 's' /\n"
+    v = np.tile([0.0, 0.0, -5.0], (len(x0), 1))
+    state2 = np.array([0, 0, 2, 2, 2, 2, 0, 0], float)
+    steps = [dict(time=0.0, cycle=0, coordinates=x0, fields=dict(velocity=0 * v, fracture_state=np.zeros(8))),
+             dict(time=1.0, cycle=9, coordinates=x0, fields=dict(velocity=v, fracture_state=state2))]
+    if particles is not None:
+        for st, pts in zip(steps, particles):
+            st["particles"] = pts
+    ur.write_fields(path, x0, conn, steps, part_id=part, deck=deck)
 
 
 def self_test():
@@ -131,24 +174,7 @@ def self_test():
     ok = True
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "t.h5")
-        # a stack of single tets along z: target in [-4, 0] (part 2), rod in [0, 4] (part 1)
-        xs, conn = [], []
-        for k in range(8):
-            z0 = -4.0 + k
-            base = len(xs)
-            # base on top (an upward-facing face at z0 + 1), apex below
-            xs += [[0, 0, z0 + 1], [0.1, 0, z0 + 1], [0, 0.1, z0 + 1], [0, 0, z0]]
-            conn.append([base, base + 1, base + 2, base + 3])
-        x0 = np.array(xs, float)
-        part = np.array([2] * 4 + [1] * 4, dtype=np.int32)
-        deck = "&part group = 'rod', material = 'w' /\n&part group = 'block', material = 's' /\n"
-        v = np.tile([0.0, 0.0, -5.0], (len(x0), 1))
-        # second step: the top two target tets and the rod's two lowest eroded
-        state2 = np.array([0, 0, 2, 2, 2, 2, 0, 0], float)
-        ur.write_fields(path, x0, conn, [
-            dict(time=0.0, cycle=0, coordinates=x0, fields=dict(velocity=0 * v, fracture_state=np.zeros(8))),
-            dict(time=1.0, cycle=9, coordinates=x0, fields=dict(velocity=v, fracture_state=state2))],
-            part_id=part, deck=deck)
+        _stack_file(path)
         ff = ur.open_fields(path)
         rows = measure(ff, "rod", "block", 0.5)
         ff.close()
@@ -169,8 +195,56 @@ def self_test():
                  r["crater_deepest"], deepest, r["crater_diameter"], diam))
         ok &= good
     ok &= self_test_2d()
+    ok &= self_test_particles(rows)
     print("penetration self-test: %s" % ("PASS" if ok else "FAIL"))
     return ok
+
+
+def self_test_particles(rows_without):
+    """The 3D stack with a particles group: none at the first step; at the second the four
+    eroded tets' particles (rod: 2 and 3 g at z = -0.5 and -2.5; target: 1 and 0.5 g at
+    z = -3.2 and -1; one of a third part, not counted). ``rows_without``: the rows of the
+    same file without particles, whose columns must not change."""
+    test = ur.SelfTest("penetration")
+    pts = {"coordinates": [[0, 0, -0.5], [0, 0, -2.5], [0, 0, -3.2], [0, 0, -1.0], [0, 0, -9.0]],
+           "velocity": np.zeros((5, 3)), "mass": [3e-3, 2e-3, 1e-3, 0.5e-3, 7e-3],
+           "density": np.full(5, 7800.0), "part_id": [1, 1, 2, 2, 3], "element": [5, 4, 3, 2, 0]}
+    with tempfile.TemporaryDirectory() as d:
+        path, plain = os.path.join(d, "p.h5"), os.path.join(d, "plain.h5")
+        _stack_file(path, [{}, pts])
+        _stack_file(plain)
+        with ur.open_fields(path) as ff:
+            rows = measure(ff, "rod", "block", 0.5)
+        new = ("rod_particles", "rod_particle_mass", "target_particles", "target_particle_mass",
+               "rod_particle_tip")
+        same = all(set(r) - set(new) == set(r0) and all(
+            r[key] == r0[key] or (np.isnan(r[key]) and np.isnan(r0[key])) for key in r0)
+            for r, r0 in zip(rows, rows_without))
+        test.check(same and all(key not in r0 for r0 in rows_without for key in new),
+                   "particles: the other columns as without them; no particle keys without them")
+        r0, r1 = rows
+        test.check((r0["rod_particles"], r0["target_particles"], r0["rod_particle_mass"],
+                    r0["target_particle_mass"]) == (0, 0, 0.0, 0.0) and np.isnan(r0["rod_particle_tip"]),
+                   "t = 0: particles group with count 0: 0, 0 kg, tip nan")
+        test.check(r1["rod_particles"] == 2 and r1["target_particles"] == 2
+                   and abs(r1["rod_particle_mass"] - 5e-3) < 1e-15
+                   and abs(r1["target_particle_mass"] - 1.5e-3) < 1e-15 and r1["rod_particle_tip"] == -2.5,
+                   "t = 1: rod 2 particles %g kg (5e-3), target 2 %g kg (1.5e-3), rod particle tip %g (-2.5)"
+                   % (r1["rod_particle_mass"], r1["target_particle_mass"], r1["rod_particle_tip"]))
+        rc, out, _ = test.run_main(main, [path, "--radius", "0.5", "--length", "4"])
+        lines = out.splitlines()
+        head, last = lines[0].split(), lines[-1].split()
+        test.check(rc == 0 and head[10:] == ["P/L", "rod_ptcl", "rod_ptcl_g", "tgt_ptcl", "tgt_ptcl_g",
+                                             "ptcl_tip_mm"]
+                   and last[1] == "2000.000" and last[10] == "0.500"
+                   and last[11:] == ["2", "5.00000", "2", "1.50000", "-2500.000"]
+                   and lines[1].split()[11:] == ["0", "0.00000", "0", "0.00000", "nan"],
+                   "CLI: particle columns after P/L, column 2 still the crater: %s" % " ".join(last))
+        rc, out, _ = test.run_main(main, [plain, "--radius", "0.5"])
+        test.check(rc == 0 and len(out.splitlines()[0].split()) == 10 and len(out.splitlines()[-1].split()) == 10
+                   and out.splitlines()[-1].split()[1] == "2000.000",
+                   "CLI without particles: the 10 columns only")
+    return not test.failures
 
 
 def self_test_2d():
@@ -234,14 +308,22 @@ def main(argv=None):
         ap.error("give a field file or --self-test")
     ff = ur.open_fields(a.h5)
     rows = measure(ff, a.rod, a.target, a.radius, a.axis)
-    print("%10s %12s %14s %14s %12s %10s %10s %10s %12s %12s%s"
+    ff.close()
+    # the particle columns come last (after P/L): the others keep their positions
+    particles = bool(rows) and "rod_particles" in rows[0]
+    print("%10s %12s %14s %14s %12s %10s %10s %10s %12s %12s%s%s"
           % ("t_us", "crater_mm", "rod_length_mm", "rod_vz_m_s", "rod_tip_mm", "rod_ero", "tgt_ero",
-             "intact_mm", "deepest_mm", "crater_d_mm", "  P/L" if a.length else ""))
+             "intact_mm", "deepest_mm", "crater_d_mm", "  P/L" if a.length else "",
+             " %9s %11s %9s %11s %12s" % ("rod_ptcl", "rod_ptcl_g", "tgt_ptcl", "tgt_ptcl_g",
+                                          "ptcl_tip_mm") if particles else ""))
     for r in rows:
-        print("%10.3f %12.3f %14.3f %14.1f %12.3f %10d %10d %10.3f %12.3f %12.3f%s"
+        print("%10.3f %12.3f %14.3f %14.1f %12.3f %10d %10d %10.3f %12.3f %12.3f%s%s"
               % (r["time"] * 1e6, r["depth"] * 1e3, r["rod_length"] * 1e3, r["rod_velocity"], r["rod_tip"] * 1e3,
                  r["rod_eroded"], r["target_eroded"], r["rod_intact_length"] * 1e3, r["crater_deepest"] * 1e3,
-                 r["crater_diameter"] * 1e3, "  %.3f" % (r["depth"] / a.length) if a.length else ""))
+                 r["crater_diameter"] * 1e3, "  %.3f" % (r["depth"] / a.length) if a.length else "",
+                 " %9d %11.5f %9d %11.5f %12.3f" % (
+                     r["rod_particles"], r["rod_particle_mass"] * 1e3, r["target_particles"],
+                     r["target_particle_mass"] * 1e3, r["rod_particle_tip"] * 1e3) if particles else ""))
     return 0
 
 

@@ -6,7 +6,9 @@ Every tetrahedron of the chosen step's deformed mesh is intersected with the pla
 coordinates (mm) with a matplotlib PolyCollection. A 2D file (axisymmetric or plane strain:
 triangles in z = 0) is its own section: its triangles are drawn as they are (the plane
 options do not apply), and ``--mirror`` reflects them about the axis x = 0 to show the
-whole diameter of an axisymmetric body.
+whole diameter of an axisymmetric body. When the step has particles (``&material eroded =
+'particles'``), those within a slab about the plane are drawn over the section as small
+markers, coloured as the elements (``--particle-slab``, ``--no-particles``).
 
     /usr/bin/python3 postproc/section.py out/taylor.h5 --plane y=0 --color von_mises -o vm.png
     /usr/bin/python3 postproc/section.py out/taylor.h5 --step 0 --color part --mirror -o parts.png
@@ -14,7 +16,7 @@ whole diameter of an axisymmetric body.
     /usr/bin/python3 postproc/section.py --self-test
 
 Library use: ``plane_from_spec``, ``plane_from_normal``, ``cut_tets``, ``polygon_areas``,
-``render_section``.
+``particles_in_slab``, ``render_section``.
 """
 
 import os
@@ -242,17 +244,51 @@ def element_values(step, name, connectivity):
 
 
 # --------------------------------------------------------------------------------------
+# particles
+# --------------------------------------------------------------------------------------
+
+def particles_in_slab(xyz, plane, half_width):
+    """Mask of the points ``xyz`` (n, 3) whose distance from ``plane`` is at most
+    ``half_width`` (m): the particles drawn on the section."""
+    xyz = np.asarray(xyz, dtype=np.float64).reshape(-1, 3)
+    return np.abs(plane.signed_distance(xyz)) <= half_width
+
+
+def particle_values(particles, color):
+    """Values of the particles (``udar_results.Particles``) for the colouring ``color`` ->
+    (values (count,) or None when the particles have no such field, label): the part for
+    'part', a stored particle field as is (a vector as its magnitude)."""
+    if color == "part":
+        return (np.asarray(particles["part_id"]) if "part_id" in particles else None), "part"
+    if color not in particles or color in ("coordinates", "element"):
+        return None, color
+    a = np.asarray(particles[color], dtype=np.float64)
+    if a.ndim > 1:
+        return np.linalg.norm(a.reshape(a.shape[0], -1), axis=1), "|%s|" % color
+    return a, color
+
+
+# --------------------------------------------------------------------------------------
 # drawing
 # --------------------------------------------------------------------------------------
 
 def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cmap=None,
                    vmin=None, vmax=None, part_names=None, edges=False, undeformed=False,
                    xlim=None, ylim=None, title=None, size=None, dpi=150, time_us=None,
-                   verbose=True):
+                   verbose=True, particles=True, particle_slab=None):
     """Draw the section of field file ``path`` into image ``out``. Returns a dict with the
-    numbers of cut tets, total cut area (m²), step index and time."""
+    numbers of cut tets, total cut area (m²), step index and time, and, when the step has
+    particles, ``particles`` (how many lie in the slab), ``particles_total``,
+    ``particle_slab_m`` and ``particles_xy_mm`` (the markers' picture coordinates, mirrored
+    copies included).
+
+    ``particles``: draw the step's particles lying within ``particle_slab`` (m; default half
+    the median particle spacing ``udar_results.particle_spacing``) of the plane, coloured as
+    the elements where the particles have the field ``color`` (else in a neutral grey).
+    They are not drawn with ``undeformed``."""
     plt = ur.agg_pyplot()
     from matplotlib.collections import PolyCollection
+    from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
     plane = plane or plane_from_spec("y=0")
@@ -289,6 +325,20 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
         else:
             allvals, label = element_values(st, color, conn)
             values = allvals[elem]
+        # particles within the slab: 2-D positions (m), colour values, how many of how many
+        pt = st.particles if particles and not undeformed else None
+        p2d, pvals, p_total, slab = np.zeros((0, 2)), None, 0, None
+        if pt is not None and pt.count:
+            slab = particle_slab if particle_slab is not None else 0.5 * ur.particle_spacing(pt)
+            if not np.isfinite(slab) or slab < 0.0:
+                raise SectionError("%s: cannot estimate the particle spacing from mass/density at "
+                                   "step %d; give --particle-slab (m) or --no-particles" % (path, idx))
+            p_total = pt.count
+            sel = particles_in_slab(pt.coordinates, plane, slab)
+            p2d = plane.to2d(pt.coordinates[sel])
+            pvals, _ = particle_values(pt, color)
+            if pvals is not None:
+                pvals = pvals[sel]
         fname = os.path.basename(path)
         ftitle = f.title
         step_time, step_cycle = st.time, st.cycle
@@ -307,8 +357,16 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
         poly_mm = np.concatenate(copies)
         values = np.concatenate([values] * len(copies))
         mirror_lines = list(mirror)
+    p_mm = p2d * 1e3
+    n_drawn = len(p_mm)
+    if mirror and slab is not None:
+        p_mm = np.concatenate([p_mm] + [p_mm * np.array([sx, sy]) for sx, sy in flips])
+        if pvals is not None:
+            pvals = np.concatenate([pvals] * (len(flips) + 1))
 
     lo2, hi2 = poly_mm.reshape(-1, 2).min(axis=0), poly_mm.reshape(-1, 2).max(axis=0)
+    if len(p_mm):  # the view holds the particles drawn too
+        lo2, hi2 = np.minimum(lo2, p_mm.min(axis=0)), np.maximum(hi2, p_mm.max(axis=0))
     if xlim:
         lo2[0], hi2[0] = min(xlim), max(xlim)
     if ylim:
@@ -325,8 +383,20 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
         size = (w_ax + 2.6, h_ax + 1.4)
     fig, ax = plt.subplots(figsize=size, constrained_layout=True)
     lw = 0.3 if edges else 0.6
+    p_kw = dict(s=9.0, marker="o", edgecolors="0.1", linewidths=0.3, zorder=3)
+    p_neutral = "0.6"
+    p_handle = None
+    if slab is not None:
+        p_label = "particles within %.3g mm of the plane: %s" % (
+            slab * 1e3, "%d of %d" % (n_drawn, p_total) if n_drawn else "none of %d" % p_total)
+        grey = pvals is None
+        if grey:
+            p_label += " (no %s: grey)" % color
+        p_handle = Line2D([], [], ls="none", marker="o", markersize=4,
+                          markerfacecolor=p_neutral if grey else "w",
+                          markeredgecolor="0.1", markeredgewidth=0.5, label=p_label)
     if color == "part":
-        pids = np.unique(values)
+        pids = np.unique(values) if pvals is None else np.union1d(values, pvals)
         cmap_name = "tab10" if len(pids) <= 10 else "tab20"
         palette = plt.get_cmap(cmap_name).colors
         lookup = {p: palette[i % len(palette)] for i, p in enumerate(pids)}
@@ -341,6 +411,11 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
                     names[p] = part_names[i]
         handles = [Patch(facecolor=lookup[p], edgecolor="0.2",
                          label=names.get(p, "part %d" % p)) for p in pids]
+        if len(p_mm):
+            ax.scatter(p_mm[:, 0], p_mm[:, 1], **p_kw, c=p_neutral if pvals is None else
+                       np.array([lookup[p] for p in pids])[np.searchsorted(pids, pvals)])
+        if p_handle is not None:
+            handles.append(p_handle)
         ax.legend(handles=handles, loc="best", fontsize="small", framealpha=0.8)
     else:
         import matplotlib.colors as mcolors
@@ -357,6 +432,14 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
         ax.add_collection(pc)
         cb = fig.colorbar(pc, ax=ax, shrink=0.9)
         cb.set_label("%s (%s)" % (label, dunit) if dunit else label)
+        if len(p_mm):  # on the elements' colour scale (beyond it: its end colours)
+            if pvals is None:
+                ax.scatter(p_mm[:, 0], p_mm[:, 1], c=p_neutral, **p_kw)
+            else:
+                ax.scatter(p_mm[:, 0], p_mm[:, 1], c=pvals * scale, cmap=cm, norm=norm,
+                           plotnonfinite=True, **p_kw)
+        if p_handle is not None:
+            ax.legend(handles=[p_handle], loc="best", fontsize="small", framealpha=0.8)
 
     for m in mirror_lines:
         if m == "h":
@@ -378,11 +461,17 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
     info = {"file": path, "out": out, "step": idx, "cycle": step_cycle, "time_s": step_time,
             "cut_tets": int(elem.size), "area_m2": area, "seconds_cut": t_cut,
             "seconds_total": _time.perf_counter() - t0}
+    if slab is not None:
+        info.update(particles=n_drawn, particles_total=p_total, particle_slab_m=slab,
+                    particles_xy_mm=p_mm)
     if verbose:
-        print("%s: step %d (t = %.4f us), plane %s: %d %s, section area %.6g mm^2, "
+        print("%s: step %d (t = %.4f us), plane %s: %d %s, section area %.6g mm^2, %s"
               "wrote %s (%.2f s)" % (path, idx, step_time * 1e6, plane.description, elem.size,
                                      "triangles drawn" if poly.shape[0] and planar else "tets cut",
-                                     area * 1e6, out, info["seconds_total"]))
+                                     area * 1e6, "" if slab is None else
+                                     "%d of %d particles within %.3g mm of the plane, " % (
+                                         n_drawn, p_total, slab * 1e3),
+                                     out, info["seconds_total"]))
     return info
 
 
@@ -481,6 +570,76 @@ def _self_test(verbose=True):
                     h5, out2, color="nosuchfield", verbose=False, contains="pressure")
         test.raises(SectionError, "plane missing the mesh rejected", render_section, h5, out2,
                     plane=plane_from_spec("z=1"), verbose=False, contains="does not cut")
+        info = render_section(h5, out1, color="part", verbose=False)
+        check("particles" not in info, "file without particles: no particle keys in the result")
+
+        # particles (step 1): distances from the plane y = 0 of -2h .. 2h, h = the slab
+        h = 0.25e-3
+        py = np.array([0.0, 0.5, -0.5, 1.0, -1.0, 1.0001, -1.0001, 2.0]) * h
+        n = len(py)
+        pxyz = np.column_stack([np.linspace(1e-3, 3e-3, n), py, np.linspace(2e-3, 20e-3, n)])
+        in_slab = np.abs(py) <= h
+        pts = {"coordinates": pxyz, "velocity": np.tile([3.0, 4.0, 0.0], (n, 1)),
+               # (mass/density)^(1/3) = 0.4, 0.5 (x6), 0.6 mm: median 0.5 mm, half of it h
+               "mass": 7800.0 * np.array([0.4] + [0.5] * (n - 2) + [0.6]) ** 3 * 1e-9,
+               "density": np.full(n, 7800.0), "pressure": np.linspace(0.0, 2e9, n),
+               "specific_internal_energy": np.ones(n), "temperature": np.full(n, 300.0),
+               "plastic_strain": np.full(n, 1.5), "part_id": np.array([1, 2, 3, 1, 2, 1, 2, 1]),
+               "element": np.arange(n)}
+        psteps = [dict(steps[0], particles={}), dict(steps[1], particles=pts)]
+        psteps[1]["fields"] = dict(steps[1]["fields"], von_mises=np.full(len(conn), 1e8))
+        h5p = os.path.join(tmp, "cyl_particles.h5")
+        ur.write_fields(h5p, nodes, conn, psteps, part_id=pid, title="quarter cylinder")
+        pl = plane_from_spec("y=0")
+        check(np.array_equal(particles_in_slab(pxyz, pl, h), in_slab),
+              "particles_in_slab: |distance| <= h, both sides, h itself included (5 of 8)")
+        oblique = plane_from_normal((1, 1, 0), (0, 0, 0))
+        q = np.array([[1, 1, 0], [1, 1, 7], [-1, 1, 0], [2, 0, 0], [0, -2, 5]]) * 0.5e-3
+        # distances (x + y)/sqrt(2): 0.707, 0.707, 0, 0.707, -0.707 mm
+        check(particles_in_slab(q, oblique, 0.75e-3).tolist() == [True] * 5
+              and particles_in_slab(q, oblique, 0.7e-3).tolist() == [False, False, True, False, False],
+              "particles_in_slab: oblique plane")
+        info0 = render_section(h5p, out1, step=0, color="part", verbose=False)
+        check("particles" not in info0, "particles group with count 0: nothing drawn, no legend entry")
+        info = render_section(h5p, out1, step=1, color="part", verbose=False)
+        check(abs(info["particle_slab_m"] - h) < 1e-15 and info["particles"] == 5
+              and info["particles_total"] == n,
+              "default slab half the median spacing: %.6g mm (%.6g), %d of %d particles drawn (5)"
+              % (info["particle_slab_m"] * 1e3, h * 1e3, info["particles"], n))
+        check(np.allclose(info["particles_xy_mm"], pxyz[in_slab][:, [0, 2]] * 1e3, rtol=0, atol=1e-12),
+              "particle markers at their (x, z) in mm")
+        info = render_section(h5p, out1, step=1, color="pressure", mirror="h",
+                              particle_slab=1.5 * h, verbose=False)
+        sel = np.abs(py) <= 1.5 * h
+        xz = pxyz[sel][:, [0, 2]] * 1e3
+        check(info["particles"] == 7 and np.allclose(info["particles_xy_mm"],
+                                                     np.concatenate([xz, xz * [-1, 1]]), atol=1e-12),
+              "particle_slab 1.5 h: 7 particles, mirrored with the mesh (14 markers)")
+        pv = ur.open_fields(h5p)
+        try:
+            ppt = pv.step(1).particles
+            check(particle_values(ppt, "part")[0].tolist() == [1, 2, 3, 1, 2, 1, 2, 1]
+                  and np.allclose(particle_values(ppt, "velocity")[0], 5.0)
+                  and particle_values(ppt, "von_mises")[0] is None
+                  and np.array_equal(particle_values(ppt, "pressure")[0], pts["pressure"]),
+                  "particle_values: part, |velocity|, pressure as stored, none for von_mises")
+        finally:
+            pv.close()
+        render_section(h5p, out2, step=1, plane=plane_from_spec("z=10mm"), color="velocity",
+                       particle_slab=2e-3, verbose=False)
+        check(os.path.getsize(out2) > 1000, "render by a node field with particles (|velocity|)")
+        info = render_section(h5p, out1, step=1, particles=False, verbose=False)
+        check("particles" not in info, "particles=False: not drawn")
+        rc, out, _ = test.run_main(main, [h5p, "--color", "von_mises", "--mirror", "-o", out2])
+        check(rc == 0 and "5 of 8 particles within 0.25 mm of the plane" in out,
+              "CLI: an element field the particles lack (von_mises): particles in grey")
+        rc, out, _ = test.run_main(main, [h5p, "--color", "part", "--particle-slab", "1e-3", "-o", out2])
+        check(rc == 0 and "8 of 8 particles within 1 mm of the plane" in out,
+              "CLI: --particle-slab 1e-3 draws all 8")
+        rc, out, _ = test.run_main(main, [h5p, "--no-particles", "-o", out2])
+        check(rc == 0 and "particles within" not in out, "CLI: --no-particles")
+        test.raises(SystemExit, "CLI: --particle-slab -1 is a usage error", test.run_main, main,
+                    [h5p, "--particle-slab", "-1", "-o", out2], contains="2")
         # a 2D file: its triangles are the section, --mirror shows the whole diameter
         nodes, conn = ur.rectangle_tris(4, 10, (0.0, 0.0), (R, L))
         h5 = os.path.join(tmp, "axisymmetric.h5")
@@ -509,12 +668,16 @@ def build_parser():
   /usr/bin/python3 postproc/section.py out/taylor.h5 --plane z=1.5mm --color pressure --mirror-axis hv -o p.png
   /usr/bin/python3 postproc/section.py out/taylor.h5 --normal 1 -1 0 --point 0 0 0 --color von_mises -o vm.png
   /usr/bin/python3 postproc/section.py out/taylor.h5 --info
+  /usr/bin/python3 postproc/section.py out/penetration.h5 --color pressure --particle-slab 0.5e-3 -o p.png
   /usr/bin/python3 postproc/section.py --self-test
 
 Plane values are in metres (suffix 'mm' for millimetres). For an axis plane the picture
 axes are the global coordinates: x=c -> (y, z), y=c -> (x, z), z=c -> (x, y).
 Element fields are drawn as stored; vector fields as their magnitude; node fields
-(e.g. velocity) as the average of the tet's 4 nodes.""")
+(e.g. velocity) as the average of the tet's 4 nodes. The particles of a run with
+&material eroded = 'particles' within --particle-slab of the plane are drawn as small
+markers, coloured like the elements when they have the field (part, pressure, density,
+temperature, plastic_strain, velocity, ...), else grey.""")
     p.add_argument("-o", "--output", metavar="OUT.png",
                    help="output image (png/pdf/svg by extension); default <case>_section.png")
     g = ur.add_fields_argument(p)
@@ -544,6 +707,11 @@ Element fields are drawn as stored; vector fields as their magnitude; node field
                    help="legend names for the parts, in increasing part_id order (default: the "
                         "group names of the deck's &part entries, else 'part <id>')")
     p.add_argument("--edges", action="store_true", help="draw the cut tets' outlines")
+    p.add_argument("--particle-slab", type=float, metavar="H",
+                   help="draw the particles within H metres of the plane (default: half the "
+                        "median particle spacing (mass/density)^(1/3))")
+    p.add_argument("--no-particles", action="store_true",
+                   help="do not draw the particles (eroded = 'particles' runs)")
     p.add_argument("--undeformed", action="store_true",
                    help="cut the initial mesh /mesh/x0 instead of the step's coordinates")
     p.add_argument("--xlim", type=float, nargs=2, metavar=("MIN", "MAX"), help="horizontal range, mm")
@@ -572,6 +740,8 @@ def _run(args, p):
         plane = plane_from_normal(args.normal, args.point or (0.0, 0.0, 0.0))
     else:
         plane = plane_from_spec(args.plane or "y=0")
+    if args.particle_slab is not None and not args.particle_slab >= 0.0:
+        p.error("--particle-slab must be a length >= 0 (m)")
     if args.cmap:
         import matplotlib
         if args.cmap not in matplotlib.colormaps:
@@ -584,7 +754,8 @@ def _run(args, p):
                    part_names=args.part_names, edges=args.edges, undeformed=args.undeformed,
                    xlim=args.xlim, ylim=args.ylim, title=args.title,
                    size=tuple(args.size) if args.size else None,
-                   dpi=args.dpi, time_us=args.time)
+                   dpi=args.dpi, time_us=args.time, particles=not args.no_particles,
+                   particle_slab=args.particle_slab)
 
 
 if __name__ == "__main__":

@@ -10,6 +10,9 @@ Library use (from another script in postproc/, or with postproc/ on sys.path)::
         last = f.step(-1)                      # negative indices count from the end
         xyz = last.coordinates                 # (n_nodes, 3) float64, read on first use
         p = last.fields["pressure"]            # (n_elems,), read on first use
+        pt = last.particles                    # None without a particles group, else Particles
+        if pt is not None and pt.count:        # read on first use: count, coordinates (count, 3),
+            m = pt["mass"]                     # velocity, mass, density, pressure, part_id, ...
         for info in f.steps:                   # StepInfo(index, name, time, cycle)
             print(info.index, info.cycle, info.time)
 
@@ -30,6 +33,10 @@ Field file layout (written by the solver; SI units throughout):
 * ``/steps/000000``, ``/steps/000001``, ... with attributes ``time`` (s) and ``cycle``;
   dataset ``coordinates`` (n_nodes, 3) and field datasets: node vectors such as ``velocity``
   (n_nodes, 3), element scalars (n_elems) such as ``pressure``; ``/steps`` has attribute ``count``.
+* with ``&material eroded = 'particles'``, a group ``/steps/NNNNNN/particles`` with attribute
+  ``count`` and (count > 0) ``coordinates``, ``velocity`` (count, 3) and 1-D ``mass``,
+  ``density``, ``pressure``, ``specific_internal_energy``, ``temperature``, ``plastic_strain``,
+  ``part_id``, ``element`` (read by ``Step.particles``; they are not among ``Step.fields``).
 
 The full contract is doc/output-format.md: ``/steps@count`` is authoritative (groups numbered
 >= count are uncommitted and ignored); the fields may differ from step to step; centring
@@ -71,7 +78,8 @@ except ImportError:  # pragma: no cover - depends on the interpreter
     h5py = None
 
 __all__ = [
-    "UdarFileError", "open_fields", "FieldFile", "Step", "StepInfo", "read_history",
+    "UdarFileError", "open_fields", "FieldFile", "Step", "StepInfo", "Particles",
+    "PARTICLE_FIELDS", "particle_spacing", "read_history",
     "history_parts", "write_fields", "box_tets", "cylinder_tets", "FIELD_UNITS",
     "field_unit", "cli_warnings", "deck_groups", "deck_values", "deck_part_names", "wall_heights", "write_history", "si_scale", "agg_pyplot",
     "save_figure", "cli_parser", "add_fields_argument", "add_self_test", "FIELDS_REQUIRED", "cli_main", "SelfTest",
@@ -317,8 +325,104 @@ class LazyFields(Mapping):
         return [n for n in self._names if self.location(n) == "elem"]
 
 
+#: The datasets of a step's particles group (count > 0), in the order of doc/output-format.md.
+PARTICLE_FIELDS = ("coordinates", "velocity", "mass", "density", "pressure",
+                   "specific_internal_energy", "temperature", "plastic_strain", "part_id", "element")
+_PARTICLE_INTEGERS = ("part_id", "element")     # stored as float64, returned as int64
+_PARTICLE_VECTORS = ("coordinates", "velocity")
+
+
+class Particles(Mapping):
+    """The particles of one step (``Step.particles``): a read-only mapping dataset name ->
+    numpy array, each read on first access, with ``count`` (int) and the properties
+    ``coordinates`` ((count, 3), m) and ``velocity`` ((count, 3), m/s).
+
+    ``part_id`` and ``element`` (stored as float64) come back as int64. With count 0 the
+    group has no datasets; the names of ``PARTICLE_FIELDS`` then give empty arrays ((0, 3)
+    or (0,)), so code written for particles needs no special case.
+    """
+
+    def __init__(self, step, group):
+        self._group = group
+        self._where = "%s: /steps/%s/particles" % (step._file.path, step.name)
+        if "count" in group.attrs:
+            self.count = int(_decode(group.attrs["count"]))
+        elif "coordinates" in group:  # no count attribute (not udar 0.6.0): the rows
+            self.count = int(group["coordinates"].shape[0])
+        else:
+            raise UdarFileError("%s has neither a count attribute nor coordinates" % self._where)
+        if self.count < 0:
+            raise UdarFileError("%s has count %d" % (self._where, self.count))
+        if self.count:
+            self._names = sorted(k for k, v in group.items() if isinstance(v, h5py.Dataset))
+            if "coordinates" not in self._names:
+                raise UdarFileError("%s: count = %d but no coordinates dataset"
+                                    % (self._where, self.count))
+        else:
+            self._names = list(PARTICLE_FIELDS)
+        self._cache = {}
+
+    def __getitem__(self, name):
+        if name in self._cache:
+            return self._cache[name]
+        if name not in self._names:
+            raise KeyError("%s has no dataset %r (available: %s)" % (
+                self._where, name, ", ".join(self._names) or "none"))
+        if self.count == 0:
+            data = np.zeros((0, 3) if name in _PARTICLE_VECTORS else (0,),
+                            dtype=np.int64 if name in _PARTICLE_INTEGERS else np.float64)
+        else:
+            try:
+                data = self._group[name][()]
+            except Exception as err:
+                raise UdarFileError("%s: cannot read %s: %s" % (self._where, name, err)) from None
+            if data.ndim == 2 and data.shape[0] == 3 and data.shape[1] == self.count != 3:
+                warnings.warn("%s/%s stored transposed as %s; using its transpose"
+                              % (self._where, name, data.shape))
+                data = data.T.copy()
+            if data.ndim == 0 or data.shape[0] != self.count:
+                raise UdarFileError("%s/%s has shape %s, expected %d rows (the count attribute)"
+                                    % (self._where, name, data.shape, self.count))
+            if name in _PARTICLE_INTEGERS:
+                data = np.rint(data).astype(np.int64)
+        self._cache[name] = data
+        return data
+
+    def __iter__(self):
+        return iter(self._names)
+
+    def __len__(self):
+        return len(self._names)
+
+    def __repr__(self):
+        return "Particles(count=%d: %s)" % (self.count, ", ".join(self._names))
+
+    @property
+    def coordinates(self):
+        """Particle positions (count, 3) in m."""
+        return self["coordinates"]
+
+    @property
+    def velocity(self):
+        """Particle velocities (count, 3) in m/s."""
+        return self["velocity"]
+
+
+def particle_spacing(particles):
+    """Median of the particles' (mass/density)^(1/3) in m: the spacing they would have
+    packed at their density (about the size of the elements they were); nan when there are
+    no particles with a positive mass and density."""
+    if particles is None or particles.count == 0 or "mass" not in particles \
+            or "density" not in particles:
+        return float("nan")
+    m, rho = np.asarray(particles["mass"]), np.asarray(particles["density"])
+    ok = np.isfinite(m) & np.isfinite(rho) & (m > 0.0) & (rho > 0.0)
+    return float(np.median(np.cbrt(m[ok] / rho[ok]))) if ok.any() else float("nan")
+
+
 class Step:
-    """One output step. ``coordinates`` and ``fields[name]`` are read on first access."""
+    """One output step. ``coordinates``, ``fields[name]`` and ``particles`` are read on first
+    access."""
 
     def __init__(self, fieldfile, info):
         self._file = fieldfile
@@ -328,6 +432,7 @@ class Step:
         self.cycle = info.cycle
         self._group = fieldfile._h5["steps"][info.name]
         self._coords = None
+        self._particles = None
         self.fields = LazyFields(self)
 
     @property
@@ -347,6 +452,18 @@ class Step:
     @property
     def displacement(self):
         return self.coordinates - self._file.x0
+
+    @property
+    def particles(self):
+        """The step's particles (``Particles``: count, coordinates, velocity, mass, ...), or
+        None when the step has no particles group (a run without eroded = 'particles')."""
+        if self._particles is None and "particles" in self._group:
+            g = self._group["particles"]
+            if not isinstance(g, h5py.Group):
+                raise UdarFileError("%s: /steps/%s/particles is not a group"
+                                    % (self._file.path, self.name))
+            self._particles = Particles(self, g)
+        return self._particles
 
     def __repr__(self):
         return "Step(index=%d, name=%r, time=%g, cycle=%d, fields=[%s])" % (
@@ -556,6 +673,12 @@ class FieldFile:
         return np.unique(self.part_id)
 
     @property
+    def has_particles(self):
+        """True when a step of the file has a particles group (the run turns eroded elements
+        into particles), even if none has been made yet."""
+        return any("particles" in self._h5["steps"][s.name] for s in self.steps)
+
+    @property
     def part_names(self):
         """{part_id: name} from the &part groups of the deck attribute (part_id k is the k-th
         &part); {} when the deck does not give a name to every part id in the mesh."""
@@ -585,6 +708,14 @@ class FieldFile:
             for n in st.fields:
                 desc.append("%s %s %s" % (n, st.fields.location(n), st.fields.shape(n)))
             lines.append("  fields (last step): " + ("; ".join(desc) or "none"))
+            pt = st.particles
+            if pt is not None:
+                per_part = ""
+                if pt.count and "mass" in pt and "part_id" in pt:
+                    pids, counts = np.unique(pt["part_id"], return_counts=True)
+                    per_part = ", %.6g kg; per part %s" % (float(np.sum(pt["mass"])), ", ".join(
+                        "%d: %d" % (p, n) for p, n in zip(pids, counts)))
+                lines.append("  particles (last step): %d%s" % (pt.count, per_part))
         return "\n".join(l for l in lines if l)
 
     def close(self):
@@ -833,7 +964,10 @@ def write_fields(path, x0, connectivity, steps, part_id=None, title="synthetic",
     """Write a field file in the udar layout (for tests and examples).
 
     ``steps``: list of dicts with keys ``time``, ``cycle``, ``coordinates`` and optionally
-    ``fields`` (dict name -> array). ``fixed_length_strings`` stores string attributes as
+    ``fields`` (dict name -> array) and ``particles`` (dict name -> array, e.g. coordinates,
+    velocity, mass, density, part_id, element: a particles group whose ``count`` is the rows
+    of ``coordinates``, all datasets float64 as the solver writes them; ``{}`` gives a group
+    with count 0 and no datasets). ``fixed_length_strings`` stores string attributes as
     fixed-length byte strings, as a Fortran writer typically does.
     """
     _need_h5py()
@@ -868,6 +1002,14 @@ def write_fields(path, x0, connectivity, steps, part_id=None, title="synthetic",
             g["coordinates"] = np.asarray(st["coordinates"], dtype=np.float64)
             for name, val in st.get("fields", {}).items():
                 g[name] = np.asarray(val)
+            if st.get("particles") is not None:
+                pg = g.create_group("particles")
+                pts = st["particles"]
+                count = len(pts["coordinates"]) if "coordinates" in pts else 0
+                pg.attrs["count"] = np.int64(count)
+                if count:
+                    for name, val in pts.items():
+                        pg[name] = np.asarray(val, dtype=np.float64)
 
 
 def write_history(path, columns, names=None):
@@ -1096,6 +1238,55 @@ def _self_test(verbose=True):
         write_fields(h5path, nodes, conn, steps, part_id=pid, deck=deck)
         with open_fields(h5path) as f:
             check(f.part_names == {1: "rod", 2: "it's plate"}, "FieldFile.part_names")
+            check(not f.has_particles and f.step(-1).particles is None
+                  and "particles" not in f.summary(), "no particles group: particles None")
+
+        # particles: none at step 0 (count 0, no datasets), 3 then 4 at steps 1 and 2
+        pxyz = np.array([[0.1, 0.2, 0.3], [0.4, 0.5, 0.6], [0.7, 0.8, 0.9], [1.0, 1.1, 1.2]])
+        psteps = [dict(st) for st in steps]
+        psteps[0]["particles"] = {}
+        for i, n in ((1, 3), (2, 4)):
+            psteps[i]["particles"] = {
+                "coordinates": pxyz[:n], "velocity": -pxyz[:n] * 1e3,
+                "mass": 8e-9 * 7800.0 * np.arange(1, n + 1) ** 3, "density": np.full(n, 7800.0),
+                "pressure": np.linspace(0, 1e9, n), "specific_internal_energy": np.ones(n),
+                "temperature": np.full(n, 300.0), "plastic_strain": np.zeros(n),
+                "part_id": np.array([1, 2, 1, 2][:n], float), "element": np.arange(n) * 7.0}
+        ph5 = os.path.join(tmp, "particles.h5")
+        write_fields(ph5, nodes, conn, psteps, part_id=pid, deck=deck)
+        with open_fields(ph5) as f:
+            check(f.has_particles and len(f.steps) == 3, "FieldFile.has_particles")
+            p0, p2 = f.step(0).particles, f.step(-1).particles
+            check(p0 is not None and p0.count == 0 and p0.coordinates.shape == (0, 3)
+                  and p0["mass"].shape == (0,) and p0["part_id"].dtype == np.int64
+                  and set(p0) == set(PARTICLE_FIELDS), "count 0: empty arrays of every field")
+            check(p2.count == 4 and not p2._cache, "particles: count, nothing read before use")
+            check(np.array_equal(p2.coordinates, pxyz) and np.array_equal(p2.velocity, -pxyz * 1e3)
+                  and set(p2._cache) == {"coordinates", "velocity"}, "particle coordinates, velocity")
+            check(p2["part_id"].dtype == np.int64 and p2["part_id"].tolist() == [1, 2, 1, 2]
+                  and p2["element"].tolist() == [0, 7, 14, 21], "part_id, element as int64")
+            check(abs(particle_spacing(p2) - 5e-3) < 1e-15 and np.isnan(particle_spacing(p0))
+                  and np.isnan(particle_spacing(None)),
+                  "particle_spacing: median (mass/density)^(1/3) of 2, 4, 6, 8 mm: %.17g (5e-3)" % particle_spacing(p2))
+            check(f.step(1).particles.count == 3 and "particles" not in f.step(1).fields,
+                  "step 1: 3 particles, not among the fields")
+            check("particles (last step): 4, " in f.summary() and "per part 1: 2, 2: 2" in f.summary(),
+                  "summary line of the particles")
+            test.raises(KeyError, "unknown particle dataset raises KeyError listing them",
+                        p2.__getitem__, "von_mises", contains=("available", "mass"))
+        with h5py.File(ph5, "a") as h5:  # a transposed vector, a dataset with too few rows
+            g = h5["steps/000002/particles"]
+            del g["velocity"], g["mass"]
+            g["velocity"] = (-pxyz * 1e3).T.copy()
+            g["mass"] = np.ones(3)
+        with open_fields(ph5) as f:
+            with warnings.catch_warnings(record=True) as w:
+                warnings.simplefilter("always")
+                v = f.step(2).particles.velocity
+            check(np.array_equal(v, -pxyz * 1e3) and any("transposed" in str(x.message) for x in w),
+                  "particle velocity stored (3, count): transposed back with a warning")
+            test.raises(UdarFileError, "particle dataset with the wrong row count rejected",
+                        f.step(2).particles.__getitem__, "mass", contains=("mass", "4 rows"))
 
         bad = os.path.join(tmp, "bad.h5")
         with open(bad, "w") as fh:
