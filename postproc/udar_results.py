@@ -260,7 +260,28 @@ def wall_heights(x, axis, wall):
 # field file
 # --------------------------------------------------------------------------------------
 
-class LazyFields(Mapping):
+class _LazyMapping(Mapping):
+    """Read-only mapping name -> numpy array over self._names, each read once by
+    self._read(name) on first access; an unknown name raises KeyError listing them
+    (self._missing(name) says where)."""
+
+    def __getitem__(self, name):
+        if name in self._cache:
+            return self._cache[name]
+        if name not in self._names:
+            raise KeyError("%s (available: %s)" % (self._missing(name), ", ".join(self._names) or "none"))
+        data = self._read(name)
+        self._cache[name] = data
+        return data
+
+    def __iter__(self):
+        return iter(self._names)
+
+    def __len__(self):
+        return len(self._names)
+
+
+class LazyFields(_LazyMapping):
     """Read-only mapping field name -> numpy array; each dataset is read on first access."""
 
     def __init__(self, step):
@@ -270,21 +291,11 @@ class LazyFields(Mapping):
                              if k != "coordinates" and isinstance(v, h5py.Dataset))
         self._cache = {}
 
-    def __getitem__(self, name):
-        if name in self._cache:
-            return self._cache[name]
-        if name not in self._names:
-            raise KeyError("%s: step %s has no field %r (available: %s)" % (
-                self._step._file.path, self._step.name, name, ", ".join(self._names) or "none"))
-        data = self._step._file._read_dataset(self._step._group, name)
-        self._cache[name] = data
-        return data
+    def _missing(self, name):
+        return "%s: step %s has no field %r" % (self._step._file.path, self._step.name, name)
 
-    def __iter__(self):
-        return iter(self._names)
-
-    def __len__(self):
-        return len(self._names)
+    def _read(self, name):
+        return self._step._file._read_dataset(self._step._group, name)
 
     def __repr__(self):
         return "LazyFields(%s)" % ", ".join(self._names)
@@ -332,7 +343,7 @@ _PARTICLE_INTEGERS = ("part_id", "element")     # stored as float64, returned as
 _PARTICLE_VECTORS = ("coordinates", "velocity")
 
 
-class Particles(Mapping):
+class Particles(_LazyMapping):
     """The particles of one step (``Step.particles``): a read-only mapping dataset name ->
     numpy array, each read on first access, with ``count`` (int) and the properties
     ``coordinates`` ((count, 3), m) and ``velocity`` ((count, 3), m/s).
@@ -362,12 +373,10 @@ class Particles(Mapping):
             self._names = list(PARTICLE_FIELDS)
         self._cache = {}
 
-    def __getitem__(self, name):
-        if name in self._cache:
-            return self._cache[name]
-        if name not in self._names:
-            raise KeyError("%s has no dataset %r (available: %s)" % (
-                self._where, name, ", ".join(self._names) or "none"))
+    def _missing(self, name):
+        return "%s has no dataset %r" % (self._where, name)
+
+    def _read(self, name):
         if self.count == 0:
             data = np.zeros((0, 3) if name in _PARTICLE_VECTORS else (0,),
                             dtype=np.int64 if name in _PARTICLE_INTEGERS else np.float64)
@@ -385,14 +394,7 @@ class Particles(Mapping):
                                     % (self._where, name, data.shape, self.count))
             if name in _PARTICLE_INTEGERS:
                 data = np.rint(data).astype(np.int64)
-        self._cache[name] = data
         return data
-
-    def __iter__(self):
-        return iter(self._names)
-
-    def __len__(self):
-        return len(self._names)
 
     def __repr__(self):
         return "Particles(count=%d: %s)" % (self.count, ", ".join(self._names))

@@ -1239,20 +1239,13 @@ contains
           '          <DataItem Dimensions="'//trim(sn)//' 3" NumberType="Float" Precision="8" Format="HDF">'// &
           gp//'coordinates</DataItem>'
         if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '        </Geometry>'
-        if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
-          '        <Attribute Name="velocity" AttributeType="Vector" Center="Node">'
-        if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
-          '          <DataItem Dimensions="'//trim(sn)//' 3" NumberType="Float" Precision="8" Format="HDF">'// &
-          gp//'velocity</DataItem>'
-        if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '        </Attribute>'
+        ! the particles are the grid's points: their fields are node fields of count rows
+        if (ios == 0) call write_xmf_field(u, h5, rec%group//'/particles', field_rec_t('velocity', fk_node_vector), &
+                                           sn, sn, ios, iomsg)
         do k = 1, size(particle_scalars)
           if (ios /= 0) exit
-          write(u, '(a)', iostat=ios, iomsg=iomsg) '        <Attribute Name="'//trim(particle_scalars(k))// &
-            '" AttributeType="Scalar" Center="Node">'
-          if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) &
-            '          <DataItem Dimensions="'//trim(sn)//'" NumberType="Float" Precision="8" Format="HDF">'// &
-            gp//trim(particle_scalars(k))//'</DataItem>'
-          if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '        </Attribute>'
+          call write_xmf_field(u, h5, rec%group//'/particles', field_rec_t(particle_scalars(k), fk_node_scalar), &
+                               sn, sn, ios, iomsg)
         end do
         if (ios == 0) write(u, '(a)', iostat=ios, iomsg=iomsg) '      </Grid>'
       end associate

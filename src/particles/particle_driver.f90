@@ -73,9 +73,12 @@ contains
   !> none), the nodes' masses without it. n_new: particles made;
   !> dt_nodes: the nodal stable step 2 sqrt(m/k) of the owned nodes that
   !> lost mass (huge if none), which the cycle's step must not exceed.
-  subroutine particles_convert(pt, dom, n_new, dt_nodes)
+  !> look: some local element eroded in this cycle (else this rank has
+  !> nothing to send and its elements are not scanned).
+  subroutine particles_convert(pt, dom, look, n_new, dt_nodes)
     type(particles_t), intent(inout) :: pt
     type(domain_t), intent(inout) :: dom
+    logical, intent(in) :: look
     integer, intent(out) :: n_new
     real(rk), intent(out) :: dt_nodes
     integer :: i, e, a, nl, q, r, k, n, first, rec
@@ -88,7 +91,7 @@ contains
     dt_nodes = huge(1.0_rk)
     ! this rank's: owned elements eroded and not yet converted
     nl = 0
-    do i = 1, size(dom%el_owned_list)
+    do i = 1, merge(size(dom%el_owned_list), 0, look)
       e = dom%el_owned_list(i)
       if (dom%el_state(e) == el_eroded .and. .not. pt%converted(e) .and. &
           dom%mat(dom%el_mat(e))%eroded == eroded_particles) nl = nl + 1
@@ -99,7 +102,7 @@ contains
       allocate(pt%send(2*rec*nl))
     end if
     nl = 0
-    do i = 1, size(dom%el_owned_list)
+    do i = 1, merge(size(dom%el_owned_list), 0, look)
       e = dom%el_owned_list(i)
       if (.not. (dom%el_state(e) == el_eroded .and. .not. pt%converted(e) .and. &
           dom%mat(dom%el_mat(e))%eroded == eroded_particles)) cycle

@@ -339,7 +339,7 @@ contains
       ! eroded elements of converting materials become particles; the step
       ! then respects the nodes that lost their mass
       if (pt%enabled) then
-        call particles_convert(pt, dom, n_conv, dt_conv)
+        call particles_convert(pt, dom, eroded_any, n_conv, dt_conv)
         st%dt_stable = min(st%dt_stable, dt_conv)
         if (n_conv > 0) then
           call contact_refresh_masses(ct, dom)
