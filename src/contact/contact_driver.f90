@@ -16,7 +16,9 @@ module udar_contact
   use udar_contact_kernels, only: match_velocities, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
                                   edge_crossing, behind_not, behind_face, behind_seam
   use udar_contact_faces, only: face_projection, face_shares, closest_on_face, element_coordinates, face_behind_surface, &
-                                face_beside_sharp_edge
+                                face_beside_sharp_edge, points_inside_elements
+  use udar_fracture, only: el_eroded
+  use udar_ordering, only: find_sorted
   use udar_config, only: geometry_axisymmetric
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, &
                         comms_max, comms_alltoall_counts, comms_alltoallv_real, comms_wtime
@@ -141,17 +143,99 @@ contains
     do i = 1, ct%n_interfaces
       call detect(ct, ct%ifc(i), 0.01_rk*ct%ifc(i)%h_mean, .true., 0.0_rk, stage_both, n_found, depth, worst)
     end do
+    call place_new_particles(ct, dom)
     call scatter_state(ct, dom)
     call particles_out(ct, pt)
+  end subroutine
+
+  !> Particles made since the last call (ct%particles_placed on) inside an
+  !> element of a master body they are slave nodes of (the element they
+  !> came from overlapped it: a master corner through a failing element)
+  !> are put at the nearest point of the master surface (within
+  !> placement_reach mean master edges; else left, and counted). Not
+  !> placed, such a particle has crossed no face and the passes let it
+  !> through. The pass's rules for telling a node behind a face (sharp
+  !> edges, seams) are not needed: it is known to be inside. Each rank tests
+  !> its owned elements; what they found goes to every rank, which all have
+  !> every contact node's state here and place them alike (collective).
+  subroutine place_new_particles(ct, dom)
+    type(contact_t), intent(inout) :: ct
+    type(domain_t), intent(in) :: dom
+    real(rk), parameter :: placement_reach = 3.0_rk
+    integer :: i, k, q, t, first, n_new, n_in, nf, best, p
+    integer, allocatable :: elems(:), slot(:), found(:), counts(:), all_found(:)
+    logical, allocatable :: inside(:), flag(:)
+    real(rk) :: xa(3,3), c(3), g(3), d, best_d, best_c(3), reach
+    first = ct%particles_placed + 1
+    n_new = ct%n_nodes - ct%n_mesh - ct%particles_placed
+    ct%particles_placed = ct%n_nodes - ct%n_mesh
+    if (n_new <= 0) return
+    allocate(counts(0:comms_size()-1))
+    do i = 1, ct%n_interfaces
+      associate (it => ct%ifc(i))
+        if (it%self .or. .not. allocated(it%master_body)) cycle
+        nf = size(it%tri, 1)
+        reach = placement_reach*it%h_mean
+        ! the new particles among its slave nodes (their slave index)
+        allocate(slot(n_new))
+        n_in = 0
+        do q = first, first + n_new - 1
+          k = find_sorted(it%slave, ct%n_mesh + q)
+          if (k == 0) cycle
+          n_in = n_in + 1
+          slot(n_in) = k
+        end do
+        if (n_in > 0) then
+          elems = pack(dom%el_owned_list, dom%el_state(dom%el_owned_list) /= el_eroded .and. &
+                                          it%master_body(dom%el_part(dom%el_owned_list)))
+          allocate(inside(n_in))
+          call points_inside_elements(dom%el_conn, dom%nd_x, elems, ct%x(:, it%slave(slot(1:n_in))), inside)
+          found = pack(slot(1:n_in), inside)
+          call comms_allgather_count(size(found), counts)
+          allocate(all_found(sum(counts)))
+          call comms_allgatherv_int(found, counts, all_found)
+          ! (a particle on the boundary of two ranks' elements is found twice)
+          allocate(flag(size(it%slave)), source=.false.)
+          flag(all_found) = .true.
+          do k = 1, size(it%slave)
+            if (.not. flag(k)) cycle
+            p = it%slave(k)
+            ct%particles_inside = ct%particles_inside + 1
+            best = 0
+            best_d = reach
+            do t = 1, size(it%tri, 2)
+              xa(:,1:nf) = ct%x(:, it%tri(:,t))
+              if (any(ct%x(:,p) < minval(xa(:,1:nf), dim=2) - best_d) .or. &
+                  any(ct%x(:,p) > maxval(xa(:,1:nf), dim=2) + best_d)) cycle
+              call closest_on_face(xa(:,1:nf), ct%x(:,p), c, g)
+              d = norm2(c - ct%x(:,p))
+              if (d >= best_d) cycle
+              best = t; best_d = d; best_c = c
+            end do
+            if (best == 0) then
+              ct%particles_left_inside = ct%particles_left_inside + 1
+              cycle
+            end if
+            ct%particle_inside_deepest = max(ct%particle_inside_deepest, best_d)
+            ct%x(:,p) = best_c
+          end do
+          deallocate(inside, all_found, flag)
+        end if
+        deallocate(slot)
+      end associate
+    end do
   end subroutine
 
   !> The particles made since the last call join the contact nodes
   !> (n_mesh + q is particle q), with their part, mass and size (their
   !> smoothing length bounds their returns as an element's altitude bounds
   !> a node's).
-  subroutine contact_add_particles(ct, pt)
+  subroutine contact_add_particles(ct, pt, placed)
     type(contact_t), intent(inout) :: ct
     type(particles_t), intent(in) :: pt
+    !> they are where they belong (a restart's: put on the master surfaces
+    !> in the run that made them), place_new_particles passes them by
+    logical, intent(in), optional :: placed
     integer :: q, p, old
     integer, allocatable :: parts(:)
     if (ct%n_interfaces == 0) return
@@ -171,6 +255,9 @@ contains
       ct%h(p) = pt%h(q)
       ct%particle_part(q) = pt%part(q)
     end do
+    if (present(placed)) then
+      if (placed) ct%particles_placed = pt%n
+    end if
   end subroutine
 
   !> The masses of the mesh's contact nodes again from their owners, where
@@ -1094,11 +1181,11 @@ contains
         end if
         if (it%seams .and. off_face) then
           verdict = face_behind_surface(xa(:,1:nf), n, dist, g, xb, has, ct%x(:,ps), edge_tolerance)
-          ! 2D: a node on the axis (or a symmetry line) beyond a segment's end
-          ! on it is where the segment and its mirror image meet, on the
-          ! bisector of their fold, which face_behind_surface's halves of the seam
-          ! share to rounding: in the seam
-          if (verdict == behind_not .and. nf == 2) then
+          ! a node on a symmetry plane (2D: the axis or a symmetry line)
+          ! beyond a face's edge on it is where the face and its mirror image
+          ! meet, on the bisector of their fold, which face_behind_surface's
+          ! halves of the seam share to rounding: in the seam
+          if (verdict == behind_not) then
             if (beyond_mirrored_end(ps, t, g)) verdict = behind_seam
           end if
         else
@@ -1178,20 +1265,38 @@ contains
       inside_element_under = all(lam(1:nf+1) > edge_tolerance)
     end function
 
-    !> 2D: whether slave node ps lies on the axis or symmetry line of the end
-    !> of segment t that its projection (coordinates g) falls beyond.
+    !> Whether slave node ps lies on the symmetry plane (2D: line or axis)
+    !> of an edge (a segment's end) of face t that its projection
+    !> (coordinates g) falls beyond: where the face and its mirror image
+    !> meet, on the bisector of their fold.
     logical function beyond_mirrored_end(ps, t, g)
       integer, intent(in) :: ps, t
       real(rk), intent(in) :: g(3)
-      real(rk) :: m(4)
-      integer :: a
+      integer :: a, p
       beyond_mirrored_end = .false.
-      do a = 1, 2
+      do a = 1, nf
         if (g(a) >= -edge_tolerance) cycle
-        m = ct%mirror(:, it%tri(3-a,t))
-        if (all(m(1:3) == 0.0_rk)) cycle
-        beyond_mirrored_end = abs(dot_product(m(1:3), ct%x(:,ps)) - m(4)) <= 1.0e-9_rk*it%h_mean
+        p = edge_plane(t, a)
+        if (p == 0) cycle
+        beyond_mirrored_end = abs(dot_product(ct%plane(1:3,p), ct%x(:,ps)) - ct%plane(4,p)) <= 1.0e-9_rk*it%h_mean
+        if (beyond_mirrored_end) return
       end do
+    end function
+
+    !> The symmetry plane that the edge of face t opposite corner a (2D: the
+    !> segment's end opposite node a) lies on and corner a does not (a face
+    !> in a symmetry plane has no mirror image): the lowest such, 0 if none.
+    integer function edge_plane(t, a)
+      integer, intent(in) :: t, a
+      integer :: bits
+      if (nf == 3) then
+        bits = iand(ct%sym_planes(it%tri(mod(a,3)+1,t)), ct%sym_planes(it%tri(mod(a+1,3)+1,t)))
+      else
+        bits = ct%sym_planes(it%tri(3-a,t))
+      end if
+      bits = iand(bits, not(ct%sym_planes(it%tri(a,t))))
+      edge_plane = 0
+      if (bits /= 0) edge_plane = trailz(bits) + 1
     end function
 
     !> The second face of a valley (&contact valleys) that slave node ps is
@@ -1294,7 +1399,7 @@ contains
       integer, intent(in) :: t
       real(rk), intent(out) :: xb(3,3,3)
       logical, intent(out) :: has(3)
-      integer :: a, tb, q
+      integer :: a, tb, p, k
       xb = 0
       has = .false.
       do a = 1, nf
@@ -1302,14 +1407,16 @@ contains
         has(a) = tb > 0
         if (has(a)) has(a) = known(tb)
         if (has(a)) xb(:,1:nf,a) = ct%x(:, it%tri(:,tb))
-        if (tb > 0 .or. nf /= 2) cycle
-        ! 2D: an end on the axis or a symmetry line is no rim: the surface
-        ! goes on as the segment's mirror image (its nodes in reverse order)
-        q = it%tri(3-a,t)
-        if (all(ct%mirror(1:3,q) == 0.0_rk)) cycle
+        if (tb > 0) cycle
+        ! an edge on a symmetry plane (2D: an end on the axis or a symmetry
+        ! line) is no rim: the surface goes on as the face's mirror image
+        ! (its corners in reverse order: counter-clockwise from outside)
+        p = edge_plane(t, a)
+        if (p == 0) cycle
         has(a) = .true.
-        xb(:,1,a) = mirrored(ct%x(:,it%tri(2,t)), ct%mirror(:,q))
-        xb(:,2,a) = mirrored(ct%x(:,it%tri(1,t)), ct%mirror(:,q))
+        do k = 1, nf
+          xb(:,k,a) = mirrored(ct%x(:,it%tri(nf+1-k,t)), ct%plane(:,p))
+        end do
       end do
     end subroutine
   end subroutine

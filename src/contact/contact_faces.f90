@@ -13,10 +13,11 @@ module udar_contact_faces
   use udar_contact_kernels, only: triangle_projection, master_shares, closest_on_triangle, tetrahedron_coordinates, &
                                   behind_not, behind_face, behind_seam
   use udar_segment2, only: segment_projection, segment_shares, closest_on_segment, triangle_coordinates
+  use udar_contact_search, only: bucket_grid_t, grid_build, grid_cell
   implicit none
   private
   public :: face_projection, face_shares, closest_on_face, element_coordinates, face_behind_surface, &
-            face_beside_sharp_edge
+            face_beside_sharp_edge, points_inside_elements
 
   !> of an edge's length: a fold flatter than this, or a node nearer a plane,
   !> is rounding
@@ -77,6 +78,60 @@ contains
       call triangle_coordinates(xt, p, lam(1:3))
       lam(4) = 0.0_rk
     end if
+  end subroutine
+
+  !> Which points p(:,j) lie in one of the elements elems (corners
+  !> conn(e,:), of size(conn, 2) = 4 tetrahedra or 3 triangles, at x), to
+  !> rounding of the area coordinates (on a face counts): the initial
+  !> overlaps, and particles made inside a master body. An element with
+  !> exclude(j) among its corners does not count for point j (a slave node
+  !> is not inside its own elements). Only the elements reaching the
+  !> points' box are binned (a grid over their boxes).
+  pure subroutine points_inside_elements(conn, x, elems, p, inside, exclude)
+    integer, intent(in) :: conn(:,:), elems(:)
+    real(rk), intent(in) :: x(:,:), p(:,:)
+    logical, intent(out) :: inside(:)
+    integer, intent(in), optional :: exclude(:)
+    real(rk), parameter :: rounding = 1.0e-9_rk
+    integer, allocatable :: near(:)
+    real(rk), allocatable :: lo(:,:), hi(:,:)
+    type(bucket_grid_t) :: grid
+    real(rk) :: xt(3,4), lam(4), p_lo(3), p_hi(3)
+    integer :: j, e, k, c, s, nc, n_near
+    nc = size(conn, 2)
+    inside = .false.
+    if (size(p, 2) == 0 .or. size(elems) == 0) return
+    p_lo = minval(p, dim=2)
+    p_hi = maxval(p, dim=2)
+    allocate(near(size(elems)), lo(3, size(elems)), hi(3, size(elems)))
+    n_near = 0
+    do k = 1, size(elems)
+      xt(:,1:nc) = x(:, conn(elems(k),:))
+      if (any(maxval(xt(:,1:nc), dim=2) < p_lo) .or. any(minval(xt(:,1:nc), dim=2) > p_hi)) cycle
+      n_near = n_near + 1
+      near(n_near) = elems(k)
+      lo(:,n_near) = minval(xt(:,1:nc), dim=2)
+      hi(:,n_near) = maxval(xt(:,1:nc), dim=2)
+    end do
+    if (n_near == 0) return
+    call grid_build(grid, lo(:,1:n_near), hi(:,1:n_near))
+    do j = 1, size(p, 2)
+      c = grid_cell(grid, p(:,j))
+      if (c == 0) cycle
+      do s = grid%start(c), grid%start(c+1) - 1
+        k = grid%items(s)
+        if (any(p(:,j) < lo(:,k)) .or. any(p(:,j) > hi(:,k))) cycle
+        e = near(k)
+        if (present(exclude)) then
+          if (any(conn(e,:) == exclude(j))) cycle
+        end if
+        xt(:,1:nc) = x(:, conn(e,:))
+        call element_coordinates(xt(:,1:nc-1), xt(:,nc), p(:,j), lam)
+        if (minval(lam(1:nc)) < -rounding) cycle
+        inside(j) = .true.
+        exit
+      end do
+    end do
   end subroutine
 
   !> Where a node xs behind the plane (line) of master face xa (its

@@ -13,8 +13,7 @@ module udar_contact_setup
   use udar_comms, only: comms_rank, comms_size
   use udar_contact_model, only: feature_edges, contact_t, interface_t, size_interface_work, surface_neighbours, self_neighbourhoods, on_symmetry_plane, &
                                 assign_slaves, mark_returns
-  use udar_contact_search, only: bucket_grid_t, grid_build, grid_cell
-  use udar_contact_faces, only: element_coordinates
+  use udar_contact_faces, only: points_inside_elements
   implicit none
   private
   public :: build_contact, tet_face, tri_face, element_face, contact_edges, exterior_faces
@@ -46,7 +45,7 @@ contains
     type(domain_t), intent(in) :: glob
     type(contact_t), intent(out) :: ct
     type(input_errors_t), intent(inout) :: errs
-    integer, allocatable :: face(:,:), face_part(:), master(:,:), slave(:), tri_all(:,:), cn_of(:), sym_planes(:), cn_sym(:)
+    integer, allocatable :: face(:,:), face_part(:), master(:,:), slave(:), tri_all(:,:), cn_of(:), sym_planes(:)
     type(interface_t), allocatable :: ifc(:)
     integer :: k, n_err0, nf, n_ifc, i, mark_count, m_part, s_part, e, nv
     logical, allocatable :: part_erodes(:)
@@ -59,7 +58,7 @@ contains
     if (size(cfg%contacts) == 0) return
     n_err0 = errs%count()
     call exterior_faces(glob, face, face_part, nf)
-    sym_planes = symmetry_planes(glob)
+    sym_planes = symmetry_planes(glob, ct%plane)
     nv = glob%corners - 1
     face_word = merge('triangle', 'segment ', nv == 3)
     if (nv == 2) then
@@ -98,12 +97,14 @@ contains
         i = i + 1
         call make_interface(ifc(i), master, slave, tri_all, sname//'_on_'//mname)
         call mark_start_inside(ifc(i), m_body)
+        ifc(i)%master_body = m_body
         ifc(i)%master_part = eroding_part(m_part)
         ifc(i)%slave_part = eroding_part(s_part)
         if (c%symmetric) then
           i = i + 1
           call make_interface(ifc(i), tri_all, unique_nodes(master), master, mname//'_on_'//sname)
           call mark_start_inside(ifc(i), s_body)
+          ifc(i)%master_body = s_body
           ifc(i)%master_part = eroding_part(s_part)
           ! the two directions are matched together, in one set of passes
           ifc(i)%partner = i - 1
@@ -168,19 +169,6 @@ contains
     ct%x0 = ct%x
     ct%v = glob%nd_v(:, ct%gidx)
     ct%sym_planes = sym_planes(ct%gidx)
-    allocate(ct%mirror(4, ct%n_nodes), source=0.0_rk)
-    if (nv == 2 .and. allocated(glob%sym_nodes)) then
-      allocate(cn_sym(glob%n_nodes), source=0)
-      do k = 1, size(glob%sym_nodes)
-        if (cn_sym(glob%sym_nodes(k)) == 0) cn_sym(glob%sym_nodes(k)) = k
-      end do
-      do k = 1, ct%n_nodes
-        e = cn_sym(ct%gidx(k))
-        if (e == 0) cycle
-        ct%mirror(1:3,k) = glob%sym_normal(e,:)
-        ct%mirror(4,k) = dot_product(glob%sym_normal(e,:), glob%nd_x0(:,ct%gidx(k)))
-      end do
-    end if
     do i = 1, n_ifc
       if (ct%ifc(i)%edges) call contact_edges(ct%ifc(i), ct%x0)
       call assign_slaves(ct%ifc(i), ct%x0, comms_rank(), comms_size())
@@ -264,50 +252,10 @@ contains
     subroutine mark_start_inside(it, in_body)
       type(interface_t), intent(inout) :: it
       logical, intent(in) :: in_body(:)
-      real(rk), parameter :: rounding = 1.0e-9_rk   ! of the area coordinates
-      integer, allocatable :: tets(:)
-      real(rk), allocatable :: lo(:,:), hi(:,:)
-      type(bucket_grid_t) :: grid
-      real(rk) :: xt(3,4), p(3), lam(4), s_lo(3), s_hi(3)
-      integer :: j, e, k, c, s, nc
-      nc = glob%corners
-      allocate(it%start_inside(size(it%slave)), source=.false.)
-      if (size(it%slave) == 0) return
-      ! only the tetrahedra that reach the slave nodes' box can hold one
-      s_lo = minval(glob%nd_x0(:, it%slave), dim=2)
-      s_hi = maxval(glob%nd_x0(:, it%slave), dim=2)
-      allocate(tets(glob%n_elems))
-      k = 0
-      do e = 1, glob%n_elems
-        if (.not. in_body(glob%el_part(e))) cycle
-        xt(:,1:nc) = glob%nd_x0(:, glob%el_conn(e,:))
-        if (any(maxval(xt(:,1:nc), dim=2) < s_lo) .or. any(minval(xt(:,1:nc), dim=2) > s_hi)) cycle
-        k = k + 1
-        tets(k) = e
-      end do
-      allocate(lo(3,k), hi(3,k))
-      do j = 1, k
-        xt(:,1:nc) = glob%nd_x0(:, glob%el_conn(tets(j),:))
-        lo(:,j) = minval(xt(:,1:nc), dim=2)
-        hi(:,j) = maxval(xt(:,1:nc), dim=2)
-      end do
-      call grid_build(grid, lo, hi)
-      do k = 1, size(it%slave)
-        p = glob%nd_x0(:, it%slave(k))
-        c = grid_cell(grid, p)
-        if (c == 0) cycle
-        do s = grid%start(c), grid%start(c+1) - 1
-          j = grid%items(s)
-          if (any(p < lo(:,j)) .or. any(p > hi(:,j))) cycle
-          e = tets(j)
-          if (any(glob%el_conn(e,:) == it%slave(k))) cycle
-          xt(:,1:nc) = glob%nd_x0(:, glob%el_conn(e,:))
-          call element_coordinates(xt(:,1:nc-1), xt(:,nc), p, lam)
-          if (minval(lam(1:nc)) < -rounding) cycle
-          it%start_inside(k) = .true.
-          exit
-        end do
-      end do
+      integer :: e
+      allocate(it%start_inside(size(it%slave)))
+      call points_inside_elements(glob%el_conn, glob%nd_x0, pack([(e, e = 1, glob%n_elems)], in_body(glob%el_part)), &
+                                  glob%nd_x0(:, it%slave), it%start_inside, exclude=it%slave)
     end subroutine
 
     !> Part ip if its material erodes (its boundary changes), else 0.
@@ -488,15 +436,19 @@ contains
 
   !> For every node a bit set of the symmetry planes it lies on (bit p for
   !> the p-th distinct plane: normal and offset; at most 31 planes).
-  function symmetry_planes(glob) result(bits)
+  function symmetry_planes(glob, planes) result(bits)
     type(domain_t), intent(in) :: glob
+    real(rk), allocatable, intent(out) :: planes(:,:)   !< (4, planes) unit normal, offset
     integer, allocatable :: bits(:)
     real(rk) :: plane(4, 31), nd(4), scale, c
     integer :: k, p, n_planes
     allocate(bits(glob%n_nodes), source=0)
-    if (.not. allocated(glob%sym_nodes)) return
-    scale = maxval(abs(glob%nd_x0))
     n_planes = 0
+    if (.not. allocated(glob%sym_nodes)) then
+      allocate(planes(4, 0))
+      return
+    end if
+    scale = maxval(abs(glob%nd_x0))
     do k = 1, size(glob%sym_nodes)
       nd(1:3) = glob%sym_normal(k,:)
       nd(4) = dot_product(nd(1:3), glob%nd_x0(:, glob%sym_nodes(k)))
@@ -511,6 +463,7 @@ contains
       end if
       bits(glob%sym_nodes(k)) = ibset(bits(glob%sym_nodes(k)), p - 1)
     end do
+    planes = plane(:, 1:n_planes)
   end function
 
   !> The distinct nodes of a triangle list, ascending.

@@ -63,6 +63,9 @@ module udar_contact_model
     !> (slave nodes) the node starts inside a tetrahedron of the master
     !> body: only these can be initial overlaps (freed after that pass)
     logical, allocatable :: start_inside(:)
+    !> (parts) whose elements are the master body (not for self-contact):
+    !> a particle made inside one of its elements is put on the surface
+    logical, allocatable :: master_body(:)
     real(rk) :: h_mean = 0                 !< m, mean master edge length
     type(bucket_grid_t) :: grid
     ! local tracking: each slave node's candidate triangles, found by a full
@@ -126,16 +129,21 @@ module udar_contact_model
     integer :: n_mesh = 0
     integer, allocatable :: particle_part(:)   !< (particles) the part each particle's element belonged to
     logical, allocatable :: part_converts(:)   !< (parts) its eroded elements become particles (its free nodes have no mass)
+    !> particles 1..particles_placed have been looked for inside the master
+    !> bodies (place_new_particles); the run's count of those found inside,
+    !> of those left inside (no surface face within reach) and the deepest (m)
+    integer :: particles_placed = 0, particles_inside = 0, particles_left_inside = 0
+    real(rk) :: particle_inside_deepest = 0
     integer, allocatable :: gidx(:)        !< their global node indices, ascending
     real(rk), allocatable :: x(:,:), v(:,:), m(:)   !< (3,n), (3,n), (n): gathered state, masses
     real(rk), allocatable :: x0(:,:)       !< (3,n) m, initial positions (the feature edges are judged on them)
     real(rk), allocatable :: h(:)     !< m, smallest altitude of each contact node's elements (bounds its returns)
     logical, allocatable :: returns(:)     !< the node can be returned (a slave node or a slave edge's): its h is kept
     integer, allocatable :: sym_planes(:)   !< bit p set: the node lies on symmetry plane p
-    !> 2D: the symmetry line or axis a contact node lies on (unit normal in
-    !> 1:3, offset in 4; a zero normal: none): across it the surface goes on
-    !> as its mirror image (faces_beside)
-    real(rk), allocatable :: mirror(:,:)
+    !> (4, planes) symmetry plane p (2D: line or axis): unit normal in 1:3,
+    !> offset in 4. Across a face's edge (a segment's end) on one the
+    !> surface goes on as its mirror image (faces_beside)
+    real(rk), allocatable :: plane(:,:)
     integer, allocatable :: faces(:,:)     !< (3, n_faces) every face of a contact surface once
     real(rk), allocatable :: impulse(:)    !< N s, normal contact impulse on each contact node in the last pass
     real(rk), allocatable :: pressure(:)   !< Pa, work array: contact pressure of each contact node
@@ -213,7 +221,7 @@ contains
     integer :: i, old
     old = ct%n_nodes
     if (n <= old) return
-    call grow2(ct%x); call grow2(ct%v); call grow2(ct%x0); call grow2(ct%v_sweep); call grow2(ct%mirror)
+    call grow2(ct%x); call grow2(ct%v); call grow2(ct%x0); call grow2(ct%v_sweep);
     call grow1(ct%m); call grow1(ct%h, huge(1.0_rk)); call grow1(ct%impulse); call grow1(ct%pressure)
     call grow1(ct%work_area)
     call growi(ct%gidx); call growi(ct%sym_planes); call growi(ct%alive_count); call growi(ct%local)

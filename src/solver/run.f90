@@ -256,7 +256,7 @@ contains
     ! (a restart's particles are contact nodes, and the nodes' masses without their elements)
     if (pt%n > 0) then
       call contact_refresh_masses(ct, dom)
-      call contact_add_particles(ct, pt)
+      call contact_add_particles(ct, pt, placed=.true.)
     end if
     call nodal_reference_volumes(dom, rebase=.false.)
     ! the altitudes of the last element pass (a restart reads them: slave
@@ -586,6 +586,13 @@ contains
           ': the velocity matching did not converge in '//itoa(ct%ifc(k)%sweep_limit_hits)// &
           ' passes (raise &contact iterations): their result depends on the order of the nodes')
       end do
+      if (ct%particles_inside > 0) then
+        write(line, '(a,i0,a,es10.3,a)') '         contact: ', ct%particles_inside, &
+          ' particles made inside a master body were put on its surface (the deepest ', ct%particle_inside_deepest, ' m)'
+        call log_info(line)
+      end if
+      if (ct%particles_left_inside > 0) call log_warn('contact: '//itoa(ct%particles_left_inside)// &
+        ' particles were made inside a master body farther than three mean master edges from its surface and left there')
     end if
     res%stopped = stopping
     if (st%checkpoints_written > 0) res%checkpoint = checkpoint_path(st%checkpoints_written)
