@@ -4,7 +4,12 @@
 # penetration on the deck's 1 mm mesh and the axisymmetric deck's 0.5 mm
 # (tests/validate_long_rod.sh, tests/validate_long_rod.sh 2d) and the
 # seed paper's decks with the ricochet (tests/validate_paper.sh), and the
-# contact depth sweeps (tests/validate_contact.sh). Every mesh
+# contact depth sweeps (tests/validate_contact.sh), and failed material
+# kept as particles (issue 15): the long rod with particles
+# (ERODED=particles tests/validate_long_rod.sh), the seed paper's Fig. 4
+# and normal cylinder and the long rod's conversion limit
+# (tests/validate_particles.sh), and Fig. 3's spread over five perturbed
+# runs per friction value (tests/validate_fig3_spread.sh). Every mesh
 # of every script is compared with doc/validation/meshes.csv first, so a
 # wrong one stops make validate before the first run. The long-rod
 # refinements (0.7 and 0.5 mm, hours) are run by hand: see
@@ -16,9 +21,14 @@ MESHES_ONLY=1 tests/validate_taylor.sh 2d
 MESHES_ONLY=1 tests/validate_long_rod.sh
 MESHES_ONLY=1 tests/validate_long_rod.sh 2d
 MESHES_ONLY=1 tests/validate_paper.sh
+MESHES_ONLY=1 tests/validate_particles.sh
+MESHES_ONLY=1 tests/validate_fig3_spread.sh
 tests/validate_taylor.sh
 tests/validate_taylor.sh 2d
 tests/validate_long_rod.sh
 tests/validate_long_rod.sh 2d
 tests/validate_paper.sh
 tests/validate_contact.sh
+ERODED=particles tests/validate_long_rod.sh
+tests/validate_particles.sh
+tests/validate_fig3_spread.sh

@@ -8,23 +8,13 @@ import sys
 
 import numpy as np
 
-from deep_node_mesh import block
+from deep_node_mesh import block, write_msh
 
 
 def main(out):
     x, plate = block(4, 4, 2, 1.0, (-2.0, -2.0, -2.0))
     xc, cube = block(2, 2, 2, 0.5, (-0.5, -0.5, -0.7), first=len(x) + 1)
-    x = np.vstack([x, xc])
-    lines = ['$MeshFormat', '2.2 0 8', '$EndMeshFormat', '$PhysicalNames', '2',
-             '3 1 "plate"', '3 2 "cube"', '$EndPhysicalNames', '$Nodes', str(len(x))]
-    lines += [f'{k + 1} {p[0]!r} {p[1]!r} {p[2]!r}' for k, p in enumerate(x)]
-    lines += ['$EndNodes', '$Elements', str(len(plate) + len(cube))]
-    lines += [f'{e + 1} 4 2 1 1 ' + ' '.join(map(str, t)) for e, t in enumerate(plate)]
-    lines += [f'{len(plate) + e + 1} 4 2 2 2 ' + ' '.join(map(str, t)) for e, t in enumerate(cube)]
-    lines += ['$EndElements']
-    with open(out, 'w') as f:
-        f.write('\n'.join(lines) + '\n')
-
+    write_msh(out, np.vstack([x, xc]), [('plate', plate), ('cube', cube)])
 
 if __name__ == '__main__':
     main(sys.argv[1])

@@ -52,13 +52,22 @@ def main(out):
     xr, rod = block(2, 2, 2, 0.5, (tip[0] - 0.5, tip[1] - 0.5, 0.2), first=n0 + 1)
     centre = int(np.argmin(np.linalg.norm(xr - [tip[0], tip[1], 0.2], axis=1)))
     xr[centre] = tip
-    x = np.vstack([x, xr])
-    lines = ['$MeshFormat', '2.2 0 8', '$EndMeshFormat', '$PhysicalNames', '2',
-             '3 1 "plate"', '3 2 "rod"', '$EndPhysicalNames', '$Nodes', str(len(x))]
+    write_msh(out, np.vstack([x, xr]), [('plate', tets), ('rod', rod)])
+
+
+def write_msh(out, x, volumes):
+    """A gmsh 2.2 ASCII mesh: nodes x (numbered from 1) and the tetrahedra of
+    each (name, tets) of volumes, physical volume k + 1."""
+    lines = ['$MeshFormat', '2.2 0 8', '$EndMeshFormat', '$PhysicalNames', str(len(volumes))]
+    lines += [f'3 {k + 1} "{name}"' for k, (name, _) in enumerate(volumes)]
+    lines += ['$EndPhysicalNames', '$Nodes', str(len(x))]
     lines += [f'{k + 1} {p[0]!r} {p[1]!r} {p[2]!r}' for k, p in enumerate(x)]
-    lines += ['$EndNodes', '$Elements', str(len(tets) + len(rod))]
-    lines += [f'{e + 1} 4 2 1 1 ' + ' '.join(map(str, t)) for e, t in enumerate(tets)]
-    lines += [f'{len(tets) + e + 1} 4 2 2 2 ' + ' '.join(map(str, t)) for e, t in enumerate(rod)]
+    lines += ['$EndNodes', '$Elements', str(sum(len(t) for _, t in volumes))]
+    e = 0
+    for k, (_, tets) in enumerate(volumes):
+        for t in tets:
+            e += 1
+            lines.append(f'{e} 4 2 {k + 1} {k + 1} ' + ' '.join(map(str, t)))
     lines += ['$EndElements']
     with open(out, 'w') as f:
         f.write('\n'.join(lines) + '\n')

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# The seed paper's Fig. 3 with failed material kept as particles (issue 15),
+# five runs per friction value whose impact speed differs by -0.4, -0.2, 0,
+# +0.2 and +0.4 % (the direction kept): the spread of what the paper
+# compares (f = 0.18 against f = 0 at 12 us: the cylinder along its axis,
+# the crater along the plate's normal) next to the difference. Runs two at
+# a time; doc/validation/fig3_spread.csv, one row a run.
+#   tests/validate_fig3_spread.sh
+source "$(dirname "$0")/validate_common.sh" fig3_spread
+mesh_checked "$W/oblique_cylinder.msh" input/oblique_cylinder/oblique_cylinder.geo
+meshes_checked
+runs=()
+for f in 0.18 0.0; do
+  for s in 0.996 0.998 1.000 1.002 1.004; do
+    run=f${f}_s$s
+    vx=$(awk -v s=$s 'BEGIN{printf "%.7f", 1500.0*s}')
+    vz=$(awk -v s=$s 'BEGIN{printf "%.7f", -2598.0762*s}')
+    sed -e "s|file = 'oblique_cylinder.msh'|file = '$W/oblique_cylinder.msh'|" \
+        -e "s|directory = 'out'|directory = '$W/$run'|" \
+        -e "s|friction = 0.18,|friction = $f,|" \
+        -e "s|velocity = 1500.0, 0.0, -2598.0762|velocity = $vx, 0.0, $vz|" \
+        -e "s|eps_erode = 3.0$|eps_erode = 3.0, eroded = 'particles'|" \
+        input/oblique_cylinder/oblique_cylinder.nml > "$W/$run.nml"
+    grep -q "friction = $f," "$W/$run.nml" && grep -q "velocity = $vx, 0.0, $vz" "$W/$run.nml" && \
+      grep -q "eroded = 'particles'" "$W/$run.nml" || { echo "deck edit failed: $run"; exit 1; }
+    runs+=("$run")
+  done
+done
+printf '%s\n' "${runs[@]}" | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"
+csv=doc/validation/fig3_spread.csv
+echo "friction,speed_factor,t_us,crater_on_axis_mm,cylinder_left_along_axis_mm,intact_along_axis_mm,crater_deepest_mm,crater_rim_diameter_mm,cylinder_velocity_along_axis_m_s,cylinder_particles,cylinder_particle_mass_g,energy_error,wall_s" > $csv
+for run in "${runs[@]}"; do
+  f=${run#f}; f=${f%%_s*}; s=${run##*_s}
+  line=$($PYTHON postproc/penetration.py "$W/$run/$run.h5" --rod cylinder --target plate --radius 0.5e-3 \
+         --axis 0.5 0 -0.8660254 | tail -1)
+  err=$(log_value "$W/$run.log" energy_error)
+  wall=$(log_value "$W/$run.log" wall_s)
+  # penetration.py columns: t depth length velocity tip rod_eroded target_eroded intact deepest diameter
+  # rod_particles rod_particle_mass ...
+  echo "$line" | awk -v f=$f -v s=$s -v e=$err -v w=$wall \
+    '{printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.4f,%s,%s\n", f, s, $1, $2, $3, $8, $9, $10, $4, $11, $12*1000, e, w}' | tee -a $csv
+done
+# mean and sample standard deviation per friction value, and the differences
+$PYTHON - "$csv" <<'PY'
+import csv, sys
+import numpy as np
+rows = list(csv.DictReader(open(sys.argv[1])))
+cols = ['cylinder_left_along_axis_mm', 'intact_along_axis_mm', 'crater_on_axis_mm', 'crater_deepest_mm']
+stats = {}
+for f in ('0.18', '0.0'):
+    sel = [r for r in rows if r['friction'] == f]
+    for c in cols:
+        v = np.array([float(r[c]) for r in sel])
+        stats[f, c] = (v.mean(), v.std(ddof=1), len(v))
+        print(f"f = {f:4s} {c:30s} {v.mean():7.3f} +- {v.std(ddof=1):.3f} mm ({len(v)} runs: {' '.join(f'{x:.2f}' for x in v)})")
+for c in cols:
+    (m1, s1, n1), (m0, s0, n0) = stats['0.18', c], stats['0.0', c]
+    se = np.hypot(s1 / np.sqrt(n1), s0 / np.sqrt(n0))
+    print(f"f = 0.18 against f = 0, {c:30s} {100 * (m1 / m0 - 1):+6.1f} % (+- {100 * se / m0:.1f} % one standard error)")
+PY
