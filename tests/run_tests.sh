@@ -149,6 +149,7 @@ run_test "regression/penetration" regression penetration bin/udar
 run_test "regression/penetration_particles" regression penetration bin/udar penetration_particles
 run_test "regression/long_rod_particles" regression long_rod_particles bin/udar
 run_test "regression/buried_particles" regression buried_particles bin/udar
+run_test "regression/oblique_particles" regression oblique_particles bin/udar
 run_test "regression/penetration_2d" regression penetration_2d bin/udar
 run_test "regression/deep_node" regression deep_node bin/udar-debug
 run_test "regression/crossed_edges" regression crossed_edges bin/udar-debug

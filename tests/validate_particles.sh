@@ -22,7 +22,7 @@ for r in "${runs[@]}"; do
   set -- $r
   sed -e "s|file = '$3.msh'|file = '$W/$3.msh'|" -e "s|directory = '[^']*'|directory = '$W/$1'|" \
       -e "s|eps_erode = $4$|eps_erode = $5, eroded = 'particles'|" input/$2/$2.nml > "$W/$1.nml"
-  [ "$(grep -c "eps_erode = $5, eroded = 'particles'" "$W/$1.nml")" = "$(grep -c "eps_erode" input/$2/$2.nml)" ] || \
+  [ "$(grep -c "eps_erode = $5, eroded = 'particles'" "$W/$1.nml")" = "$(grep -c "eps_erode = $4$" input/$2/$2.nml)" ] || \
     { echo "deck edit failed: $1"; exit 1; }
 done
 printf '%s\n' "${runs[@]}" | cut -d' ' -f1 | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"

@@ -21,7 +21,7 @@ module udar_particle_driver
   implicit none
   private
   public :: particles_init, particles_convert, particles_forces, particles_finish_step, particles_converting, &
-            particles_contact_work
+            particles_contact_work, particles_onto_planes
 
   !> smoothing length over the side of the particle's cube (Monaghan 1992: 1.2-1.3)
   real(rk), parameter :: smoothing_factor = 1.2_rk
@@ -156,6 +156,9 @@ contains
         dom%el_e(e) = 0.0_rk
       end if
     end do
+    ! a centre behind a symmetry plane (the corners of a wildly distorted
+    ! element across it) goes onto the plane
+    call particles_onto_planes(pt, dom%sym_walls, pt%n - n_new + 1)
     ! the owned corner nodes' masses without the converted elements
     do k = 1, n_new
       first = rec*(k-1)
@@ -167,6 +170,24 @@ contains
       end do
     end do
     pt%dt_stable = min(pt%dt_stable, critical_share*minval(pt%h(pt%n-n_new+1:pt%n)/pt%vsig(pt%n-n_new+1:pt%n)))
+  end subroutine
+
+  !> Particles first..n found behind a symmetry plane (sym: the planes as
+  !> walls, normals into the body) are put on it; their velocities stay.
+  !> The planes' wall rule would put them back within one step, at -gap/dt
+  !> (11-15 km/s on the Fig. 3 deck, validation.md 4x); particles get
+  !> there when made from an element distorted across a plane, or moved by
+  !> the contact's returns (which know no symmetry planes).
+  subroutine particles_onto_planes(pt, sym, first)
+    type(particles_t), intent(inout) :: pt
+    type(wall_t), intent(in) :: sym(:)
+    integer, intent(in), optional :: first
+    integer :: q, i
+    do q = merge(first, 1, present(first)), pt%n
+      do i = 1, size(sym)
+        pt%x(:,q) = pt%x(:,q) - min(dot_product(pt%x(:,q) - sym(i)%point, sym(i)%normal), 0.0_rk)*sym(i)%normal
+      end do
+    end do
   end subroutine
 
   !> Owned node n's lumped mass: the shares of its elements not converted,

@@ -26,7 +26,7 @@ module udar_run
       keep_constrained_positions, restore_constrained_positions, walls_on_points
   use udar_particle_model, only: particles_t
   use udar_particle_driver, only: particles_init, particles_convert, particles_forces, particles_finish_step, &
-      particles_converting, particles_contact_work
+      particles_converting, particles_contact_work, particles_onto_planes
   use udar_strength, only: von_mises
   use udar_history, only: history_t, history_open, history_reopen, history_write, history_sync, history_close
   use udar_field_output, only: field_writer_t, fw_open, fw_reopen, fw_begin_step, fw_node_vector, fw_node_scalar, &
@@ -319,7 +319,9 @@ contains
       if (ct%n_interfaces > 0) call keep_constrained_positions(dom, x_constrained)
       call contact_enforce(ct, dom, dt, pt)
       ! the contact pass knows no velocity conditions: they hold again after it
+      ! (and no particle is left behind a symmetry plane)
       if (ct%n_interfaces > 0) call restore_constrained_positions(dom, x_constrained)
+      if (ct%n_interfaces > 0 .and. pt%n > 0) call particles_onto_planes(pt, dom%sym_walls)
       call contact_work(ct, dom, walls%contact_work)
       if (pt%n > 0 .and. ct%n_interfaces > 0 .and. comms_is_root()) call particles_contact_work(pt, walls%contact_work)
       contact_seconds = contact_seconds + (comms_wtime() - elapsed)
@@ -629,6 +631,7 @@ contains
         call keep_constrained_positions(dom, x_constrained)
         call contact_settle(ct, dom, pt)
         call restore_constrained_positions(dom, x_constrained)
+        if (pt%n > 0) call particles_onto_planes(pt, dom%sym_walls)
       end if
     end subroutine
 
