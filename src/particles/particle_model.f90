@@ -57,7 +57,9 @@ contains
     call grow1(pt%c, cap); call grow1(pt%h, cap); call grow1(pt%temp, cap); call grow1(pt%eps_p, cap)
     call grow1(pt%drho, cap); call grow1(pt%dheat, cap); call grow1(pt%vsig, cap)
     call growi(pt%mat, cap); call growi(pt%part, cap); call growi(pt%elem, cap)
-    call growi(pt%order, cap); call growi(pt%cand, cap); call growi(pt%cell_start, 2*cap + 2)
+    call growi(pt%order, cap); call growi(pt%cell_start, 2*cap + 2)
+    ! (the pair search's cells' fill pointers: up to 2 cells a particle)
+    call growi(pt%cand, 2*cap + 2)
     call growi(pt%ghost_of, cap); call growi(pt%ghost_planes, cap)
   contains
     subroutine grow2(a, c)

@@ -240,8 +240,9 @@ contains
   !> as (i, j) with i < j, in ascending (i, j): a grid of cells of side
   !> 2 max h over the particles' box, each particle tested against the
   !> particles of its own and the 26 (2D: 8) cells around it. Work arrays
-  !> (the caller keeps them between calls): cell_start(ncell+1), order(n),
-  !> cand(n); np returns the pair count, and -1 when pairs(2,:) is too
+  !> (the caller keeps them between calls): cell_start(ncell_max+1),
+  !> order(n), cand(max(n, ncell_max)) (each cell's fill pointer, then each
+  !> particle's neighbours); np returns the pair count, and -1 when pairs(2,:) is too
   !> small (call again with room for more).
   pure subroutine sph_pairs(dim, n, x, h, ncell_max, cell_start, order, cand, pairs, np)
     integer, intent(in) :: dim, n, ncell_max

@@ -62,7 +62,7 @@ contains
                 acc(3,n_cloud), dedt(n_cloud), drho(n_cloud), vsig(n_cloud), u(3)
     real(rk), allocatable :: coef(:)
     integer, allocatable :: pairs(:,:), brute(:,:)
-    integer :: np, nb, i, j, cell_start(4097), order(n_cloud), cand(n_cloud)
+    integer :: np, nb, i, j, cell_start(4097), order(n_cloud), cand(n_cloud + 4096)
     real(rk) :: mom(3), ang(3), scale_f, scale_l, power, scale_e
     allocate(pairs(2,max_pairs), brute(2,max_pairs), coef(max_pairs))
     call random_seed(put=[(12345 + 7*i, i = 1, 64)])
@@ -136,7 +136,7 @@ contains
     real(rk) :: x(3,n), v(3,n), m(n), rho(n), p(n), c(n), hh(n), acc(3,n), dedt(n), drho(n), vsig(n), a, eps, rho0
     real(rk), allocatable :: coef(:)
     integer, allocatable :: pairs(:,:)
-    integer :: np, i, j, k, q, centre, face, cell_start(4097), order(n), cand(n)
+    integer :: np, i, j, k, q, centre, face, cell_start(4097), order(n), cand(n + 4096)
     a = 1e-4_rk
     rho0 = 2700.0_rk
     eps = 1e3_rk
