@@ -15,9 +15,9 @@ mesh_checked "$W/long_rod.msh" input/long_rod/long_rod.geo -setnumber h 1.0e-3
 meshes_checked
 # deck name, input deck, mesh, eps_erode of the deck, eps_erode here
 runs=("yawed_rod yawed_rod yawed_rod 2.0 2.0"
-      "normal_cylinder normal_cylinder normal_cylinder 3.0 3.0"
       "long_rod_e2.5 long_rod long_rod 2.0 2.5"
-      "long_rod_e3.0 long_rod long_rod 2.0 3.0")
+      "long_rod_e3.0 long_rod long_rod 2.0 3.0"
+      "normal_cylinder normal_cylinder normal_cylinder 3.0 3.0")
 for r in "${runs[@]}"; do
   set -- $r
   sed -e "s|file = '$3.msh'|file = '$W/$3.msh'|" -e "s|directory = '[^']*'|directory = '$W/$1'|" \
