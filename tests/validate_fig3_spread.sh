@@ -38,7 +38,7 @@ for run in "${runs[@]}"; do
   # penetration.py columns: t depth length velocity tip rod_eroded target_eroded intact deepest diameter
   # rod_particles rod_particle_mass ...
   echo "$line" | awk -v f=$f -v s=$s -v e=$err -v w=$wall \
-    '{printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.4f,%s,%s\n", f, s, $1, $2, $3, $8, $9, $10, $4, $11, $12*1000, e, w}' | tee -a $csv
+    '{printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.4f,%s,%s\n", f, s, $1, $2, $3, $8, $9, $10, $4, $11, $12, e, w}' | tee -a $csv
 done
 # mean and sample standard deviation per friction value, and the differences
 $PYTHON - "$csv" <<'PY'
