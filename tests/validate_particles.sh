@@ -38,7 +38,7 @@ for r in "${runs[@]}"; do
   line=$($PYTHON postproc/penetration.py "$W/$1/$1.h5" $args | tail -1)
   echo "$line" | awk -v n=$1 -v eps=$5 -v e=$(log_value "$W/$1.log" energy_error) -v c=$(log_value "$W/$1.log" cycles) \
     -v w=$(log_value "$W/$1.log" wall_s) \
-    '{printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%.4f,%s,%.4f,%s,%s,%s\n", n, eps, $1, $2, $3, $8, $9, $4, $11, $12*1000, $13, $14*1000, e, c, w}' \
+    '{printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%.4f,%s,%.4f,%s,%s,%s\n", n, eps, $1, $2, $3, $8, $9, $4, $11, $12, $13, $14, e, c, w}' \
     | tee -a $csv
 done
 S="$PYTHON postproc/section.py --plane y=0.3mm"
