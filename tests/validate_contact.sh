@@ -42,7 +42,8 @@ for deck in sharp_edge sharp_edge_off; do
   cp tests/regression/sharp_edge/sharp_edge.msh tests/regression/sharp_edge/$deck.nml "$d/"
 done
 # the seed paper's Fig. 4 deck (input/yawed_rod, eroding) at its own step,
-# its first 20 us with fields every 0.25 us (validation.md 4t)
+# its first 20 us with fields every 0.25 us (validation.md 4t), eroding to
+# free nodes (the deck) and to particles
 runs+=("yawed_rod yawed_rod 0.35 deck")
 d=$W/yawed_rod_0.35_deck
 mkdir -p "$d"
@@ -50,6 +51,14 @@ cp input/yawed_rod/yawed_rod.msh "$d/"
 sed -e "s/t_end = [0-9.e-]*/t_end = 20.0e-6/" -e "s/dt_field = [0-9.e-]*/dt_field = 0.25e-6/" \
     input/yawed_rod/yawed_rod.nml > "$d/yawed_rod.nml"
 grep -q "t_end = 20.0e-6" "$d/yawed_rod.nml" || { echo "stopped: t_end not set in $d/yawed_rod.nml"; exit 1; }
+# the same with failed material kept as particles (issue 15): the slave
+# points are then the remaining rod elements' nodes and the rod's particles
+runs+=("yawed_rod yawed_rod 0.35 particles")
+d=$W/yawed_rod_0.35_particles
+mkdir -p "$d"
+cp input/yawed_rod/yawed_rod.msh "$d/"
+sed -e "s/eps_erode = 2.0$/eps_erode = 2.0, eroded = 'particles'/" "$W/yawed_rod_0.35_deck/yawed_rod.nml" > "$d/yawed_rod.nml"
+[ "$(grep -c "eroded = 'particles'" "$d/yawed_rod.nml")" = 2 ] || { echo "stopped: particles not set in $d/yawed_rod.nml"; exit 1; }
 export W
 printf '%s\n' "${runs[@]}" | awk '{print $2"_"$3"_"$4" "$2}' | \
   xargs -P "$JOBS" -L1 sh -c 'cd "$W/$0" && "$W/udar" "$1.nml" > run.log 2>&1 || echo "FAILED $0"'

@@ -1,7 +1,8 @@
 """How deep slave nodes get inside the master over a whole run: for every
 field step of FIELDS.h5, the deepest node of part SLAVE inside a
 tetrahedron of part MASTER that is still there (not eroded), over the
-master's median edge h (the measure of the contact checks,
+master's median edge h (where SLAVE's eroded elements became particles:
+its remaining elements' nodes and its particles) (the measure of the contact checks,
 tests/regression/rod_3kms/check_geometry.py). Prints one CSV line:
 frames, frames with a node inside by more than 1e-6 h, the deepest over h
 and its time (us). Used by tests/validate_contact.sh (doc/validation.md 4r).

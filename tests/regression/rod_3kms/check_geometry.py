@@ -51,12 +51,25 @@ def frames_inside(f, slave_part, master_part):
     """For each field step of an open field file, in time order: the step's
     group, its coordinates and the depth (m) of the deepest node of part
     slave_part inside a tetrahedron of part master_part that is still there
-    (not eroded, where the file has fracture states)."""
+    (not eroded, where the file has fracture states). Where the slave
+    part's eroded elements became particles, its slave points are the
+    nodes of its remaining elements and its particles (a node whose
+    elements all became particles has no mass and is no slave node)."""
     conn, _, slave_nodes, master, _ = slave_and_master(f, slave_part, master_part)
+    slave = f['mesh/part_id'][...] == slave_part
     for k in sorted(f['steps'].keys(), key=lambda k: f['steps'][k].attrs['time']):
         g = f['steps'][k]
         alive = master
+        slave_alive = slave
         if 'fracture_state' in g:
-            alive = master & (g['fracture_state'][...] < 1.5)
+            state = g['fracture_state'][...]
+            alive = master & (state < 1.5)
+            slave_alive = slave & (state < 1.5)
         x = g['coordinates'][...]
-        yield g, x, deepest_inside(x[slave_nodes], x, conn[alive])
+        points = x[slave_nodes]
+        p = g['particles'] if 'particles' in g else None
+        if p is not None and int(p.attrs['count']) > 0:
+            mine = p['part_id'][...] == slave_part
+            if mine.any():
+                points = np.vstack([x[np.unique(conn[slave_alive])], p['coordinates'][...][mine]])
+        yield g, x, deepest_inside(points, x, conn[alive])
