@@ -8,6 +8,7 @@
 # element size near the impact (the deck's mesh is 1e-3; the finer mesh of
 # validation.md 4x is H=0.5e-3 SPEEDS="0.998 1.000 1.002", about 20 min a
 # run: doc/validation/fig3_spread_h0.5mm.csv); SPEEDS the speed factors.
+# Runs that finished before in the work folder are kept, not run again.
 #   tests/validate_fig3_spread.sh
 #   H=0.5e-3 SPEEDS="0.998 1.000 1.002" tests/validate_fig3_spread.sh
 H=${H:-1e-3}
@@ -20,7 +21,7 @@ fi
 source "$(dirname "$0")/validate_common.sh" $name
 mesh_checked "$W/oblique_cylinder.msh" input/oblique_cylinder/oblique_cylinder.geo "${mesh_options[@]}"
 meshes_checked
-runs=()
+runs=(); todo=()
 for f in 0.18 0.0; do
   for s in $SPEEDS; do
     run=f${f}_s$s
@@ -35,9 +36,15 @@ for f in 0.18 0.0; do
     grep -q "friction = $f," "$W/$run.nml" && grep -q "velocity = $vx, 0.0, $vz" "$W/$run.nml" && \
       grep -q "eroded = 'particles'" "$W/$run.nml" || { echo "deck edit failed: $run"; exit 1; }
     runs+=("$run")
+    # a run that finished before (its log's summary line and its field file) is not run again
+    if grep -q '^udar: done: ' "$W/$run.log" 2>/dev/null && [ -f "$W/$run/$run.h5" ]; then
+      echo "$run: done before, kept"
+    else
+      todo+=("$run")
+    fi
   done
 done
-printf '%s\n' "${runs[@]}" | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"
+[ ${#todo[@]} = 0 ] || printf '%s\n' "${todo[@]}" | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"
 csv=doc/validation/$name.csv
 echo "friction,speed_factor,t_us,crater_on_axis_mm,cylinder_left_along_axis_mm,intact_along_axis_mm,crater_deepest_mm,crater_rim_diameter_mm,cylinder_velocity_along_axis_m_s,cylinder_particles,cylinder_particle_mass_g,energy_error,wall_s" > $csv
 for run in "${runs[@]}"; do
