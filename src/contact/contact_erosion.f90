@@ -106,7 +106,7 @@ contains
             it%tri = faces(:, sel)
             it%apex = face_apex(sel)
           end if
-          if (it%slave_part > 0) it%slave = slave_nodes(it%slave_part)
+          if (it%slave_part > 0) it%slave = slave_nodes(it%slave_part, particles_only=it%own_particles)
           if (it%edges) then
             ! new edges appear as elements erode
             if (it%slave_part > 0) it%slave_tri = faces(:, pack([(i, i = 1, n)], face_part == it%slave_part))
@@ -147,13 +147,23 @@ contains
 
     !> Slave nodes of part ip: the nodes of its current boundary (or of the
     !> faces own) and its free nodes, ascending.
-    function slave_nodes(ip, own) result(nodes)
+    function slave_nodes(ip, own, particles_only) result(nodes)
       integer, intent(in) :: ip
       integer, intent(in), optional :: own(:,:)   !< (self-contact) the nodes of these faces instead
+      logical, intent(in), optional :: particles_only   !< only its particles
       integer, allocatable :: nodes(:)
       logical, allocatable :: mark(:)
       integer :: j, c, t
       allocate(mark(ct%n_nodes), source=.false.)
+      if (present(particles_only)) then
+        if (particles_only) then
+          do j = 1, ct%n_nodes - ct%n_mesh
+            if (ct%particle_part(j) == ip) mark(ct%n_mesh + j) = .true.
+          end do
+          nodes = pack([(j, j = 1, ct%n_nodes)], mark)
+          return
+        end if
+      end if
       if (present(own)) then
         do j = 1, size(own, 2)
           mark(own(:,j)) = .true.

@@ -49,7 +49,7 @@ contains
     type(interface_t), allocatable :: ifc(:)
     integer :: k, n_err0, nf, n_ifc, i, mark_count, m_part, s_part, e, nv
     logical, allocatable :: part_erodes(:)
-    logical, allocatable :: is_contact(:), face_used(:), m_body(:), s_body(:)
+    logical, allocatable :: is_contact(:), face_used(:), m_body(:), s_body(:), own_done(:)
     character(len=:), allocatable :: mname, sname, face_word
 
     ct%n_interfaces = 0
@@ -74,7 +74,14 @@ contains
       nf = k
     end if
     allocate(face_used(nf), source=.false.)
-    n_ifc = size(cfg%contacts) + count(cfg%contacts%symmetric)
+    ! a part whose eroded elements become particles: its particles are kept
+    ! out of its own remaining body too (one interface, after the deck's)
+    allocate(ct%part_converts(size(cfg%parts)), source=.false.)
+    do e = 1, glob%n_elems
+      if (glob%mat(glob%el_mat(e))%eroded == eroded_particles) ct%part_converts(glob%el_part(e)) = .true.
+    end do
+    allocate(own_done(size(cfg%parts)), source=.false.)
+    n_ifc = size(cfg%contacts) + count(cfg%contacts%symmetric) + count(ct%part_converts .and. contact_part())
     allocate(ifc(n_ifc))
     i = 0
     do k = 1, size(cfg%contacts)
@@ -111,6 +118,9 @@ contains
           ifc(i-1)%partner = i
           ifc(i)%slave_part = eroding_part(m_part)
         end if
+        ! each converting part of the contact, once: its particles on its own surface
+        call own_particles(m_part, master, m_body)
+        call own_particles(s_part, tri_all, s_body)
       end associate
     end do
     if (errs%count() > n_err0) return
@@ -177,12 +187,47 @@ contains
     ! particles (eroded = 'particles') join the contact nodes as they are made
     ct%n_mesh = ct%n_nodes
     allocate(ct%particle_part(0))
-    allocate(ct%part_converts(size(cfg%parts)), source=.false.)
-    do e = 1, glob%n_elems
-      if (glob%mat(glob%el_mat(e))%eroded == eroded_particles) ct%part_converts(glob%el_part(e)) = .true.
-    end do
 
   contains
+
+    !> Whether each part is named as the master or slave of a contact
+    !> (not through a surface group), one that is not self-contact.
+    function contact_part() result(named)
+      logical :: named(size(cfg%parts))
+      integer :: ip, kc
+      named = .false.
+      do kc = 1, size(cfg%contacts)
+        if (to_lower(cfg%contacts(kc)%master) == to_lower(cfg%contacts(kc)%slave)) cycle
+        do ip = 1, size(cfg%parts)
+          if (to_lower(trim(cfg%parts(ip)%group)) == to_lower(trim(cfg%contacts(kc)%master)) .or. &
+              to_lower(trim(cfg%parts(ip)%group)) == to_lower(trim(cfg%contacts(kc)%slave))) named(ip) = .true.
+        end do
+      end do
+    end function
+
+    !> The interface that keeps part ip's particles out of its own remaining
+    !> body (the surface tri, the body's parts body), with contact k's
+    !> settings, if ip converts and has none yet. Without it a part's failed
+    !> material goes through the part itself: the target's crater debris
+    !> through the target, a projectile's eroded front overrun by its rear.
+    subroutine own_particles(ip, tri, body)
+      integer, intent(in) :: ip
+      integer, intent(in) :: tri(:,:)
+      logical, intent(in) :: body(:)
+      integer :: no_nodes(0), no_tri(nv,0)
+      if (ip == 0) return
+      if (.not. ct%part_converts(ip) .or. own_done(ip)) return
+      own_done(ip) = .true.
+      i = i + 1
+      call make_interface(ifc(i), tri, no_nodes, no_tri, trim(cfg%parts(ip)%group)//'_particles_on_itself')
+      ifc(i)%edges = .false.
+      ifc(i)%valleys = .false.
+      ifc(i)%own_particles = .true.
+      allocate(ifc(i)%start_inside(0))
+      ifc(i)%master_body = body
+      ifc(i)%master_part = eroding_part(ip)
+      ifc(i)%slave_part = eroding_part(ip)
+    end subroutine
 
     !> The triangles of a part's boundary (name of a part) or of a physical
     !> surface group, in global node indices, oriented out of their body.

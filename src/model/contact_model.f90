@@ -37,6 +37,9 @@ module udar_contact_model
     !> a symmetric contact's other direction (0: none): both directions'
     !> slave nodes are found first and matched in one set of passes
     integer :: partner = 0
+    !> the slave nodes are only the particles of the part (its failed
+    !> material, eroded = 'particles'), kept out of its own remaining body
+    logical :: own_particles = .false.
     integer, allocatable :: ring_start(:), ring(:)   !< CSR over slave nodes: the nodes within two surface edges
     logical, allocatable :: near(:)        !< (contact nodes) work: the current slave node's ring
     logical, allocatable :: touched(:)     !< (slave nodes) in contact in the last pass (self-contact)

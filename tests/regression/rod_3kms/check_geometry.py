@@ -7,6 +7,14 @@ def deepest_inside(points, x, tets):
     triangle: tets with 3 columns, points in z = 0), 0 if none: the depth of
     a point is its smallest barycentric coordinate times the element's
     smallest altitude (positive only when it is strictly inside)."""
+    depth = depths_inside(points, x, tets)
+    return depth.max() if len(depth) else 0.0
+
+
+def depths_inside(points, x, tets):
+    """Each point's depth (m) inside the tetrahedra (or 2D triangles) as
+    deepest_inside measures it: the largest over the elements, 0 where it
+    is in none."""
     d = tets.shape[1] - 1                                 # 3 (tetrahedra) or 2 (triangles)
     corners = [x[tets[:, k], :d] for k in range(d + 1)]
     a = corners[0]
@@ -21,19 +29,21 @@ def deepest_inside(points, x, tets):
         b, c = corners[1:]
         h_min = size / np.max([np.linalg.norm(f, axis=1) for f in (b - a, c - b, a - c)], axis=0)
     lo, hi = np.minimum.reduce(corners), np.maximum.reduce(corners)
-    worst = 0.0
+    depths = np.zeros(len(points))
+    if len(tets) == 0:
+        return depths
     # only the points within the elements' overall box can be inside one
     points = points[:, :d]
-    points = points[np.all((points >= lo.min(axis=0)) & (points <= hi.max(axis=0)), axis=1)]
-    for p in points:
+    boxed = np.nonzero(np.all((points >= lo.min(axis=0)) & (points <= hi.max(axis=0)), axis=1))[0]
+    for i in boxed:
+        p = points[i]
         near = np.all((p >= lo) & (p <= hi), axis=1)
         if not near.any():
             continue
         lam = np.einsum('nij,nj->ni', inv[near], p - a[near])
         bary = np.column_stack([1.0 - lam.sum(axis=1), lam])
-        depth = bary.min(axis=1) * h_min[near]
-        worst = max(worst, depth.max())
-    return worst
+        depths[i] = max((bary.min(axis=1) * h_min[near]).max(), 0.0)
+    return depths
 
 
 def slave_and_master(f, slave_part, master_part):
