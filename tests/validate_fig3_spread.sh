@@ -58,6 +58,19 @@ for run in "${runs[@]}"; do
   echo "$line" | awk -v f=$f -v s=$s -v e=$err -v w=$wall \
     '{printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.4f,%s,%s\n", f, s, $1, $2, $3, $8, $9, $10, $4, $11, $12, e, w}' | tee -a $csv
 done
+# pictures like the paper's Fig. 3: the nominal-speed run of each friction
+# value at 12 us, cut next to the symmetry plane (particles within half
+# their spacing of the cut drawn as points), by part and by fracture state
+for f in 0.18 0.0; do
+  run=f${f}_s1.000
+  [ -f "$W/$run/$run.h5" ] || continue
+  tag=f$(echo "$f" | sed 's/^0\.//; s/^0$/0/')
+  for c in part fracture_state; do
+    $PYTHON postproc/section.py "$W/$run/$run.h5" --plane y=0.3mm --time 12 --color $c --xlim -20 40 --ylim -25 20 \
+      --title "Fig. 3 deck with particles, f = $f, 12 us (h = $(awk -v h="$H" 'BEGIN{printf "%g", h * 1000}') mm)" \
+      -o doc/validation/${name}_${tag}_12us_${c%%_*}.png
+  done
+done
 # mean and sample standard deviation per friction value, and the differences
 $PYTHON - "$csv" <<'PY'
 import csv, sys
