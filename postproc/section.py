@@ -602,11 +602,14 @@ def _self_test(verbose=True):
         info0 = render_section(h5p, out1, step=0, color="part", verbose=False)
         check("particles" not in info0, "particles group with count 0: nothing drawn, no legend entry")
         info = render_section(h5p, out1, step=1, color="part", verbose=False)
-        check(abs(info["particle_slab_m"] - h) < 1e-15 and info["particles"] == 5
-              and info["particles_total"] == n,
-              "default slab half the median spacing: %.6g mm (%.6g), %d of %d particles drawn (5)"
+        # (two particles lie exactly h from the plane: whether a slab computed
+        # as a cube root takes them is the rounding of this machine's cbrt)
+        drawn = particles_in_slab(pxyz, pl, info["particle_slab_m"])
+        check(abs(info["particle_slab_m"] - h) < 1e-15 and info["particles"] == drawn.sum()
+              and drawn.sum() in (3, 5) and info["particles_total"] == n,
+              "default slab half the median spacing: %.6g mm (%.6g), %d of %d particles drawn (3 or 5)"
               % (info["particle_slab_m"] * 1e3, h * 1e3, info["particles"], n))
-        check(np.allclose(info["particles_xy_mm"], pxyz[in_slab][:, [0, 2]] * 1e3, rtol=0, atol=1e-12),
+        check(np.allclose(info["particles_xy_mm"], pxyz[drawn][:, [0, 2]] * 1e3, rtol=0, atol=1e-12),
               "particle markers at their (x, z) in mm")
         info = render_section(h5p, out1, step=1, color="pressure", mirror="h",
                               particle_slab=1.5 * h, verbose=False)
@@ -631,7 +634,7 @@ def _self_test(verbose=True):
         info = render_section(h5p, out1, step=1, particles=False, verbose=False)
         check("particles" not in info, "particles=False: not drawn")
         rc, out, _ = test.run_main(main, [h5p, "--color", "von_mises", "--mirror", "-o", out2])
-        check(rc == 0 and "5 of 8 particles within 0.25 mm of the plane" in out,
+        check(rc == 0 and ("%d of 8 particles within 0.25 mm of the plane" % drawn.sum()) in out,
               "CLI: an element field the particles lack (von_mises): particles in grey")
         rc, out, _ = test.run_main(main, [h5p, "--color", "part", "--particle-slab", "1e-3", "-o", out2])
         check(rc == 0 and "8 of 8 particles within 1 mm of the plane" in out,
