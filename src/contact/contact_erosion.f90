@@ -146,7 +146,7 @@ contains
     end function
 
     !> Slave nodes of part ip: the nodes of its current boundary (or of the
-    !> faces own) and its free nodes, ascending.
+    !> faces own) and its free nodes and particles, ascending; particles_only: its particles alone.
     function slave_nodes(ip, own, particles_only) result(nodes)
       integer, intent(in) :: ip
       integer, intent(in), optional :: own(:,:)   !< (self-contact) the nodes of these faces instead
@@ -154,17 +154,13 @@ contains
       integer, allocatable :: nodes(:)
       logical, allocatable :: mark(:)
       integer :: j, c, t
+      logical :: mesh_nodes
       allocate(mark(ct%n_nodes), source=.false.)
-      if (present(particles_only)) then
-        if (particles_only) then
-          do j = 1, ct%n_nodes - ct%n_mesh
-            if (ct%particle_part(j) == ip) mark(ct%n_mesh + j) = .true.
-          end do
-          nodes = pack([(j, j = 1, ct%n_nodes)], mark)
-          return
-        end if
-      end if
-      if (present(own)) then
+      mesh_nodes = .true.
+      if (present(particles_only)) mesh_nodes = .not. particles_only
+      if (.not. mesh_nodes) then
+        ! only the particles below
+      else if (present(own)) then
         do j = 1, size(own, 2)
           mark(own(:,j)) = .true.
         end do
@@ -175,7 +171,7 @@ contains
       end if
       ! free nodes keep the mass of their eroded elements, unless those
       ! became particles (which are slave nodes instead)
-      if (.not. ct%part_converts(ip)) then
+      if (mesh_nodes .and. .not. ct%part_converts(ip)) then
         do t = 1, ct%n_tets
           if (ct%tet_part(t) /= ip) cycle
           do c = 1, nc

@@ -81,7 +81,8 @@ contains
       if (glob%mat(glob%el_mat(e))%eroded == eroded_particles) ct%part_converts(glob%el_part(e)) = .true.
     end do
     allocate(own_done(size(cfg%parts)), source=.false.)
-    n_ifc = size(cfg%contacts) + count(cfg%contacts%symmetric) + count(ct%part_converts .and. contact_part())
+    ! (at most: the converting parts that a contact names; trimmed below)
+    n_ifc = size(cfg%contacts) + count(cfg%contacts%symmetric) + count(ct%part_converts)
     allocate(ifc(n_ifc))
     i = 0
     do k = 1, size(cfg%contacts)
@@ -124,6 +125,8 @@ contains
       end associate
     end do
     if (errs%count() > n_err0) return
+    n_ifc = i
+    if (size(ifc) > n_ifc) ifc = ifc(1:n_ifc)
 
     ! contact nodes: every node of a master triangle or a slave set, and
     ! every node of an eroding part (any may come to the surface)
@@ -189,21 +192,6 @@ contains
     allocate(ct%particle_part(0))
 
   contains
-
-    !> Whether each part is named as the master or slave of a contact
-    !> (not through a surface group), one that is not self-contact.
-    function contact_part() result(named)
-      logical :: named(size(cfg%parts))
-      integer :: ip, kc
-      named = .false.
-      do kc = 1, size(cfg%contacts)
-        if (to_lower(cfg%contacts(kc)%master) == to_lower(cfg%contacts(kc)%slave)) cycle
-        do ip = 1, size(cfg%parts)
-          if (to_lower(trim(cfg%parts(ip)%group)) == to_lower(trim(cfg%contacts(kc)%master)) .or. &
-              to_lower(trim(cfg%parts(ip)%group)) == to_lower(trim(cfg%contacts(kc)%slave))) named(ip) = .true.
-        end do
-      end do
-    end function
 
     !> The interface that keeps part ip's particles out of its own remaining
     !> body (the surface tri, the body's parts body), with contact k's
