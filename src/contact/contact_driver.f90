@@ -19,6 +19,7 @@ module udar_contact
                                 face_beside_sharp_edge, points_inside_elements
   use udar_fracture, only: el_eroded
   use udar_ordering, only: find_sorted
+  use udar_vectors, only: gather_columns
   use udar_config, only: geometry_axisymmetric
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, &
                         comms_max, comms_alltoall_counts, comms_alltoallv_real, comms_wtime
@@ -204,7 +205,7 @@ contains
             best = 0
             best_d = reach
             do t = 1, size(it%tri, 2)
-              xa(:,1:nf) = ct%x(:, it%tri(:,t))
+              call gather_columns(xa, ct%x, it%tri(:,t))
               if (any(ct%x(:,p) < minval(xa(:,1:nf), dim=2) - best_d) .or. &
                   any(ct%x(:,p) > maxval(xa(:,1:nf), dim=2) + best_d)) cycle
               call closest_on_face(xa(:,1:nf), ct%x(:,p), c, g)
@@ -642,8 +643,10 @@ contains
           do k = 1, it%n_pass
             ps = it%active(k)
             t = it%on_tri(k)
-            vm(:,1:nf) = ct%v(:, it%tri(:,t))
-            mm(1:nf) = ct%m(it%tri(:,t))
+            call gather_columns(vm, ct%v, it%tri(:,t))
+            do a = 1, nf
+              mm(a) = ct%m(it%tri(a,t))
+            end do
             call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), mm, vm, it%area(:,k), &
                                   it%share(:,k), it%friction, it%dn_sum(k), it%t_sum(:,k), dvs, dvm, closing, dn, dtan)
             if (.not. closing) cycle
@@ -679,12 +682,14 @@ contains
   contains
     !> The velocities of the pass's rows' nodes at the start of a sweep.
     subroutine keep_row_velocities()
-      integer :: j, kk, tt
+      integer :: j, kk, tt, aa
       do j = first, last
         do kk = 1, ct%ifc(j)%n_pass
           tt = ct%ifc(j)%on_tri(kk)
           ct%v_sweep(:, ct%ifc(j)%active(kk)) = ct%v(:, ct%ifc(j)%active(kk))
-          ct%v_sweep(:, ct%ifc(j)%tri(:,tt)) = ct%v(:, ct%ifc(j)%tri(:,tt))
+          do aa = 1, size(ct%ifc(j)%tri, 1)
+            ct%v_sweep(:, ct%ifc(j)%tri(aa,tt)) = ct%v(:, ct%ifc(j)%tri(aa,tt))
+          end do
         end do
       end do
     end subroutine
@@ -849,9 +854,9 @@ contains
           if (.not. only(k)) cycle
         end if
       end if
-      if (it%self) it%near(it%ring(it%ring_start(k):it%ring_start(k+1)-1)) = .true.
+      if (it%self) call mark_ring(k, .true.)
       call nearest_behind(ps, .false., best, best_dist, best_n, best_g, separating, slot=k)
-      if (it%self) it%near(it%ring(it%ring_start(k):it%ring_start(k+1)-1)) = .false.
+      if (it%self) call mark_ring(k, .false.)
       if (best == 0) cycle
       if (separating) then
         ! the paper releases it (no velocity change); it only goes back on the surface
@@ -860,7 +865,7 @@ contains
         call add_record(k, best, kind_separating, best_dist, best_n, best_g, [0.0_rk, 0.0_rk, 0.0_rk], x_new)
         cycle
       end if
-      xa(:,1:nf) = ct%x(:, it%tri(:,best))
+      call gather_columns(xa, ct%x, it%tri(:,best))
       xa0 = at_step_start(best)
       call face_shares(it%weights, xa(:,1:nf), ct%x(:,ps), best_g, best_n, xa0(:,1:nf), ct%x(:,ps) - dt*ct%v(:,ps), share)
       call add_record(k, best, kind_found, best_dist, best_n, best_g, share, ct%x(:,ps))
@@ -868,7 +873,7 @@ contains
       if (.not. it%valleys .or. it%self .or. dt <= 0.0_rk) cycle
       call valley_partner(ps, k, best, best_n, t, dist, n, g)
       if (t == 0) cycle
-      xa(:,1:nf) = ct%x(:, it%tri(:,t))
+      call gather_columns(xa, ct%x, it%tri(:,t))
       xa0 = at_step_start(t)
       call face_shares(it%weights, xa(:,1:nf), ct%x(:,ps), g, n, xa0(:,1:nf), ct%x(:,ps) - dt*ct%v(:,ps), share)
       call add_record(k, t, kind_valley, dist, n, g, share, ct%x(:,ps))
@@ -917,7 +922,7 @@ contains
       do k = 1, it%n_pass
         ps = it%active(k)
         t = it%on_tri(k)
-        xa(:,1:nf) = ct%x(:, it%tri(:,t))
+        call gather_columns(xa, ct%x, it%tri(:,t))
         call face_projection(xa(:,1:nf), ct%x(:,ps), n, dist, g)
         room = allowance(ps)
         ! a valley node's second face: what is left of the same room
@@ -972,6 +977,17 @@ contains
       call share_positions(ct, n_rec)
     end subroutine
 
+    !> Marks (or unmarks) slave node k's own neighbourhood, the nodes
+    !> self-contact does not look at for it.
+    subroutine mark_ring(k, on)
+      integer, intent(in) :: k
+      logical, intent(in) :: on
+      integer :: j
+      do j = it%ring_start(k), it%ring_start(k+1) - 1
+        it%near(it%ring(j)) = on
+      end do
+    end subroutine
+
     !> Appends a found slave node's record for share_found: with the
     !> states of its node (at x) and of the face's (a segment's second node
     !> again in the third slot, which share_found does not read).
@@ -992,7 +1008,7 @@ contains
       real(rk), intent(in) :: reach
       real(rk), intent(out) :: lo(3), hi(3)
       real(rk) :: xt(3,3)
-      xt(:,1:nf) = ct%x(:, it%tri(:,t))
+      call gather_columns(xt, ct%x, it%tri(:,t))
       lo = minval(xt(:,1:nf), dim=2)
       hi = maxval(xt(:,1:nf), dim=2)
       if (it%apex(t) > 0 .and. dt > 0.0_rk) then
@@ -1008,8 +1024,16 @@ contains
     !> the slave nodes always is (exchange_neighbourhood).
     logical function known(t)
       integer, intent(in) :: t
-      known = all(ct%fresh(it%tri(:,t)) == ct%stamp)
-      if (known .and. it%apex(t) > 0) known = ct%fresh(it%apex(t)) == ct%stamp
+      integer :: a
+      ! (a loop: any/all over a vector subscript allocate a temporary)
+      known = .false.
+      do a = 1, nf
+        if (ct%fresh(it%tri(a,t)) /= ct%stamp) return
+      end do
+      if (it%apex(t) > 0) then
+        if (ct%fresh(it%apex(t)) /= ct%stamp) return
+      end if
+      known = .true.
     end function
 
     !> How far slave node ps may be returned in this pass.
@@ -1100,7 +1124,9 @@ contains
         end if
         it%cand_start(k+1) = n_cand + 1
       end do
-      it%tri_mark(it%cand(1:n_cand)) = .true.
+      do s = 1, n_cand
+        it%tri_mark(it%cand(s)) = .true.
+      end do
       it%n_cand_tri = 0
       do t = 1, nt
         if (.not. it%tri_mark(t)) cycle
@@ -1136,7 +1162,7 @@ contains
       integer :: other, sep
       integer :: t, s, first, last
       real(rk) :: xa(3,3), n(3), dist, g(3), c_near(3), seam_dist, seam_n(3), seam_g(3), xb(3,3,3), xs(3,3,3)
-      logical :: has(3), shares(3,3), sharp, off_face
+      logical :: has(3), shares(3,3), sharp, off_face, own
       integer :: verdict, seam, n_beside, a
       best = 0; other = 0; sep = 0; seam = 0
       seam_dist = -huge(1.0_rk)
@@ -1152,9 +1178,13 @@ contains
         if (any(it%tri(:,t) == ps)) cycle
         if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
         if (it%self) then
-          if (any(it%near(it%tri(:,t)))) cycle   ! its own neighbourhood
+          own = .false.
+          do a = 1, nf
+            own = own .or. it%near(it%tri(a,t))
+          end do
+          if (own) cycle   ! its own neighbourhood
         end if
-        xa(:,1:nf) = ct%x(:, it%tri(:,t))
+        call gather_columns(xa, ct%x, it%tri(:,t))
         call face_projection(xa(:,1:nf), ct%x(:,ps), n, dist, g)
         if (dist >= 0.0_rk) cycle
         ! the faces across its edges: for a sharp edge (a node that did not
@@ -1314,10 +1344,11 @@ contains
       integer, intent(out) :: t2
       real(rk), intent(out) :: dist2, n2(3), g2(3)
       real(rk) :: xa(3,3), n(3), dist, g(3), closing, best_closing, c_best(3), c_t(3), fold
-      integer :: s, t, a2
+      integer :: s, t, a2, shared
       t2 = 0; dist2 = 0; n2 = 0; g2 = 0
       best_closing = 0
-      c_best = sum(ct%x(:, it%tri(:,best)), dim=2)/real(nf, rk)
+      call gather_columns(xa, ct%x, it%tri(:,best))
+      c_best = sum(xa(:,1:nf), dim=2)/real(nf, rk)
       fold = 1.0e-3_rk*it%h_mean
       do s = it%cand_start(slot), it%cand_start(slot+1) - 1
         t = it%cand(s)
@@ -1325,13 +1356,17 @@ contains
         if (.not. known(t)) cycle
         if (any(it%tri(:,t) == ps)) cycle
         if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
-        xa(:,1:nf) = ct%x(:, it%tri(:,t))
+        call gather_columns(xa, ct%x, it%tri(:,t))
         call face_projection(xa(:,1:nf), ct%x(:,ps), n, dist, g)
         if (dist >= 0.0_rk .or. dist < -depth_limit) cycle
         if (any(g < -edge_tolerance)) cycle
         if (dot_product(n, best_n) > valley_cos) cycle
         ! sharing an edge (3D) or a node (2D)
-        if (count([(any(it%tri(:,t) == it%tri(a2,best)), a2 = 1, nf)]) < nf - 1) cycle
+        shared = 0
+        do a2 = 1, nf
+          if (any(it%tri(:,t) == it%tri(a2,best))) shared = shared + 1
+        end do
+        if (shared < nf - 1) cycle
         c_t = sum(xa(:,1:nf), dim=2)/real(nf, rk)
         if (dot_product(best_n, c_t - c_best) <= fold) cycle
         if (dot_product(n, c_best - c_t) <= fold) cycle
@@ -1406,7 +1441,7 @@ contains
         tb = neighbour_across(it, t, a)
         has(a) = tb > 0
         if (has(a)) has(a) = known(tb)
-        if (has(a)) xb(:,1:nf,a) = ct%x(:, it%tri(:,tb))
+        if (has(a)) call gather_columns(xb(:,:,a), ct%x, it%tri(:,tb))
         if (tb > 0) cycle
         ! an edge on a symmetry plane (2D: an end on the axis or a symmetry
         ! line) is no rim: the surface goes on as the face's mirror image
@@ -1558,9 +1593,9 @@ contains
     ct%stamp = ct%stamp + 1
     ct%fresh = ct%stamp
     if (comms_size() == 1) then
-      ct%x(:,1:ct%n_mesh) = dom%nd_x(:, ct%local(1:ct%n_mesh))
-      ct%v(:,1:ct%n_mesh) = dom%nd_v(:, ct%local(1:ct%n_mesh))
       do p = 1, ct%n_mesh
+        ct%x(:,p) = dom%nd_x(:,ct%local(p))
+        ct%v(:,p) = dom%nd_v(:,ct%local(p))
         if (ct%returns(p)) ct%h(p) = node_altitude(dom, ct%local(p))
       end do
       return

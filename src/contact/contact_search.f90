@@ -23,9 +23,10 @@ module udar_contact_search
     integer, allocatable :: fill(:)        !< work: next free slot of each cell
   end type
 
-  !> At most this many cells per triangle on average: bounds the memory
-  !> when a few triangles are much larger than the rest.
-  integer, parameter :: max_cells_per_triangle = 8
+  !> At most this many cells, and this many cell entries, per triangle on
+  !> average: bounds the memory when a few triangles are much larger than
+  !> the rest.
+  integer, parameter :: max_cells_per_triangle = 8, max_entries_per_triangle = 16
 
 contains
 
@@ -35,7 +36,7 @@ contains
     real(rk), intent(in) :: box_lo(:,:), box_hi(:,:)
     integer :: nt, t, i, j, k, c, n_cells, pass
     integer :: c_lo(3), c_hi(3)
-    real(rk) :: extent(3), size_max
+    real(rk) :: extent(3), size_mean, entries
     nt = size(box_lo, 2)
     if (nt == 0) then
       grid%n = 1
@@ -45,12 +46,27 @@ contains
     end if
     grid%lo = minval(box_lo, dim=2)
     extent = maxval(box_hi, dim=2) - grid%lo
-    ! cells as large as the largest box: each box covers at most 2 cells a direction
-    size_max = maxval(box_hi - box_lo)
-    grid%cell = max(size_max, maxval(extent)*1.0e-6_rk, tiny(1.0_rk))
+    ! cells as large as the boxes on average, not as the largest: on a
+    ! graded mesh, or with a few stretched faces, cells that large hold
+    ! hundreds of the fine region's boxes, which every node there tests;
+    ! a large box covers many cells instead (the candidates a point finds,
+    ! the boxes that hold it, in ascending order, do not depend on the cell)
+    size_mean = 0
+    do t = 1, nt
+      size_mean = size_mean + maxval(box_hi(:,t) - box_lo(:,t))
+    end do
+    size_mean = size_mean/nt
+    grid%cell = max(size_mean, maxval(extent)*1.0e-6_rk, tiny(1.0_rk))
     do
       grid%n = max(1, ceiling(extent/grid%cell))
-      if (real(grid%n(1), rk)*grid%n(2)*grid%n(3) <= real(max_cells_per_triangle, rk)*nt + 8) exit
+      if (real(grid%n(1), rk)*grid%n(2)*grid%n(3) <= real(max_cells_per_triangle, rk)*nt + 8) then
+        entries = 0
+        do t = 1, nt
+          call cell_range(grid, box_lo(:,t), box_hi(:,t), c_lo, c_hi)
+          entries = entries + product(real(c_hi - c_lo + 1, rk))
+        end do
+        if (entries <= real(max_entries_per_triangle, rk)*nt + 8) exit
+      end if
       grid%cell = grid%cell*1.25_rk
     end do
     n_cells = grid%n(1)*grid%n(2)*grid%n(3)

@@ -23,10 +23,10 @@ module udar_contact_model
     !> master parts; 0 for a fixed surface): a slave node inside that
     !> element is found however deep (exposed by erosion under it)
     integer, allocatable :: apex(:)
-    !> CSR over contact nodes: the master triangles at each (seams: whether a
-    !> node beyond an edge is behind the surface depends on the triangle
-    !> across it, neighbour_across)
-    integer, allocatable :: tri_start(:), tri_at(:)
+    !> (3 or 2, n_tri) the face across each edge of a master face (seams and
+    !> sharp edges: whether a node beyond an edge is behind the surface
+    !> depends on the face across it, neighbour_across)
+    integer, allocatable :: across(:,:)
     integer, allocatable :: slave(:)       !< contact-node indices, ascending (= ascending global id)
     integer :: master_part = 0, slave_part = 0   !< eroding parts whose current boundary is the surface (0: fixed surface)
     !> self-contact: master and slave are one part's boundary (without its
@@ -347,15 +347,24 @@ contains
     if (.not. allocated(it%cand)) allocate(it%cand(4*size(it%slave) + 1))
   end subroutine
 
-  !> The triangles at each node of the interface's current master surface
-  !> (it%tri_start, it%tri_at; after every rebuild of it%tri): what
-  !> neighbour_across searches. No sort: it is redone at every erosion.
+  !> The face across each edge of every face of the interface's current
+  !> master surface (it%across; after every rebuild of it%tri): the
+  !> contact asks for it for every face a node is behind, so it is looked
+  !> up, not searched. No sort: it is redone at every erosion.
   subroutine surface_neighbours(it)
     type(interface_t), intent(inout) :: it
-    integer :: nn
+    integer, allocatable :: tri_start(:), tri_at(:)
+    integer :: nn, t, a
     nn = 0
     if (size(it%tri, 2) > 0) nn = maxval(it%tri)
-    call node_triangles(it%tri, nn, it%tri_start, it%tri_at)
+    call node_triangles(it%tri, nn, tri_start, tri_at)
+    if (allocated(it%across)) deallocate(it%across)
+    allocate(it%across(size(it%tri, 1), size(it%tri, 2)))
+    do t = 1, size(it%tri, 2)
+      do a = 1, size(it%tri, 1)
+        it%across(a,t) = face_across(it%tri, tri_start, tri_at, t, a)
+      end do
+    end do
   end subroutine
 
   !> The triangles at each of n_nodes nodes (CSR: at(start(n):start(n+1)-1),
@@ -386,23 +395,30 @@ contains
 
   !> The triangle across the edge of triangle t opposite its corner a, or
   !> in 2D the segment across the end of segment t opposite its node a (0: a
-  !> rim, or an edge or end of more than two faces), from
-  !> surface_neighbours' lists.
-  pure integer function neighbour_across(it, t, a) result(found)
+  !> rim, or an edge or end of more than two faces): surface_neighbours'
+  !> table.
+  pure integer function neighbour_across(it, t, a)
     type(interface_t), intent(in) :: it
     integer, intent(in) :: t, a
+    neighbour_across = it%across(a,t)
+  end function
+
+  !> What neighbour_across gives, from the faces at each node (CSR
+  !> tri_start, tri_at of node_triangles).
+  pure integer function face_across(tri, tri_start, tri_at, t, a) result(found)
+    integer, intent(in) :: tri(:,:), tri_start(:), tri_at(:), t, a
     integer :: i, j, k, s
-    if (size(it%tri, 1) == 3) then
-      i = it%tri(mod(a,3)+1,t)
-      j = it%tri(mod(a+1,3)+1,t)
+    if (size(tri, 1) == 3) then
+      i = tri(mod(a,3)+1,t)
+      j = tri(mod(a+1,3)+1,t)
     else
-      i = it%tri(3-a,t)
+      i = tri(3-a,t)
       j = i
     end if
     found = 0
-    do k = it%tri_start(i), it%tri_start(i+1) - 1
-      s = it%tri_at(k)
-      if (s == t .or. all(it%tri(:,s) /= j)) cycle
+    do k = tri_start(i), tri_start(i+1) - 1
+      s = tri_at(k)
+      if (s == t .or. all(tri(:,s) /= j)) cycle
       if (found /= 0) then
         found = 0          ! more than two faces at the edge
         return
