@@ -41,6 +41,9 @@ module udar_contact
   !> A joint pass (symmetric pair, self-contact) with at most this many
   !> rows has its normal rows solved together before the sweeps
   integer, parameter :: joint_solve_rows = 64
+  !> Cycle passes without a change of the surfaces after which the
+  !> candidate lists are built with the skin again (full_search).
+  integer, parameter :: quiet_passes_for_skin = 4
   !> a return to the surface moves a slave node by at most this fraction of
   !> the smallest altitude of its elements: no element loses more than this
   !> share of its volume to a jump that no velocity (and no work) goes with;
@@ -821,6 +824,7 @@ contains
     ! surface is behind the planes of many of its own faces)
     if (it%self .and. dt <= 0.0_rk) return
     it%passes = it%passes + 1
+    if (dt > 0.0_rk) it%quiet_passes = it%quiet_passes + 1
     t_search = comms_wtime()
     ! the pass's boxes: of the triangles in the candidate lists (a slave
     ! node is only ever tested against its own), all of them after a full search
@@ -1086,7 +1090,13 @@ contains
       integer :: k, s, t, c, n_cand
       real(rk) :: own_lo(3), own_hi(3)
       reach = depth_limit
-      if (it%tracking .and. dt > 0.0_rk) reach = depth_limit + it%skin
+      if (it%tracking .and. dt > 0.0_rk) then
+        ! the skin keeps the lists for the next passes; while the surfaces
+        ! change every few cycles (erosion, conversion to particles) the
+        ! next pass searches anew anyway, and the lists need only hold what
+        ! the nodes can meet in this pass (lists_hold)
+        reach = merge(depth_limit + it%skin, 3.0_rk*depth_limit, it%quiet_passes > quiet_passes_for_skin)
+      end if
       ! the region of this rank's own slave nodes: only the triangles that
       ! reach into it go into the grid
       own_lo = huge(1.0_rk)

@@ -117,6 +117,7 @@ contains
         if (it%seams .or. it%sharp_edges) call surface_neighbours(it)
         call assign_slaves(it, ct%x0, comms_rank(), comms_size())
         it%reach_built = -1.0       ! a full search on the new surfaces
+        it%quiet_passes = 0
       end associate
     end do
     call mark_returns(ct)

@@ -77,6 +77,7 @@ module udar_contact_model
     logical :: tracking = .true.
     real(rk) :: skin = 0                   !< m, extra reach of the candidate lists beyond the search margin
     real(rk) :: reach_built = -1           !< m, reach of the current lists (< 0: none, search again)
+    integer :: quiet_passes = 0            !< cycle passes since the surfaces last changed (erosion)
     real(rk), allocatable :: x_built(:,:)  !< (3, contact nodes) positions at the last full search
     real(rk), allocatable :: wide_lo(:,:), wide_hi(:,:)           !< (3, n_tri) boxes of the last full search
     integer, allocatable :: cand_start(:), cand(:)                 !< CSR over slave nodes: candidate triangles
