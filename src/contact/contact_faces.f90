@@ -9,7 +9,7 @@
 !> implementation for both kinds. Pure: no state, no I/O.
 module udar_contact_faces
   use udar_kinds, only: rk
-  use udar_vectors, only: cross
+  use udar_vectors, only: cross, gather_columns
   use udar_contact_kernels, only: triangle_projection, master_shares, closest_on_triangle, tetrahedron_coordinates, &
                                   behind_not, behind_face, behind_seam
   use udar_segment2, only: segment_projection, segment_shares, closest_on_segment, triangle_coordinates
@@ -96,8 +96,8 @@ contains
     integer, allocatable :: near(:)
     real(rk), allocatable :: lo(:,:), hi(:,:)
     type(bucket_grid_t) :: grid
-    real(rk) :: xt(3,4), lam(4), p_lo(3), p_hi(3)
-    integer :: j, e, k, c, s, nc, n_near
+    real(rk) :: xt(3,4), lam(4), p_lo(3), p_hi(3), e_lo(3), e_hi(3)
+    integer :: j, e, k, c, s, nc, n_near, corner
     nc = size(conn, 2)
     inside = .false.
     if (size(p, 2) == 0 .or. size(elems) == 0) return
@@ -105,13 +105,21 @@ contains
     p_hi = maxval(p, dim=2)
     allocate(near(size(elems)), lo(3, size(elems)), hi(3, size(elems)))
     n_near = 0
+    ! (corners gathered and boxed by loops: this runs over every element of
+    ! the master bodies whenever particles are made)
     do k = 1, size(elems)
-      xt(:,1:nc) = x(:, conn(elems(k),:))
-      if (any(maxval(xt(:,1:nc), dim=2) < p_lo) .or. any(minval(xt(:,1:nc), dim=2) > p_hi)) cycle
+      call gather_columns(xt, x, conn(elems(k),:))
+      e_lo = xt(:,1)
+      e_hi = xt(:,1)
+      do corner = 2, nc
+        e_lo = min(e_lo, xt(:,corner))
+        e_hi = max(e_hi, xt(:,corner))
+      end do
+      if (any(e_hi < p_lo) .or. any(e_lo > p_hi)) cycle
       n_near = n_near + 1
       near(n_near) = elems(k)
-      lo(:,n_near) = minval(xt(:,1:nc), dim=2)
-      hi(:,n_near) = maxval(xt(:,1:nc), dim=2)
+      lo(:,n_near) = e_lo
+      hi(:,n_near) = e_hi
     end do
     if (n_near == 0) return
     call grid_build(grid, lo(:,1:n_near), hi(:,1:n_near))
@@ -125,7 +133,7 @@ contains
         if (present(exclude)) then
           if (any(conn(e,:) == exclude(j))) cycle
         end if
-        xt(:,1:nc) = x(:, conn(e,:))
+        call gather_columns(xt, x, conn(e,:))
         call element_coordinates(xt(:,1:nc-1), xt(:,nc), p(:,j), lam)
         if (minval(lam(1:nc)) < -rounding) cycle
         inside(j) = .true.
