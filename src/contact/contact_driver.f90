@@ -1144,7 +1144,8 @@ contains
         it%cand_tri(it%n_cand_tri) = t
         it%tri_mark(t) = .false.
       end do
-      it%x_built = ct%x
+      ! (where the lists are kept: lists_hold measures the moves from here)
+      if (it%tracking .and. dt > 0.0_rk) it%x_built = ct%x
       it%reach_built = merge(reach, -1.0_rk, it%tracking .and. dt > 0.0_rk)
       it%full_searches = it%full_searches + 1
     end subroutine
@@ -1184,9 +1185,10 @@ contains
       last = it%cand_start(slot+1) - 1
       do s = first, last
         t = it%cand(s)
+        ! (the box first: most candidates fail it, and it reads one array)
+        if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
         if (.not. known(t)) cycle
         if (any(it%tri(:,t) == ps)) cycle
-        if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
         if (it%self) then
           own = .false.
           do a = 1, nf
@@ -1363,9 +1365,9 @@ contains
       do s = it%cand_start(slot), it%cand_start(slot+1) - 1
         t = it%cand(s)
         if (t == best) cycle
+        if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
         if (.not. known(t)) cycle
         if (any(it%tri(:,t) == ps)) cycle
-        if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
         call gather_columns(xa, ct%x, it%tri(:,t))
         call face_projection(xa(:,1:nf), ct%x(:,ps), n, dist, g)
         if (dist >= 0.0_rk .or. dist < -depth_limit) cycle
