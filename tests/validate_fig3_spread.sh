@@ -6,8 +6,9 @@
 # the crater along the plate's normal) next to the difference. Runs two at
 # a time; doc/validation/fig3_spread.csv, one row a run. H (m) sets the
 # element size near the impact (the deck's mesh is 1e-3; the finer mesh of
-# validation.md 4x is H=0.5e-3 SPEEDS="0.998 1.000 1.002", about 20 min a
-# run: doc/validation/fig3_spread_h0.5mm.csv); SPEEDS the speed factors.
+# validation.md 4z is H=0.5e-3 SPEEDS="0.998 1.000", 40-56 min a run here
+# two at a time: doc/validation/fig3_spread_h0.5mm.csv); SPEEDS the speed
+# factors.
 # Runs that finished before in the work folder are kept, not run again.
 #   tests/validate_fig3_spread.sh
 #   H=0.5e-3 SPEEDS="0.998 1.000 1.002" tests/validate_fig3_spread.sh
