@@ -1172,8 +1172,8 @@ contains
                   sep_dist, sep_n(3), lam(4)
       integer :: other, sep
       integer :: t, s, first, last
-      real(rk) :: xa(3,3), n(3), dist, g(3), c_near(3), seam_dist, seam_n(3), seam_g(3), xb(3,3,3), xs(3,3,3)
-      logical :: has(3), shares(3,3), sharp, off_face, own
+      real(rk) :: xa(3,3), n(3), dist, g(3), c_near(3), seam_dist, seam_n(3), seam_g(3), xb(3,3,3), xs(3,3,3), xc(3,3,3,3)
+      logical :: has(3), shares(3,3), sharp, off_face, own, hasc(3,3)
       integer :: verdict, seam, n_beside, a
       best = 0; other = 0; sep = 0; seam = 0
       seam_dist = -huge(1.0_rk)
@@ -1219,6 +1219,13 @@ contains
           if (face_beside_sharp_edge(xa(:,1:nf), n, g, xs(:,1:nf,:), shares(1:nf,:), n_beside, ct%x(:,ps), &
                                      edge_tolerance)) then
             if (.not. inside_element_under(ps, t, xa)) cycle
+          else if (n_beside > 0) then
+            ! (projecting past a face beside: the faces across its edges decide)
+            call faces_across_beside(t, has, xc, hasc)
+            if (face_beside_sharp_edge(xa(:,1:nf), n, g, xs(:,1:nf,:), shares(1:nf,:), n_beside, ct%x(:,ps), &
+                                       edge_tolerance, xc, hasc)) then
+              if (.not. inside_element_under(ps, t, xa)) cycle
+            end if
           end if
         end if
         if (it%seams .and. off_face) then
@@ -1435,6 +1442,33 @@ contains
         x0(:,a) = ct%x(:,it%tri(a,t)) - dt*ct%v(:,it%tri(a,t))
       end do
     end function
+
+    !> For each face beside triangle t (as faces_beside has them, has), in
+    !> the same order: the faces across its edges (xc(:,:,c,k): across the
+    !> edge opposite its corner c; hasc(c,k) false: none this rank has
+    !> current, or a mirror image's, which has no neighbours here).
+    subroutine faces_across_beside(t, has, xc, hasc)
+      integer, intent(in) :: t
+      logical, intent(in) :: has(3)
+      real(rk), intent(out) :: xc(3,3,3,3)
+      logical, intent(out) :: hasc(3,3)
+      integer :: a, c, k, tb, tc
+      xc = 0
+      hasc = .false.
+      k = 0
+      do a = 1, nf
+        if (.not. has(a)) cycle
+        k = k + 1
+        tb = neighbour_across(it, t, a)
+        if (tb <= 0) cycle
+        do c = 1, nf
+          tc = neighbour_across(it, tb, c)
+          if (tc <= 0) cycle
+          hasc(c,k) = known(tc)
+          if (hasc(c,k)) call gather_columns(xc(:,:,c,k), ct%x, it%tri(:,tc))
+        end do
+      end do
+    end subroutine
 
     !> The triangles across the three edges of triangle t (xb(:,:,a): across
     !> the edge opposite corner a; has(a) false: a rim, or one this rank has

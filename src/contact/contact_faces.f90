@@ -210,10 +210,20 @@ contains
   !> degrees and more such a node projects onto the shared edge or corner
   !> or beyond it: a node at a body's square edge that crossed the top face
   !> stays the top face's.
-  pure logical function face_beside_sharp_edge(xa, n, g, xb, shares, nb, xs, tol) result(outside)
+  !> With the faces across the edges (segment ends) of each face beside
+  !> (xc(:,1:nf,a,k): across the edge opposite its corner a; hasc(a,k)
+  !> false: none known), a node in front of a face beside whose projection
+  !> falls beyond some of its edges is outside too when each such edge is
+  !> convex (the face across falls away behind the face beside) or the
+  !> node is in front of the face across as well: near a convex edge the
+  !> body is behind both planes. This is a thin fragment's knife edge, where
+  !> a node outside the face beside projects just past that face's far edge.
+  pure logical function face_beside_sharp_edge(xa, n, g, xb, shares, nb, xs, tol, xc, hasc) result(outside)
     integer, intent(in) :: nb
     real(rk), intent(in) :: xa(:,:), n(3), g(3), xb(:,:,:), xs(3), tol
     logical, intent(in) :: shares(:,:)
+    real(rk), intent(in), optional :: xc(:,:,:,:)
+    logical, intent(in), optional :: hasc(:,:)
     real(rk) :: longest, centre(3), nk(3), dk, gk(3)
     integer :: k, nf
     outside = .false.
@@ -228,9 +238,35 @@ contains
       centre = sum(xb(:,1:nf,k), dim=2)/real(nf, rk)
       if (dot_product(n, centre - xa(:,1)) >= -flat*longest) cycle     ! rising or flat
       call face_projection(xb(:,1:nf,k), xs, nk, dk, gk)
-      if (dk <= -flat*longest .or. any(gk(1:nf) < -tol)) cycle
+      if (dk <= -flat*longest) cycle
+      if (any(gk(1:nf) < -tol)) then
+        if (.not. present(xc)) cycle
+        if (.not. beyond_convex_edges(xb(:,1:nf,k), nk, gk, xc(:,:,:,k), hasc(:,k))) cycle
+      end if
       outside = .true.
       return
     end do
+
+  contains
+
+    !> Whether each edge of face xk (normal nk) that xs projects beyond
+    !> (coordinates gk) is convex or has xs in front of the face across it.
+    pure logical function beyond_convex_edges(xk, nk, gk, xc, hasc) result(ok)
+      real(rk), intent(in) :: xk(:,:), nk(3), gk(3), xc(:,:,:)
+      logical, intent(in) :: hasc(:)
+      real(rk) :: nc(3), dc, gc(3), longest_k, middle(3)
+      integer :: a
+      ok = .false.
+      longest_k = maxval([(norm2(xk(:,a) - xk(:,mod(a,nf)+1)), a = 1, nf)])
+      do a = 1, nf
+        if (gk(a) >= -tol) cycle
+        if (.not. hasc(a)) return
+        middle = sum(xc(:,1:nf,a), dim=2)/real(nf, rk)
+        if (dot_product(nk, middle - xk(:,1)) < -flat*longest_k) cycle     ! falls away: convex
+        call face_projection(xc(:,1:nf,a), xs, nc, dc, gc)
+        if (dc <= -flat*longest_k) return
+      end do
+      ok = .true.
+    end function
   end function
 end module udar_contact_faces

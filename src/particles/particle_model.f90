@@ -30,6 +30,7 @@ module udar_particle_model
     ! work arrays of a step
     real(rk), allocatable :: acc(:,:), drho(:), dheat(:), vsig(:), visc(:)
     real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3,n) m/s: v(n-1/2), and v(n+1/2) before the contact pass
+    real(rk), allocatable :: x_start(:,:) !< (3,n+images) m: x(n), for the rates after the contact pass
     integer, allocatable :: pairs(:,:), cell_start(:), order(:), cand(:)
     integer :: n_pairs = 0
     !> mirror images across the symmetry planes (in the arrays after the
@@ -52,7 +53,7 @@ contains
     cap = max(n, 64)
     if (allocated(pt%m)) cap = max(cap, 2*size(pt%m))
     call grow2(pt%x, cap); call grow2(pt%v, cap); call grow2(pt%acc, cap); call grow2(pt%v_prev, cap)
-    call grow2(pt%v_pre, cap)
+    call grow2(pt%v_pre, cap); call grow2(pt%x_start, cap)
     call grow1(pt%m, cap); call grow1(pt%rho, cap); call grow1(pt%e, cap); call grow1(pt%p, cap)
     call grow1(pt%c, cap); call grow1(pt%h, cap); call grow1(pt%temp, cap); call grow1(pt%eps_p, cap)
     call grow1(pt%drho, cap); call grow1(pt%dheat, cap); call grow1(pt%vsig, cap)

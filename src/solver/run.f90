@@ -25,7 +25,7 @@ module udar_run
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, apply_axis, update_positions, &
       keep_constrained_positions, restore_constrained_positions, walls_on_points
   use udar_particle_model, only: particles_t
-  use udar_particle_driver, only: particles_init, particles_convert, particles_forces, particles_finish_step, &
+  use udar_particle_driver, only: particles_init, particles_convert, particles_forces, particles_move, particles_finish_step, &
       particles_converting, particles_contact_work, particles_onto_planes
   use udar_strength, only: von_mises
   use udar_history, only: history_t, history_open, history_reopen, history_write, history_sync, history_close
@@ -304,13 +304,13 @@ contains
       call apply_rigid_walls(dom, dt, walls%work, walls%impulse)
       call apply_axis(dom, dt, walls%work)
       ! the particles, every one on every rank: forces at x(n), the walls
-      ! (their sums on one rank), x(n+1) and their state at n+1
+      ! (their sums on one rank), x(n+1); their state at n+1 after the contact
       if (pt%n > 0) then
         call particles_forces(pt, dom%sym_walls, dt_v)
         call walls_on_particles(dom%walls, walls%impulse, wall_impulse_dummy)
         ! the symmetry planes as frictionless walls (their impulses are no wall's force)
         call walls_on_particles(dom%sym_walls, sym_impulse_dummy, sym_impulse_dummy)
-        call particles_finish_step(pt, dom, dt)
+        call particles_move(pt, dt)
       end if
       walls%dt_v = dt_v
       call update_positions(dom, dt)
@@ -324,6 +324,8 @@ contains
       if (ct%n_interfaces > 0 .and. pt%n > 0) call particles_onto_planes(pt, dom%sym_walls)
       call contact_work(ct, dom, walls%contact_work)
       if (pt%n > 0 .and. ct%n_interfaces > 0 .and. comms_is_root()) call particles_contact_work(pt, walls%contact_work)
+      ! the particles' state at n+1 from the velocities the contact leaves
+      if (pt%n > 0) call particles_finish_step(pt, dom, dt)
       contact_seconds = contact_seconds + (comms_wtime() - elapsed)
       call comms_halo_exchange(halo, dom%nd_x, dom%nd_v)
       st%t = st%t + dt

@@ -58,6 +58,7 @@ program test_contact_kernels
   call test_edges_and_elements()
   call test_seams()
   call test_sharp_edges()
+  call test_beyond_face_beside()
   call check_summary()
 contains
 
@@ -155,6 +156,39 @@ contains
     call check('sharp_edge_verdicts_by_hand', all(v .eqv. [.true., .false., .false., .true., .true., .false., .false., &
                .false., .false.]), 'in front / inside / beyond the apex / on the plane / corner / none / square edge (2) '// &
                '/ rising, TFFTTFFFF wanted: '//logicals(v))
+  end subroutine
+
+  !> The node of test_sharp_edges that is in front of the face beside B
+  !> ((0,0,0), (0,1,0), (0.5,0.5,-1)) but projects beyond its apex,
+  !> p = (0.6,0.5,-1.5) (area coordinates on B -0.22, -0.22, 1.44: past
+  !> both edges at the apex), with the faces across those two edges given
+  !> (face_beside_sharp_edge's xc, hasc), by hand: faces to q = (1,0.5,-1.5)
+  !> fall away behind B's plane (centroids 0.075 behind: a knife edge),
+  !> so p is outside; faces to (0,0.5,-2) rise (0.30 in front: a
+  !> valley) with p 0.153 behind them: not outside; faces to (1,0.5,-3)
+  !> rise with p 0.022 in front of them: outside; none known: not outside,
+  !> as without them.
+  subroutine test_beyond_face_beside()
+    real(rk) :: xa(3,3), xb(3,3,1), xc(3,3,3,1), b1(3), b2(3), b3(3), p(3), n(3), dist, g(3), q(3,3)
+    logical :: edge(3,1), hasc(3,1), v(4)
+    integer :: k
+    xa = reshape([0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.5_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk], [3, 3])
+    edge(:,1) = [.true., .false., .true.]
+    b1 = [0.0_rk, 0.0_rk, 0.0_rk]; b2 = [0.0_rk, 1.0_rk, 0.0_rk]; b3 = [0.5_rk, 0.5_rk, -1.0_rk]
+    xb(:,:,1) = reshape([b1, b2, b3], [3, 3])
+    p = [0.6_rk, 0.5_rk, -1.5_rk]
+    q = reshape([1.0_rk, 0.5_rk, -1.5_rk, 0.0_rk, 0.5_rk, -2.0_rk, 1.0_rk, 0.5_rk, -3.0_rk], [3, 3])
+    call triangle_projection(xa, p, n, dist, g)
+    hasc(:,1) = [.true., .true., .false.]
+    do k = 1, 3
+      xc = 0
+      xc(:,:,1,1) = reshape([b3, b2, q(:,k)], [3, 3])     ! across B's edge opposite its corner 1
+      xc(:,:,2,1) = reshape([b1, b3, q(:,k)], [3, 3])     ! opposite its corner 2
+      v(k) = face_beside_sharp_edge(xa, n, g, xb, edge, 1, p, 1.0e-3_rk, xc, hasc)
+    end do
+    v(4) = face_beside_sharp_edge(xa, n, g, xb, edge, 1, p, 1.0e-3_rk, xc, spread(spread(.false., 1, 3), 2, 1))
+    call check('beyond_face_beside_verdicts_by_hand', all(v .eqv. [.true., .false., .true., .false.]), &
+               'knife edge / valley, behind / valley, in front / none known, TFTF wanted: '//logicals(v))
   end subroutine
 
   logical function outside_at(xa, xb, shares, nb, p)
