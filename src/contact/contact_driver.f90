@@ -1169,7 +1169,7 @@ contains
       real(rk), intent(out) :: best_dist, best_n(3), best_g(3)
       logical, intent(out) :: separating
       real(rk) :: closing, best_closing, other_closing, other_dist, other_n(3), other_g(3), &
-                  sep_dist, sep_n(3), lam(4)
+                  sep_dist, sep_n(3)
       integer :: other, sep
       integer :: t, s, first, last
       real(rk) :: xa(3,3), n(3), dist, g(3), c_near(3), seam_dist, seam_n(3), seam_g(3), xb(3,3,3), xs(3,3,3), xc(3,3,3,3)

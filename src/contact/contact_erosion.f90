@@ -114,7 +114,7 @@ contains
           end if
         end if
         call size_interface_work(it)
-        if (it%seams .or. it%sharp_edges) call surface_neighbours(it)
+        if (it%seams .or. it%sharp_edges) call surface_neighbours(it, ct%x0)
         call assign_slaves(it, ct%x0, comms_rank(), comms_size())
         it%reach_built = -1.0       ! a full search on the new surfaces
         it%quiet_passes = 0

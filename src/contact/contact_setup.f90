@@ -155,8 +155,6 @@ contains
     ct%n_nodes = mark_count
     do i = 1, n_ifc
       if (ifc(i)%self) call self_neighbourhoods(ifc(i), ct%n_nodes)
-      ! the triangles at each node, by contact-node index (after the renumbering)
-      if (ifc(i)%seams .or. ifc(i)%sharp_edges) call surface_neighbours(ifc(i))
     end do
     do i = 1, n_ifc
       allocate(ifc(i)%x_built(3, ct%n_nodes))
@@ -183,6 +181,8 @@ contains
     ct%v = glob%nd_v(:, ct%gidx)
     ct%sym_planes = sym_planes(ct%gidx)
     do i = 1, n_ifc
+      ! the face across each edge, by contact-node index (after the renumbering)
+      if (ct%ifc(i)%seams .or. ct%ifc(i)%sharp_edges) call surface_neighbours(ct%ifc(i), ct%x0)
       if (ct%ifc(i)%edges) call contact_edges(ct%ifc(i), ct%x0)
       call assign_slaves(ct%ifc(i), ct%x0, comms_rank(), comms_size())
     end do

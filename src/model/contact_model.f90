@@ -351,9 +351,12 @@ contains
   !> The face across each edge of every face of the interface's current
   !> master surface (it%across; after every rebuild of it%tri): the
   !> contact asks for it for every face a node is behind, so it is looked
-  !> up, not searched. No sort: it is redone at every erosion.
-  subroutine surface_neighbours(it)
+  !> up, not searched. No sort: it is redone at every erosion. x0: the
+  !> contact nodes' initial positions (where an edge has more than two
+  !> faces, they decide which face bounds the same solid wedge).
+  subroutine surface_neighbours(it, x0)
     type(interface_t), intent(inout) :: it
+    real(rk), intent(in) :: x0(:,:)
     integer, allocatable :: tri_start(:), tri_at(:)
     integer :: nn, t, a
     nn = 0
@@ -363,7 +366,7 @@ contains
     allocate(it%across(size(it%tri, 1), size(it%tri, 2)))
     do t = 1, size(it%tri, 2)
       do a = 1, size(it%tri, 1)
-        it%across(a,t) = face_across(it%tri, tri_start, tri_at, t, a)
+        it%across(a,t) = face_across(it%tri, tri_start, tri_at, t, a, x0)
       end do
     end do
   end subroutine
@@ -405,11 +408,22 @@ contains
   end function
 
   !> What neighbour_across gives, from the faces at each node (CSR
-  !> tri_start, tri_at of node_triangles).
-  pure integer function face_across(tri, tri_start, tri_at, t, a) result(found)
+  !> tri_start, tri_at of node_triangles). Where more than two faces share
+  !> the edge (3D) or end (2D) -- two bodies, or two parts of an eroding
+  !> one, touching along an edge only -- the face across is the one that
+  !> bounds the same solid wedge: of those that run the edge the other way
+  !> (a consistently oriented neighbour), the first met turning from t
+  !> about the edge into its body (behind its plane), in the initial
+  !> positions x0, where the elements around the edge do not overlap.
+  !> 0: a rim, or no such face.
+  pure integer function face_across(tri, tri_start, tri_at, t, a, x0) result(found)
     integer, intent(in) :: tri(:,:), tri_start(:), tri_at(:), t, a
-    integer :: i, j, k, s
-    if (size(tri, 1) == 3) then
+    real(rk), intent(in) :: x0(:,:)
+    integer :: i, j, k, s, n_found, nf
+    real(rk) :: e(3), n_t(3), w_t(3), w(3), turn, best_turn
+    real(rk), parameter :: two_pi = 8.0_rk*atan(1.0_rk)
+    nf = size(tri, 1)
+    if (nf == 3) then
       i = tri(mod(a,3)+1,t)
       j = tri(mod(a+1,3)+1,t)
     else
@@ -417,15 +431,73 @@ contains
       j = i
     end if
     found = 0
+    n_found = 0
     do k = tri_start(i), tri_start(i+1) - 1
       s = tri_at(k)
       if (s == t .or. all(tri(:,s) /= j)) cycle
-      if (found /= 0) then
-        found = 0          ! more than two faces at the edge
-        return
-      end if
+      n_found = n_found + 1
       found = s
     end do
+    if (n_found <= 1) return
+    ! the wedge's turn: from t's inward direction w_t (in its plane, away
+    ! from the edge, or in 2D along the segment) toward -n_t
+    if (nf == 3) then
+      e = x0(:,j) - x0(:,i)
+      e = e/norm2(e)
+      n_t = cross(x0(:,tri(2,t)) - x0(:,tri(1,t)), x0(:,tri(3,t)) - x0(:,tri(1,t)))
+      w_t = across_edge(x0(:,tri(a,t)))
+    else
+      w_t = x0(:,tri(a,t)) - x0(:,i)
+      w_t = w_t/norm2(w_t)
+      n_t = x0(:,tri(2,t)) - x0(:,tri(1,t))
+      n_t = [n_t(2), -n_t(1), 0.0_rk]      ! segment_projection's outward normal
+    end if
+    n_t = n_t/norm2(n_t)
+    found = 0
+    best_turn = huge(1.0_rk)
+    do k = tri_start(i), tri_start(i+1) - 1
+      s = tri_at(k)
+      if (s == t .or. all(tri(:,s) /= j)) cycle
+      if (.not. runs_back(s)) cycle
+      if (nf == 3) then
+        w = across_edge(x0(:,sum(tri(:,s)) - i - j))
+      else
+        w = x0(:,sum(tri(:,s)) - i) - x0(:,i)
+        w = w/norm2(w)
+      end if
+      turn = atan2(dot_product(w, -n_t), dot_product(w, w_t))
+      if (turn <= 0.0_rk) turn = turn + two_pi
+      if (turn < best_turn) then
+        best_turn = turn
+        found = s
+      end if
+    end do
+
+  contains
+
+    !> The unit direction from the edge i-j toward point p, square to the edge.
+    pure function across_edge(p) result(d)
+      real(rk), intent(in) :: p(3)
+      real(rk) :: d(3)
+      d = p - x0(:,i)
+      d = d - dot_product(d, e)*e
+      d = d/norm2(d)
+    end function
+
+    !> Whether face s runs t's edge (end) the other way: j before i in its
+    !> cyclic order (2D: i at the other end).
+    pure logical function runs_back(s)
+      integer, intent(in) :: s
+      integer :: c
+      if (nf == 3) then
+        do c = 1, 3
+          if (tri(c,s) == j) exit
+        end do
+        runs_back = tri(mod(c,3)+1,s) == i
+      else
+        runs_back = (tri(1,t) == i .and. tri(2,s) == i) .or. (tri(2,t) == i .and. tri(1,s) == i)
+      end if
+    end function
   end function
 
   !> The feature edges of a surface (triangles tri, contact nodes at x):

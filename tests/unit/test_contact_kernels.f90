@@ -72,7 +72,9 @@ contains
   !> under T to (0.5,0.5,-1)).
   subroutine test_seams()
     real(rk) :: xa(3,3), xb(3,3,3), g(3), c(3), err
-    integer :: nbr(3,6), t, a
+    integer :: nbr(3,7), t, a
+    real(rk) :: x0(3,11)
+    real(rk), parameter :: wedge_deg(4) = [0.0_rk, 60.0_rk, 180.0_rk, 240.0_rk]   ! nodes 8..11
     logical :: has(3)
     integer :: v(6)
     type(interface_t) :: it
@@ -108,17 +110,29 @@ contains
     call closest_on_triangle(xa, [0.2_rk, 0.5_rk, -1.0_rk], c, g)
     err = err + maxval(abs(c - [0.2_rk, 0.5_rk, 0.0_rk])) + maxval(abs(g - [0.4_rk, 0.2_rk, 0.4_rk]))
     call check('closest_on_triangle_by_hand', err < 1.0e-15_rk, 'summed error '//s(err))
-    ! neighbours of a strip of three triangles (nodes 1..5) and of a fan of
-    ! three at the edge 6-7 (none across an edge of more than two faces)
-    it%tri = reshape([1, 2, 3, 3, 2, 4, 3, 4, 5, 6, 7, 8, 7, 6, 9, 6, 7, 10], [3, 6])
-    call surface_neighbours(it)
-    do t = 1, 6
+    ! neighbours of a strip of three triangles (nodes 1..5) and of two
+    ! wedges touching along the edge 6-7 only (z from 0 to 1; faces to
+    ! nodes 8..11 at 0, 60, 180, 240 degrees about it, each wedge's faces
+    ! oriented outward): across an edge of four faces, the one of the same
+    ! wedge (the face at 0 degrees has two faces running the edge back,
+    ! at 60 and 240 degrees; the turn into its body meets 60 first)
+    it%tri = reshape([1, 2, 3, 3, 2, 4, 3, 4, 5, 7, 6, 8, 6, 7, 11, 7, 6, 10, 6, 7, 9], [3, 7])
+    x0 = 0
+    x0(:,7) = [0.0_rk, 0.0_rk, 1.0_rk]
+    do t = 8, 11
+      x0(:,t) = [cos(wedge_deg(t-7)*acos(-1.0_rk)/180), sin(wedge_deg(t-7)*acos(-1.0_rk)/180), 0.5_rk]
+    end do
+    call surface_neighbours(it, x0)
+    do t = 1, 7
       do a = 1, 3
         nbr(a,t) = neighbour_across(it, t, a)
       end do
     end do
     call check('neighbour_across_by_hand', all(nbr(:,1) == [2, 0, 0]) .and. all(nbr(:,2) == [0, 3, 1]) &
-               .and. all(nbr(:,3) == [0, 0, 2]) .and. all(nbr(:,4:6) == 0), 'a strip and a fan')
+               .and. all(nbr(:,3) == [0, 0, 2]) .and. all(nbr(:,4) == [0, 0, 7]) .and. all(nbr(:,5) == [0, 0, 6]) &
+               .and. all(nbr(:,6) == [0, 0, 5]) .and. all(nbr(:,7) == [0, 0, 4]), &
+               'a strip and two wedges on one edge, 0 0 7 / 0 0 6 / 0 0 5 / 0 0 4 wanted for the wedges: '// &
+               ints(nbr(3,4:7)))
   end subroutine
 
   !> A node behind triangle T (that of test_seams: z = 0, outward +z, the
