@@ -147,6 +147,7 @@ run_test "regression/spall" regression spall bin/udar-debug
 run_test "regression/spall_averaged" regression spall bin/udar-debug spall_averaged
 run_test "regression/penetration" regression penetration bin/udar
 run_test "regression/penetration_particles" regression penetration bin/udar penetration_particles
+run_test "cli/fig4_depth" tests/cli/fig4_depth.sh bin/udar
 run_test "regression/long_rod_particles" regression long_rod_particles bin/udar
 run_test "regression/long_rod_energy" regression long_rod_energy bin/udar
 run_test "regression/buried_particles" regression buried_particles bin/udar

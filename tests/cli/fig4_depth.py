@@ -1,0 +1,32 @@
+"""Frames of a Fig. 4 field file (part 1 the rod, part 2 the plate) in
+which a node of a remaining rod element is inside a remaining plate
+element by more than 1e-4 h (h the plate's median edge; depth as
+check_geometry measures it). Free nodes of eroded rod elements are not
+counted here (tests/tools/contact_depth.py counts them too).
+Usage: fig4_depth.py FIELDS.h5"""
+import os
+import sys
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'regression', 'rod_3kms'))
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'tools'))
+import checks  # noqa: E402
+from check_geometry import depths_inside, slave_and_master  # noqa: E402
+
+with h5py.File(sys.argv[1], 'r') as f:
+    conn, _, _, plate, h = slave_and_master(f, 1, 2)
+    rod = f['mesh/part_id'][...] == 1
+    deep = []
+    for k in sorted(f['steps'].keys(), key=lambda k: f['steps'][k].attrs['time']):
+        g = f['steps'][k]
+        x = g['coordinates'][...]
+        alive = g['fracture_state'][...] < 1.5
+        live = np.unique(conn[rod & alive])
+        d = depths_inside(x[live], x, conn[plate & alive]).max(initial=0.0) / h
+        if d > 1e-4:
+            deep.append(f"{g.attrs['time'] * 1e6:.2f} us: {d:.3g} h")
+print('MEASURED frames with a remaining rod node inside the plate by more than 1e-4 h: ' + (', '.join(deep) or 'none'))
+checks.below('frames_with_a_rod_node_deeper_than_1e-4_h', len(deep), 1)
+checks.finish()
