@@ -5,6 +5,7 @@
 SHELL := /bin/bash
 FC      := mpif90
 PYTHON  := /usr/bin/python3
+CHECK_JOBS ?= 2
 BUILD   ?= release
 # Built for the CPU that builds it (18 % faster than AVX2-only here, doc/design.md
 # D1); `make ARCH=x86-64-v3` (AVX2 + FMA, every x86 server since 2013) for a binary
@@ -133,7 +134,7 @@ check: deps-quiet
 	@$(MAKE) --no-print-directory BUILD=release bin/udar
 	@$(MAKE) --no-print-directory BUILD=debug bin/udar-debug build/debug/tests/.built
 	@$(MAKE) --no-print-directory meshes
-	@tests/run_tests.sh
+	@CHECK_JOBS=$(CHECK_JOBS) tests/run_tests.sh
 
 build/debug/tests/.built: $(patsubst tests/unit/%.f90,build/debug/tests/%,$(wildcard tests/unit/test_*.f90))
 	@touch $@

@@ -6,20 +6,59 @@ set -u
 cd "$(dirname "$0")/.."
 ROOT=$PWD
 export PYTHON=${PYTHON:-/usr/bin/python3}
+# mpirun as root (CI machines) and more ranks than cores, also when run
+# without make
+if [ "$(id -u)" = 0 ]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
+export OMPI_MCA_rmaps_base_oversubscribe=1
 WORK=$ROOT/tests/work
 rm -rf "$WORK"; mkdir -p "$WORK"
 passed=0; failed=0; failed_names=()
+# Tests run in CHECK_JOBS lanes at once (default 2, this machine's cores; 1
+# runs them one after another); results print in the order listed, as soon
+# as each and those before it are done. Each test has its own folder, so
+# lanes never share files; tests that time signals or look for processes
+# by name run alone (run_alone).
+JOBS=${CHECK_JOBS:-2}
+RESULTS=$WORK/.results; mkdir -p "$RESULTS"
+listed=0; printed=0
+
+one_test() {   # index, name, command...
+  local idx=$1 name=$2; shift 2
+  local log=$WORK/${name//\//_}.log t0=$SECONDS out=$RESULTS/$idx
+  if ( "$@" ) > "$log" 2>&1; then
+    printf 'PASS %-36s %4ds\n' "$name" $((SECONDS-t0)) > "$out.txt"
+  else
+    printf 'FAIL %-36s %4ds  (log: %s)\n' "$name" $((SECONDS-t0)) "${log#$ROOT/}" > "$out.txt"
+    tail -n 15 "$log" | sed 's/^/    | /' >> "$out.txt"
+  fi
+  grep -E '^(PASS|FAIL|MEASURED)' "$log" | sed 's/^/    /' >> "$out.txt"
+  mv "$out.txt" "$out"   # complete, or not there
+}
+
+print_done() {   # results in list order, up to the first still running
+  local first
+  while [ -f "$RESULTS/$((printed+1))" ]; do
+    printed=$((printed+1))
+    first=$(head -1 "$RESULTS/$printed")
+    case $first in
+      PASS*) passed=$((passed+1)) ;;
+      *) failed=$((failed+1)); failed_names+=("$(echo "$first" | awk '{print $2}')") ;;
+    esac
+    cat "$RESULTS/$printed"
+  done
+}
 
 run_test() {   # name, command...
-  local name=$1; shift
-  local log=$WORK/${name//\//_}.log t0=$SECONDS
-  if ( "$@" ) > "$log" 2>&1; then
-    passed=$((passed+1)); printf 'PASS %-36s %4ds\n' "$name" $((SECONDS-t0))
-  else
-    failed=$((failed+1)); failed_names+=("$name"); printf 'FAIL %-36s %4ds  (log: %s)\n' "$name" $((SECONDS-t0)) "${log#$ROOT/}"
-    tail -n 15 "$log" | sed 's/^/    | /'
-  fi
-  grep -E '^(PASS|FAIL|MEASURED)' "$log" | sed 's/^/    /'
+  while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do wait -n; print_done; done
+  listed=$((listed+1))
+  one_test $listed "$@" &
+}
+
+run_alone() {   # name, command...: nothing else running meanwhile
+  wait; print_done
+  listed=$((listed+1))
+  one_test $listed "$@"
+  print_done
 }
 
 # a regression case: copy the deck and its mesh to tests/work/<case>, run it
@@ -113,14 +152,14 @@ run_test "cli/restart_2d" tests/cli/restart_2d.sh bin/udar
 # repartitioning during a run (&run rebalance_imbalance): bitwise the 1-rank run
 run_test "cli/rebalance" tests/cli/rebalance.sh bin/udar taylor_ofhc_baseline 20.0e-6 2
 run_test "cli/rebalance_erosion" tests/cli/rebalance.sh bin/udar penetration 2.0e-6 1
-run_test "cli/hard_kill" tests/cli/hard_kill.sh bin/udar 8
+run_alone "cli/hard_kill" tests/cli/hard_kill.sh bin/udar 8
 run_test "cli/damaged_checkpoint" tests/cli/damaged_checkpoint.sh bin/udar
 run_test "cli/run_control" tests/cli/run_control.sh bin/udar
-run_test "cli/full_disk" tests/cli/full_disk.sh bin/udar
-run_test "cli/signals_mpirun" tests/cli/signals_mpirun.sh bin/udar
+run_alone "cli/full_disk" tests/cli/full_disk.sh bin/udar
+run_alone "cli/signals_mpirun" tests/cli/signals_mpirun.sh bin/udar
 run_test "cli/output_names" tests/cli/output_names.sh bin/udar
-run_test "cli/slurm_chain" tests/cli/slurm_chain.sh bin/udar
-run_test "cli/slurm_real" tests/cli/slurm_real.sh bin/udar
+run_alone "cli/slurm_chain" tests/cli/slurm_chain.sh bin/udar
+run_alone "cli/slurm_real" tests/cli/slurm_real.sh bin/udar
 # ---- regressions against analytic and experimental references
 run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
 run_test "regression/elastic_bar_2d" regression elastic_bar_2d bin/udar-debug
@@ -171,5 +210,6 @@ run_test "regression/taylor_wg" regression taylor_wg bin/udar
 run_test "regression/taylor_ofhc_baseline" regression taylor_ofhc_baseline bin/udar
 run_test "regression/taylor_half_length" regression_pair taylor_half_length bin/udar taylor_half_length taylor_half_length_plain
 
+wait; print_done
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -10,27 +10,18 @@ import os
 import sys
 
 import h5py
-import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'regression', 'rod_3kms'))
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'tools'))
 import checks  # noqa: E402
-from check_geometry import depths_inside, slave_and_master  # noqa: E402
+from check_geometry import frames_inside, slave_and_master  # noqa: E402
 
 total = 0
 for path in sys.argv[1:]:
     with h5py.File(path, 'r') as f:
-        conn, _, _, plate, h = slave_and_master(f, 1, 2)
-        rod = f['mesh/part_id'][...] == 1
-        deep = []
-        for k in sorted(f['steps'].keys(), key=lambda k: f['steps'][k].attrs['time']):
-            g = f['steps'][k]
-            x = g['coordinates'][...]
-            alive = g['fracture_state'][...] < 1.5
-            live = np.unique(conn[rod & alive])
-            d = depths_inside(x[live], x, conn[plate & alive]).max(initial=0.0) / h
-            if d > 1e-4:
-                deep.append(f"{g.attrs['time'] * 1e6:.2f} us: {d:.3g} h")
+        h = slave_and_master(f, 1, 2)[4]
+        deep = [f"{g.attrs['time'] * 1e6:.2f} us: {d / h:.3g} h"
+                for g, _, d in frames_inside(f, 1, 2, remaining_only=True) if d / h > 1e-4]
     print(f'MEASURED {path}: {len(deep)} frames with a remaining rod node inside the plate by more than 1e-4 h: '
           + (', '.join(deep) or 'none'))
     total += len(deep)

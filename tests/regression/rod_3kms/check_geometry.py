@@ -57,14 +57,16 @@ def slave_and_master(f, slave_part, master_part):
     return conn, x0, np.unique(conn[part == slave_part]), master, h
 
 
-def frames_inside(f, slave_part, master_part):
+def frames_inside(f, slave_part, master_part, remaining_only=False):
     """For each field step of an open field file, in time order: the step's
     group, its coordinates and the depth (m) of the deepest node of part
     slave_part inside a tetrahedron of part master_part that is still there
     (not eroded, where the file has fracture states). Where the slave
     part's eroded elements became particles, its slave points are the
     nodes of its remaining elements and its particles (a node whose
-    elements all became particles has no mass and is no slave node)."""
+    elements all became particles has no mass and is no slave node).
+    remaining_only: only the nodes of the slave part's remaining elements
+    (not its free nodes, not its particles)."""
     conn, _, slave_nodes, master, _ = slave_and_master(f, slave_part, master_part)
     slave = f['mesh/part_id'][...] == slave_part
     for k in sorted(f['steps'].keys(), key=lambda k: f['steps'][k].attrs['time']):
@@ -78,7 +80,9 @@ def frames_inside(f, slave_part, master_part):
         x = g['coordinates'][...]
         points = x[slave_nodes]
         p = g['particles'] if 'particles' in g else None
-        if p is not None and int(p.attrs['count']) > 0:
+        if remaining_only:
+            points = x[np.unique(conn[slave_alive])]
+        elif p is not None and int(p.attrs['count']) > 0:
             mine = p['part_id'][...] == slave_part
             if mine.any():
                 points = np.vstack([x[np.unique(conn[slave_alive])], p['coordinates'][...][mine]])
