@@ -12,7 +12,7 @@ if [ "$(id -u)" = 0 ]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_RO
 export OMPI_MCA_rmaps_base_oversubscribe=1
 WORK=$ROOT/tests/work
 rm -rf "$WORK"; mkdir -p "$WORK"
-passed=0; failed=0; failed_names=()
+passed=0; failed=0
 # Tests run in CHECK_JOBS lanes at once (default 2, this machine's cores; 1
 # runs them one after another); results print in the order listed, as soon
 # as each and those before it are done. Each test has its own folder, so
@@ -42,7 +42,7 @@ print_done() {   # results in list order, up to the first still running
     first=$(head -1 "$RESULTS/$printed")
     case $first in
       PASS*) passed=$((passed+1)) ;;
-      *) failed=$((failed+1)); failed_names+=("$(echo "$first" | awk '{print $2}')") ;;
+      *) failed=$((failed+1)) ;;
     esac
     cat "$RESULTS/$printed"
   done

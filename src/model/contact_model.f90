@@ -9,6 +9,7 @@ module udar_contact_model
   use udar_contact_search, only: bucket_grid_t
   use udar_ordering, only: stable_sort_permutation, morton_keys
   use udar_vectors, only: cross
+  use udar_contact_faces, only: face_projection
   use udar_config, only: contact_weights_area
   implicit none
   private
@@ -419,8 +420,8 @@ contains
   pure integer function face_across(tri, tri_start, tri_at, t, a, x0) result(found)
     integer, intent(in) :: tri(:,:), tri_start(:), tri_at(:), t, a
     real(rk), intent(in) :: x0(:,:)
-    integer :: i, j, k, s, n_found, nf
-    real(rk) :: e(3), n_t(3), w_t(3), w(3), turn, best_turn
+    integer :: i, j, k, s, n_found, nf, c
+    real(rk) :: e(3), n_t(3), w_t(3), w(3), turn, best_turn, xt(3,3), d_unused, g_unused(3)
     real(rk), parameter :: two_pi = 8.0_rk*atan(1.0_rk)
     nf = size(tri, 1)
     if (nf == 3) then
@@ -440,19 +441,20 @@ contains
     end do
     if (n_found <= 1) return
     ! the wedge's turn: from t's inward direction w_t (in its plane, away
-    ! from the edge, or in 2D along the segment) toward -n_t
+    ! from the edge, or in 2D along the segment) toward -n_t (its outward
+    ! normal, as the contact's projection has it)
+    do c = 1, nf
+      xt(:,c) = x0(:,tri(c,t))
+    end do
+    call face_projection(xt(:,1:nf), x0(:,tri(a,t)), n_t, d_unused, g_unused)
     if (nf == 3) then
       e = x0(:,j) - x0(:,i)
       e = e/norm2(e)
-      n_t = cross(x0(:,tri(2,t)) - x0(:,tri(1,t)), x0(:,tri(3,t)) - x0(:,tri(1,t)))
       w_t = across_edge(x0(:,tri(a,t)))
     else
       w_t = x0(:,tri(a,t)) - x0(:,i)
       w_t = w_t/norm2(w_t)
-      n_t = x0(:,tri(2,t)) - x0(:,tri(1,t))
-      n_t = [n_t(2), -n_t(1), 0.0_rk]      ! segment_projection's outward normal
     end if
-    n_t = n_t/norm2(n_t)
     found = 0
     best_turn = huge(1.0_rk)
     do k = tri_start(i), tri_start(i+1) - 1
