@@ -142,10 +142,12 @@ run_test "cli/restart_erosion_anti_locking" tests/cli/restart_erosion.sh bin/uda
 run_test "cli/restart_erosion_stabilised" tests/cli/restart_erosion.sh bin/udar stabilised
 run_test "cli/restart_erosion_edges" tests/cli/restart_erosion.sh bin/udar edges
 run_test "cli/restart_erosion_particles" tests/cli/restart_erosion.sh bin/udar particles
+run_test "cli/restart_erosion_particles_strength" tests/cli/restart_erosion.sh bin/udar particles_strength
 run_test "cli/tracking_rod_3kms" tests/cli/tracking.sh bin/udar rod_3kms 0.6e-6
 run_test "cli/tracking_oblique_friction" tests/cli/tracking.sh bin/udar oblique_friction
 run_test "cli/contact_mirrored" tests/cli/contact_mirrored.sh bin/udar
 run_test "cli/ranks_taylor_ofhc" tests/cli/rank_invariance.sh bin/udar taylor_ofhc_baseline 30.0e-6
+run_test "cli/ranks_taylor_particles" tests/cli/rank_invariance.sh bin/udar taylor_ofhc_baseline 20.0e-6 - taylor_particles
 run_test "cli/ranks_taylor_wg_stabilised" tests/cli/rank_invariance.sh bin/udar taylor_wg 20.0e-6 stabilised
 run_test "cli/restart" tests/cli/restart.sh bin/udar
 run_test "cli/restart_2d" tests/cli/restart_2d.sh bin/udar
@@ -191,6 +193,9 @@ run_test "regression/long_rod_particles" regression long_rod_particles bin/udar
 run_test "regression/long_rod_energy" regression long_rod_energy bin/udar
 run_test "regression/buried_particles" regression buried_particles bin/udar
 run_test "regression/oblique_particles" regression oblique_particles bin/udar
+run_test "regression/taylor_particles" regression taylor_ofhc_baseline bin/udar taylor_particles
+run_test "regression/taylor_particles_strengthless_fails" regression_fails taylor_ofhc_baseline bin/udar \
+  taylor_particles_strengthless particle_mass_radius_95
 run_test "regression/penetration_2d" regression penetration_2d bin/udar
 run_test "regression/deep_node" regression deep_node bin/udar-debug
 run_test "regression/crossed_edges" regression crossed_edges bin/udar-debug

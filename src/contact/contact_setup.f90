@@ -3,7 +3,7 @@
 !> the list of contact nodes whose state the contact pass needs.
 module udar_contact_setup
   use udar_kinds, only: rk
-  use udar_config, only: config_t, overlap_move, eroded_particles
+  use udar_config, only: config_t, contact_cfg_t, overlap_move, eroded_particles
   use udar_gmsh, only: gmsh_mesh_t
   use udar_domain, only: domain_t
   use udar_input_errors, only: input_errors_t
@@ -47,15 +47,23 @@ contains
     type(input_errors_t), intent(inout) :: errs
     integer, allocatable :: face(:,:), face_part(:), master(:,:), slave(:), tri_all(:,:), cn_of(:), sym_planes(:)
     type(interface_t), allocatable :: ifc(:)
-    integer :: k, n_err0, nf, n_ifc, i, mark_count, m_part, s_part, e, nv
+    integer :: k, n_err0, nf, n_ifc, i, mark_count, m_part, s_part, e, nv, n_contacts, ip
+    type(contact_cfg_t) :: cs
     logical, allocatable :: part_erodes(:)
     logical, allocatable :: is_contact(:), face_used(:), m_body(:), s_body(:), own_done(:)
     character(len=:), allocatable :: mname, sname, face_word
 
     ct%n_interfaces = 0
     allocate(ct%ifc(0), ct%gidx(0))
-    if (.not. allocated(cfg%contacts)) return
-    if (size(cfg%contacts) == 0) return
+    n_contacts = 0
+    if (allocated(cfg%contacts)) n_contacts = size(cfg%contacts)
+    ! a part whose eroded elements become particles: its particles are kept
+    ! out of its own remaining body too (one interface, after the deck's)
+    allocate(ct%part_converts(size(cfg%parts)), source=.false.)
+    do e = 1, glob%n_elems
+      if (glob%mat(glob%el_mat(e))%eroded == eroded_particles) ct%part_converts(glob%el_part(e)) = .true.
+    end do
+    if (n_contacts == 0 .and. .not. any(ct%part_converts)) return
     n_err0 = errs%count()
     call exterior_faces(glob, face, face_part, nf)
     sym_planes = symmetry_planes(glob, ct%plane)
@@ -74,18 +82,14 @@ contains
       nf = k
     end if
     allocate(face_used(nf), source=.false.)
-    ! a part whose eroded elements become particles: its particles are kept
-    ! out of its own remaining body too (one interface, after the deck's)
-    allocate(ct%part_converts(size(cfg%parts)), source=.false.)
-    do e = 1, glob%n_elems
-      if (glob%mat(glob%el_mat(e))%eroded == eroded_particles) ct%part_converts(glob%el_part(e)) = .true.
-    end do
     allocate(own_done(size(cfg%parts)), source=.false.)
-    ! (at most: the converting parts that a contact names; trimmed below)
-    n_ifc = size(cfg%contacts) + count(cfg%contacts%symmetric) + count(ct%part_converts)
+    ! (at most: the contacts, their symmetric twins, the converting parts; trimmed below)
+    n_ifc = count(ct%part_converts)
+    if (n_contacts > 0) n_ifc = n_ifc + n_contacts + count(cfg%contacts%symmetric)
     allocate(ifc(n_ifc))
     i = 0
-    do k = 1, size(cfg%contacts)
+    do k = 1, n_contacts
+      cs = cfg%contacts(k)
       associate (c => cfg%contacts(k))
         call surface(c%master, 'master', k, master, mname, m_part, m_body)
         call surface(c%slave, 'slave', k, tri_all, sname, s_part, s_body)
@@ -125,6 +129,14 @@ contains
       end associate
     end do
     if (errs%count() > n_err0) return
+    ! a converting part that no contact names (a Taylor bar): its particles
+    ! on its own surface all the same, with the &contact defaults
+    cs = contact_cfg_t()
+    do ip = 1, size(cfg%parts)
+      if (.not. ct%part_converts(ip) .or. own_done(ip)) cycle
+      call take_faces(face_part(1:nf) == ip, master, m_body)
+      call own_particles(ip, master, m_body)
+    end do
     n_ifc = i
     if (size(ifc) > n_ifc) ifc = ifc(1:n_ifc)
 
@@ -194,8 +206,8 @@ contains
   contains
 
     !> The interface that keeps part ip's particles out of its own remaining
-    !> body (the surface tri, the body's parts body), with contact k's
-    !> settings, if ip converts and has none yet. Without it a part's failed
+    !> body (the surface tri, the body's parts body), with the settings cs
+    !> (contact k's, or the defaults), if ip converts and has none yet. Without it a part's failed
     !> material goes through the part itself: the target's crater debris
     !> through the target, a projectile's eroded front overrun by its rear.
     subroutine own_particles(ip, tri, body)
@@ -321,18 +333,18 @@ contains
       it%name = label
       it%tri = tri
       it%slave_tri = slave_tri
-      it%edges = cfg%contacts(k)%edges .and. .not. (to_lower(cfg%contacts(k)%master) == to_lower(cfg%contacts(k)%slave))
+      it%edges = cs%edges .and. .not. (to_lower(cs%master) == to_lower(cs%slave))
       allocate(it%apex(size(tri, 2)), source=0)
       it%slave = slave_nodes
-      it%friction = cfg%contacts(k)%friction
-      it%iterations = cfg%contacts(k)%iterations
-      it%tracking = cfg%contacts(k)%tracking
-      it%seams = cfg%contacts(k)%seams
-      it%sharp_edges = cfg%contacts(k)%sharp_edges
-      it%valleys = cfg%contacts(k)%valleys
-      it%tolerance = cfg%contacts(k)%tolerance
-      it%weights = cfg%contacts(k)%weights
-      it%move_overlaps = cfg%contacts(k)%initial_overlap == overlap_move
+      it%friction = cs%friction
+      it%iterations = cs%iterations
+      it%tracking = cs%tracking
+      it%seams = cs%seams
+      it%sharp_edges = cs%sharp_edges
+      it%valleys = cs%valleys
+      it%tolerance = cs%tolerance
+      it%weights = cs%weights
+      it%move_overlaps = cs%initial_overlap == overlap_move
       s = 0
       if (size(tri, 1) == 3) then
         do t = 1, size(tri, 2)

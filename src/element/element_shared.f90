@@ -203,7 +203,7 @@ contains
     type(element_block_t), intent(inout) :: eb
     type(pass_outcome_t), intent(inout) :: out
     real(rk) :: t_old, d_eps
-    logical :: fractured, stab, geo
+    logical :: fractured, stab, geo, distorted
     integer :: i, e, k, last
     last = first + nb - 1
     stab = dom%stab_beta_large > 0.0_rk
@@ -242,14 +242,22 @@ contains
           end if
         end if
         if (.not. eb%erodible) cycle
+        ! distorted, not fractured: a particle that keeps the strength
+        distorted = dom%el_state(e) == el_intact .and. mat%eps_convert > 0.0_rk .and. &
+                    dom%el_eps_tot(e) >= mat%eps_convert
         if (dom%el_state(e) == el_fractured .and. dom%el_eps_tot(e) >= mat%eps_erode) then
+          call erode(dom, e, erode_strain, out)
+        else if (distorted) then
           call erode(dom, e, erode_strain, out)
         else if (eb%dt_el(i) < dom%erode_dt_limit) then
           call erode(dom, e, erode_time_step, out)
         end if
         if (dom%el_state(e) == el_eroded) then
           eb%gone(i) = .true.
-          eb%s(i,:) = 0.0_rk
+          ! the particle of a distorted element takes over its deviator
+          ! (particles_convert, this cycle; then zero); any other eroded
+          ! element's particle has no strength (theory.md 15)
+          if (.not. distorted) eb%s(i,:) = 0.0_rk
           eb%p(i) = 0.0_rk
           eb%q(i) = 0.0_rk
         end if

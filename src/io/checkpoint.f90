@@ -4,7 +4,7 @@
 !> One HDF5 file, written collectively with MPI-IO (each rank its owned
 !> rows) to NAME.tmp and renamed to NAME when complete, so a checkpoint on
 !> disk is always whole. Layout (C order, as h5py shows it):
-!>   @format 'udar-checkpoint-4', @version, @n_nodes, @n_elems, the scalars of
+!>   @format 'udar-checkpoint-5', @version, @n_nodes, @n_elems, the scalars of
 !>   run_state_t (@t, @cycle, ...);  hashes int64 (2): model, mesh;
 !>   wall_work, contact_work int64 (67): exact work accumulators;  /provenance @n_ranks;
 !>   nodes/{x,v,f} (n_nodes,3), nodes/vref (n_nodes); elems/h (the altitudes the contact bounds its returns by);  elems/{vol,j,e,wp,p,q,eps_p,temp,hard,soft}
@@ -35,7 +35,7 @@ module udar_checkpoint
   private
   public :: checkpoint_write, checkpoint_read, checkpoint_latest, checkpoint_model_hash, checkpoint_mesh_hash
 
-  character(len=*), parameter :: ckpt_format = 'udar-checkpoint-3'
+  character(len=*), parameter :: ckpt_format = 'udar-checkpoint-5'
   character(len=*), parameter :: real_names(10) = [character(len=20) :: 't', 'dt_old', 'dt_stable', 'e0', 'e_ref', &
       't_next_field', 't_next_hist', 't_next_checkpoint', 'dt0', 'ke_peak']
   !> checkpoints_written (how the run got here, not its state) lives in /provenance
@@ -44,8 +44,9 @@ module udar_checkpoint
   character(len=*), parameter :: elem_names(14) = [character(len=8) :: 'vol', 'j', 'e', 'wp', 'p', 'q', 'eps_p', &
       'temp', 'hard', 'soft', 'state', 'damage', 'eps_tot', 'h']
 
-  !> a particle's row: x(3), v(3), m, rho, e, p, c, h, temp, eps_p, material, part, element
-  integer, parameter :: particle_width = 17
+  !> a particle's row: x(3), v(3), m, rho, e, p, c, h, temp, eps_p, material, part, element,
+  !> deviatoric stress (6), hardening, thermal factor, damage, strength kept (1) or not (0)
+  integer, parameter :: particle_width = 27
 
   type :: ckpt_file_t
     integer(hid_t) :: id = -1, dxpl = -1
@@ -239,7 +240,8 @@ contains
         buf(1:2,1) = [pt%heat, real(pt%n, rk)]
         do q = 1, pt%n
           buf(:,q+1) = [pt%x(:,q), pt%v(:,q), pt%m(q), pt%rho(q), pt%e(q), pt%p(q), pt%c(q), pt%h(q), pt%temp(q), &
-                        pt%eps_p(q), real(pt%mat(q), rk), real(pt%part(q), rk), real(pt%elem(q), rk)]
+                        pt%eps_p(q), real(pt%mat(q), rk), real(pt%part(q), rk), real(pt%elem(q), rk), pt%s(:,q), &
+                        pt%hard(q), pt%soft(q), pt%damage(q), merge(1.0_rk, 0.0_rk, pt%strong(q))]
         end do
       else
         allocate(buf(particle_width, 0), p_gidx(0))
@@ -385,6 +387,8 @@ contains
         pt%m(q) = a(7,q+1); pt%rho(q) = a(8,q+1); pt%e(q) = a(9,q+1); pt%p(q) = a(10,q+1); pt%c(q) = a(11,q+1)
         pt%h(q) = a(12,q+1); pt%temp(q) = a(13,q+1); pt%eps_p(q) = a(14,q+1)
         pt%mat(q) = nint(a(15,q+1)); pt%part(q) = nint(a(16,q+1)); pt%elem(q) = nint(a(17,q+1))
+        pt%s(:,q) = a(18:23,q+1); pt%hard(q) = a(24,q+1); pt%soft(q) = a(25,q+1); pt%damage(q) = a(26,q+1)
+        pt%strong(q) = a(27,q+1) /= 0.0_rk
       end do
     end subroutine
   end subroutine

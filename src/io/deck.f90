@@ -159,6 +159,7 @@ module udar_deck
        var_t('material', 'p_spall', 'r', 1, 0, 'Pa', '>= 0'), &
        var_t('material', 'eps_erode', 'r', 1, 0, '-', '>= 0'), &
        var_t('material', 'eroded', 'c', 1, code_len, '', ''), &
+       var_t('material', 'eps_convert', 'r', 1, 0, '-', '>= 0'), &
        var_t('part', 'group', 'c', 1, max_name_len, '', ''), &
        var_t('part', 'material', 'c', 1, max_name_len, '', ''), &
        var_t('part', 'velocity', 'r', 3, 0, 'm/s', 'finite numbers'), &
@@ -636,7 +637,7 @@ contains
              v%strength, m%shear_modulus, m%youngs_modulus, m%poisson_ratio, m%yield_stress, &
              m%hardening_modulus, m%jc_a, m%jc_b, m%jc_n, m%jc_c, m%jc_m, m%jc_rate0, v%jc_rate_form, &
              m%t_melt, m%t_room, m%specific_heat, m%taylor_quinney, m%initial_temperature, &
-             v%fracture, m%eps_f, m%jc_d1, m%jc_d2, m%jc_d3, m%jc_d4, m%jc_d5, m%p_spall, m%eps_erode, v%eroded)
+             v%fracture, m%eps_f, m%jc_d1, m%jc_d2, m%jc_d3, m%jc_d4, m%jc_d5, m%p_spall, m%eps_erode, v%eroded, m%eps_convert)
       end associate
     case ('part')
       call part_nml(v%part%group, v%part%material, v%part%velocity)
@@ -682,17 +683,17 @@ contains
                             youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
                             jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, t_melt, t_room, specific_heat, &
                             taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
-                            jc_d4, jc_d5, p_spall, eps_erode, eroded)
+                            jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert)
       character(len=*), intent(inout) :: name, eos, strength, jc_rate_form, fracture, eroded
       real(rk), intent(inout) :: rho0, bulk_modulus, c0, s, gamma0, shear_modulus, youngs_modulus, &
            poisson_ratio, yield_stress, hardening_modulus, jc_a, jc_b, jc_n, jc_c, jc_m, jc_rate0, &
            t_melt, t_room, specific_heat, taylor_quinney, initial_temperature, eps_f, jc_d1, jc_d2, &
-           jc_d3, jc_d4, jc_d5, p_spall, eps_erode
+           jc_d3, jc_d4, jc_d5, p_spall, eps_erode, eps_convert
       namelist /material/ name, rho0, eos, bulk_modulus, c0, s, gamma0, strength, shear_modulus, &
                           youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
                           jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, t_melt, t_room, specific_heat, &
                           taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
-                          jc_d4, jc_d5, p_spall, eps_erode, eroded
+                          jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert
       read(text, nml=material, iostat=ios, iomsg=msg)
     end subroutine material_nml
 
@@ -985,6 +986,10 @@ contains
              call complain(ctx, inst, 'eroded', "'particles' is 3D only for now (geometry = 'solid'); "// &
              "2D runs erode to 'free_nodes'")
       end if
+      call ranges('eps_convert')
+      if (positive(m%eps_convert) .and. m%eroded /= eroded_particles .and. .not. is_bad(inst, 'eroded')) &
+           call complain(ctx, inst, 'eps_convert', "set, but only eroded = 'particles' converts elements: "// &
+           "add eroded = 'particles' or remove the line")
     end associate
 
   contains
@@ -1527,7 +1532,7 @@ contains
                 choice_val(m%jc_rate_form, rate_words, rate_codes), val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), &
                 val(m%initial_temperature, 't_room'), choice_val(m%fracture, fracture_words, fracture_codes), &
                 val(m%eps_f), val(m%jc_d1), val(m%jc_d2), val(m%jc_d3), val(m%jc_d4), val(m%jc_d5), &
-                val(m%p_spall), val(m%eps_erode), choice_val(m%eroded, eroded_words, eroded_codes)]
+                val(m%p_spall), val(m%eps_erode), choice_val(m%eroded, eroded_words, eroded_codes), val(m%eps_convert)]
       end associate
     case (g_part)
       associate(p => cfg%parts(k))

@@ -87,6 +87,9 @@ module udar_config
     real(rk) :: eps_erode = 0.0_rk             !< -, a fractured element is eroded when its accumulated equivalent
                                                !< (deviatoric) total strain passes this; 0 = never by strain
     integer  :: eroded = eroded_free_nodes     !< what an eroded element becomes (eroded_*)
+    real(rk) :: eps_convert = 0.0_rk           !< -, eroded = 'particles': an element not fractured becomes a particle
+                                               !< that keeps its strength when its accumulated equivalent total
+                                               !< strain passes this; 0 = only fractured elements convert
   end type
 
   type :: part_cfg_t

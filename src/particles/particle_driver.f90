@@ -10,12 +10,12 @@
 module udar_particle_driver
   use udar_kinds, only: rk, i8
   use udar_domain, only: domain_t, wall_t
-  use udar_config, only: eroded_particles
+  use udar_config, only: eroded_particles, strength_none
   use udar_fracture, only: el_eroded
   use udar_ordering, only: stable_sort_permutation, find_sorted
   use udar_particle_model, only: particles_t, particles_reserve, particles_pair_room
   use udar_sph, only: element_to_particle, particle_pressure, smoothing_length, sph_pairs, sph_forces, sph_rates, &
-                      particle_update
+                      particle_update, particle_strength, wave_speed
   use udar_comms, only: comms_allgather_count, comms_allgatherv_real, comms_size
   use udar_exact_sum, only: exact_add
   implicit none
@@ -31,9 +31,10 @@ module udar_particle_driver
   !> (0.9) 0.54 h / v_sig, about 0.27 h / c (Monaghan 1992: 0.3 h / c)
   real(rk), parameter :: critical_share = 0.6_rk
   !> reals a conversion record carries: element id, material, part,
-  !> energy, temperature, plastic strain, volume ratio; then per corner the
-  !> node's id, its mass share, position and velocity
-  integer, parameter :: rec_head = 7, rec_corner = 8
+  !> energy, temperature, plastic strain, volume ratio, deviatoric stress
+  !> (6), hardening, thermal factor, damage; then per corner the node's id,
+  !> its mass share, position and velocity
+  integer, parameter :: rec_head = 16, rec_corner = 8
 
 contains
 
@@ -107,7 +108,8 @@ contains
       if (.not. (dom%el_state(e) == el_eroded .and. .not. pt%converted(e) .and. &
           dom%mat(dom%el_mat(e))%eroded == eroded_particles)) cycle
       pt%send(nl+1:nl+rec_head) = [real(dom%el_gidx(e), rk), real(dom%el_mat(e), rk), real(dom%el_part(e), rk), &
-                                dom%el_e(e), dom%el_temp(e), dom%el_eps_p(e), dom%el_j(e)]
+                                dom%el_e(e), dom%el_temp(e), dom%el_eps_p(e), dom%el_j(e), dom%el_s(e,:), &
+                                dom%el_hard(e), dom%el_soft(e), dom%el_damage(e)]
       do a = 1, dom%corners
         n = dom%el_conn(e,a)
         r = nl + rec_head + rec_corner*(a-1)
@@ -146,14 +148,24 @@ contains
       pt%eps_p(q) = recv(first+6)
       ! the density the element's EOS saw
       pt%rho(q) = dom%mat(pt%mat(q))%rho0/recv(first+7)
+      ! its strength, unless it had fractured (a fractured element keeps
+      ! no deviator; an eroded one of a converting material keeps its own
+      ! until here)
+      pt%s(:,q) = recv(first+8:first+13)
+      pt%hard(q) = recv(first+14)
+      pt%soft(q) = recv(first+15)
+      pt%damage(q) = recv(first+16)
+      pt%strong(q) = dom%mat(pt%mat(q))%strength /= strength_none .and. any(pt%s(:,q) /= 0.0_rk)
       pt%h(q) = smoothing_length(pt%m(q), pt%rho(q), smoothing_factor, 3)
       call particle_pressure(dom%mat(pt%mat(q)), pt%rho(q), pt%e(q), pt%p(q), pt%c(q))
+      pt%c(q) = wave_speed(dom%mat(pt%mat(q)), pt%strong(q), pt%rho(q), pt%c(q))
       pt%vsig(q) = 2.0_rk*pt%c(q)
       ! the element, wherever this rank holds it, keeps none of it
       e = find_sorted(dom%el_gidx, pt%elem(q))
       if (e > 0) then
         pt%converted(e) = .true.
         dom%el_e(e) = 0.0_rk
+        dom%el_s(e,:) = 0.0_rk
       end if
     end do
     ! a centre behind a symmetry plane (the corners of a wildly distorted
@@ -235,7 +247,7 @@ contains
     pt%n_pairs = np
     pt%acc(:,1:pt%n+pt%n_ghosts) = 0
     pt%vsig(1:pt%n+pt%n_ghosts) = 0
-    call sph_forces(3, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%visc, &
+    call sph_forces(3, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
                     pt%acc, pt%vsig)
     pt%v(:,1:pt%n) = pt%v(:,1:pt%n) + dt_v*pt%acc(:,1:pt%n)
   end subroutine
@@ -274,6 +286,7 @@ contains
         pt%x(:,g) = mirrored(pt%x(:,i), mask, .true.)
         pt%v(:,g) = mirrored(pt%v(:,i), mask, .false.)
         pt%m(g) = pt%m(i); pt%rho(g) = pt%rho(i); pt%p(g) = pt%p(i); pt%c(g) = pt%c(i); pt%h(g) = pt%h(i)
+        pt%s(:,g) = mirrored_stress(pt%s(:,i), mask)
       end do
     end do
     pt%n_ghosts = g - pt%n
@@ -286,6 +299,25 @@ contains
       do kk = 1, size(sym)
         if (btest(mask, kk-1) .and. .not. near(kk)) all_near = .false.
       end do
+    end function
+    !> The symmetric tensor s (xx,yy,zz,xy,yz,zx) reflected in the planes
+    !> of mask: M s M, M = I - 2 n n^T for each plane.
+    function mirrored_stress(s, mask) result(z)
+      real(rk), intent(in) :: s(6)
+      integer, intent(in) :: mask
+      real(rk) :: z(6), a(3,3), mm(3,3)
+      integer :: kk, r
+      a = reshape([s(1), s(4), s(6), s(4), s(2), s(5), s(6), s(5), s(3)], [3, 3])
+      do kk = 1, size(sym)
+        if (.not. btest(mask, kk-1)) cycle
+        mm = 0
+        do r = 1, 3
+          mm(r,r) = 1
+          mm(:,r) = mm(:,r) - 2.0_rk*sym(kk)%normal*sym(kk)%normal(r)
+        end do
+        a = matmul(mm, matmul(a, mm))
+      end do
+      z = [a(1,1), a(2,2), a(3,3), a(1,2), a(2,3), a(3,1)]
     end function
     !> y reflected in the planes of mask (a position, or a velocity: no offset).
     function mirrored(y, mask, position) result(z)
@@ -343,7 +375,8 @@ contains
     end do
     pt%drho(1:pt%n+pt%n_ghosts) = 0
     pt%dheat(1:pt%n+pt%n_ghosts) = 0
-    call sph_rates(3, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat)
+    pt%grad(:,1:pt%n+pt%n_ghosts) = 0
+    call sph_rates(3, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad)
     ! each run of particles of one material together (the kernel takes one)
     i = 1
     do while (i <= pt%n)
@@ -353,8 +386,12 @@ contains
         if (pt%mat(j+1) /= mt) exit
         j = j + 1
       end do
-      call particle_update(dom%mat(mt), j - i + 1, dt, pt%m(i:j), pt%drho(i:j), pt%dheat(i:j), pt%rho(i:j), &
-                           pt%e(i:j), pt%p(i:j), pt%c(i:j))
+      ! the deviator first, with the density of step n (its work joins the heating)
+      call particle_strength(dom%mat(mt), j - i + 1, dt, pt%rho(i:j), pt%grad(:,i:j), pt%p(i:j), pt%strong(i:j), &
+                             pt%s(:,i:j), pt%eps_p(i:j), pt%hard(i:j), pt%soft(i:j), pt%temp(i:j), pt%damage(i:j), &
+                             pt%dheat(i:j))
+      call particle_update(dom%mat(mt), j - i + 1, dt, pt%m(i:j), pt%drho(i:j), pt%dheat(i:j), pt%strong(i:j), &
+                           pt%rho(i:j), pt%e(i:j), pt%p(i:j), pt%c(i:j))
       i = j + 1
     end do
     pt%dt_stable = huge(1.0_rk)

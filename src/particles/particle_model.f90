@@ -19,7 +19,12 @@ module udar_particle_model
     real(rk), allocatable :: e(:)         !< J/kg, specific internal energy
     real(rk), allocatable :: p(:), c(:)   !< Pa, m/s: pressure (no tension) and sound speed at rho, e
     real(rk), allocatable :: h(:)         !< m, smoothing length (fixed at conversion)
-    real(rk), allocatable :: temp(:), eps_p(:)   !< K, -: the element's at conversion (output)
+    real(rk), allocatable :: temp(:), eps_p(:)   !< K, -: temperature and equivalent plastic strain (the element's at conversion)
+    !> strength kept (made from an element that had not fractured, and not
+    !> fractured since): deviatoric stress s (6,n) Pa (xx,yy,zz,xy,yz,zx),
+    !> the flow stress's hardening part (Pa) and thermal factor, the damage
+    logical, allocatable :: strong(:)
+    real(rk), allocatable :: s(:,:), hard(:), soft(:), damage(:)
     integer, allocatable :: mat(:), part(:)      !< material and part of the element it was
     integer, allocatable :: elem(:)       !< global element index (1-based) it was
     logical, allocatable :: converted(:)  !< (local elements) already made a particle
@@ -29,6 +34,7 @@ module udar_particle_model
     real(rk) :: dt_stable = huge(1.0_rk)  !< s, the particles' stable step after their last step
     ! work arrays of a step
     real(rk), allocatable :: acc(:,:), drho(:), dheat(:), vsig(:), visc(:)
+    real(rk), allocatable :: grad(:,:)    !< (9,n) sum_j m_j v_ij (x) grad_i W_ij (sph_rates)
     real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3,n) m/s: v(n-1/2), and v(n+1/2) before the contact pass
     real(rk), allocatable :: x_start(:,:) !< (3,n+images) m: x(n), for the rates after the contact pass
     integer, allocatable :: pairs(:,:), cell_start(:), order(:), cand(:)
@@ -52,8 +58,9 @@ contains
     end if
     cap = max(n, 64)
     if (allocated(pt%m)) cap = max(cap, 2*size(pt%m))
-    call grow2(pt%x, cap); call grow2(pt%v, cap); call grow2(pt%acc, cap); call grow2(pt%v_prev, cap)
-    call grow2(pt%v_pre, cap); call grow2(pt%x_start, cap)
+    call grow2(pt%x, 3, cap); call grow2(pt%v, 3, cap); call grow2(pt%acc, 3, cap); call grow2(pt%v_prev, 3, cap)
+    call grow2(pt%v_pre, 3, cap); call grow2(pt%x_start, 3, cap); call grow2(pt%s, 6, cap); call grow2(pt%grad, 9, cap)
+    call grow1(pt%hard, cap); call grow1(pt%soft, cap); call grow1(pt%damage, cap); call growl(pt%strong, cap)
     call grow1(pt%m, cap); call grow1(pt%rho, cap); call grow1(pt%e, cap); call grow1(pt%p, cap)
     call grow1(pt%c, cap); call grow1(pt%h, cap); call grow1(pt%temp, cap); call grow1(pt%eps_p, cap)
     call grow1(pt%drho, cap); call grow1(pt%dheat, cap); call grow1(pt%vsig, cap)
@@ -63,11 +70,11 @@ contains
     call growi(pt%cand, 2*cap + 2)
     call growi(pt%ghost_of, cap); call growi(pt%ghost_planes, cap)
   contains
-    subroutine grow2(a, c)
+    subroutine grow2(a, rows, c)
       real(rk), allocatable, intent(inout) :: a(:,:)
-      integer, intent(in) :: c
+      integer, intent(in) :: rows, c
       real(rk), allocatable :: t(:,:)
-      allocate(t(3,c))
+      allocate(t(rows,c))
       t = 0
       if (allocated(a)) t(:,1:size(a,2)) = a
       call move_alloc(t, a)
@@ -78,6 +85,15 @@ contains
       real(rk), allocatable :: t(:)
       allocate(t(c))
       t = 0
+      if (allocated(a)) t(1:size(a)) = a
+      call move_alloc(t, a)
+    end subroutine
+    subroutine growl(a, c)
+      logical, allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: c
+      logical, allocatable :: t(:)
+      allocate(t(c))
+      t = .false.
       if (allocated(a)) t(1:size(a)) = a
       call move_alloc(t, a)
     end subroutine

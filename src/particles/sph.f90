@@ -12,10 +12,12 @@ module udar_sph
   use udar_config, only: material_cfg_t, eos_mie_gruneisen
   use udar_hydro, only: volumetric_update
   use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
+  use udar_strength, only: strength_block, thermal_softening_update, von_mises
+  use udar_fracture, only: fracture_update, fracture_enabled
   implicit none
   private
   public :: spline_w, spline_dw, sph_forces, sph_rates, particle_update, particle_pressure, element_to_particle, sph_pairs, &
-            smoothing_length, sph_stable_dt
+            smoothing_length, sph_stable_dt, particle_strength, wave_speed
 
   !> Monaghan's viscosity's quadratic term's guard: mu = h v.r / (r^2 + eta2 h^2)
   real(rk), parameter :: eta2 = 0.01_rk
@@ -97,22 +99,25 @@ contains
   !> The accelerations of the particles over the pair list pairs(2,np)
   !> (each pair once, i /= j; pairs beyond 2 h_ij, h_ij = (h_i + h_j)/2,
   !> take no part):
-  !>   dv_i/dt = - sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) grad_i W_ij
-  !> (Monaghan 1992, eq. 3.3), with Monaghan's viscosity
-  !> Pi_ij = (-alpha cbar mu + beta mu^2)/rhobar for approaching pairs,
-  !> mu = h_ij v_ij.x_ij/(x_ij^2 + 0.01 h_ij^2). The pair terms are equal
-  !> and opposite along x_ij: momentum and angular momentum are exact.
+  !>   dv_i/dt = sum_j m_j (s_i/rho_i^2 + s_j/rho_j^2
+  !>                        - (p_i/rho_i^2 + p_j/rho_j^2 + Pi_ij) I) grad_i W_ij
+  !> (Monaghan 1992, eq. 3.3; Libersky et al. 1993 for the deviatoric
+  !> stress s(6,:), xx,yy,zz,xy,yz,zx, zero for material without strength),
+  !> with Monaghan's viscosity Pi_ij = (-alpha cbar mu + beta mu^2)/rhobar
+  !> for approaching pairs, mu = h_ij v_ij.x_ij/(x_ij^2 + 0.01 h_ij^2). The
+  !> pair terms are equal and opposite: momentum is exact; angular momentum
+  !> too where s = 0 (the terms are then along x_ij).
   !> Added to acc (zero it first); visc(k) keeps pair k's Pi for
   !> sph_rates; vsig is raised to each particle's largest signal speed
   !> c_i + c_j - 3 min(v_ij . x_ij/|x_ij|, 0) (Monaghan 1997), for the step.
-  pure subroutine sph_forces(dim, alpha, beta, np, pairs, x, v, m, rho, p, c, h, visc, acc, vsig)
+  pure subroutine sph_forces(dim, alpha, beta, np, pairs, x, v, m, rho, p, c, h, s, visc, acc, vsig)
     integer, intent(in) :: dim, np, pairs(:,:)
     real(rk), intent(in) :: alpha, beta
-    real(rk), intent(in) :: x(:,:), v(:,:), m(:), rho(:), p(:), c(:), h(:)
+    real(rk), intent(in) :: x(:,:), v(:,:), m(:), rho(:), p(:), c(:), h(:), s(:,:)
     real(rk), intent(out) :: visc(:)
     real(rk), intent(inout) :: acc(:,:), vsig(:)
     integer :: k, i, j
-    real(rk) :: g(3), vij(3), vr, d, mu, coef, speed, hij
+    real(rk) :: g(3), vij(3), vr, d, mu, coef, speed, hij, a(6), f(3)
     do k = 1, np
       i = pairs(1,k)
       j = pairs(2,k)
@@ -128,6 +133,12 @@ contains
       coef = p(i)/rho(i)**2 + p(j)/rho(j)**2 + visc(k)
       acc(:,i) = acc(:,i) - (m(j)*coef)*g
       acc(:,j) = acc(:,j) + (m(i)*coef)*g
+      if (any(s(:,i) /= 0.0_rk) .or. any(s(:,j) /= 0.0_rk)) then
+        a = s(:,i)/rho(i)**2 + s(:,j)/rho(j)**2
+        f = [a(1)*g(1) + a(4)*g(2) + a(6)*g(3), a(4)*g(1) + a(2)*g(2) + a(5)*g(3), a(6)*g(1) + a(5)*g(2) + a(3)*g(3)]
+        acc(:,i) = acc(:,i) + m(j)*f
+        acc(:,j) = acc(:,j) - m(i)*f
+      end if
       speed = c(i) + c(j) - 3.0_rk*min(vr/d, 0.0_rk)
       vsig(i) = max(vsig(i), speed)
       vsig(j) = max(vsig(j), speed)
@@ -144,23 +155,34 @@ contains
   !>   heat_i    = 1/2 sum_j m_j Pi_ij v_ij . grad_i W_ij  (J/(kg s), >= 0),
   !> so that de_i/dt = p_i/rho_i^2 drho_i/dt + heat_i (the thermodynamic
   !> form of eq. 3.7, which particle_update integrates with the EOS as the
-  !> elements do). For the same v and positions (dt = 0),
-  !> sum_i m_i (v_i . dv_i/dt + de_i/dt) = 0: the internal energy gains
-  !> what the pressures and the viscosity take from the motion. Added to
-  !> drho and heat (zero them first).
-  pure subroutine sph_rates(dim, dt, np, pairs, x, v, m, h, visc, drho, heat)
+  !> elements do), and the sums of the velocity gradient
+  !>   grad_i    = sum_j m_j v_ij (x) grad_i W_ij   (L_i = dv/dx = -grad_i/rho_i,
+  !> stored column by column, grad(a + 3(b-1)) for dv_a/dx_b; the same
+  !> estimate as the continuity equation's: drho_i/dt = -rho_i tr L_i).
+  !> For the same v and positions (dt = 0),
+  !> sum_i m_i (v_i . dv_i/dt + de_i/dt) = 0 with
+  !> de_i/dt = p_i/rho_i^2 drho_i/dt + heat_i + s_i : L_i / rho_i: the
+  !> internal energy gains what the stresses and the viscosity take from
+  !> the motion. Added to drho, heat and grad (zero them first).
+  pure subroutine sph_rates(dim, dt, np, pairs, x, v, m, h, visc, drho, heat, grad)
     integer, intent(in) :: dim, np, pairs(:,:)
     real(rk), intent(in) :: dt, x(:,:), v(:,:), m(:), h(:), visc(:)
-    real(rk), intent(inout) :: drho(:), heat(:)
-    integer :: k, i, j
-    real(rk) :: g(3), d, hij, vg
+    real(rk), intent(inout) :: drho(:), heat(:), grad(:,:)
+    integer :: k, i, j, b
+    real(rk) :: g(3), d, hij, vg, vij(3)
     do k = 1, np
       i = pairs(1,k)
       j = pairs(2,k)
       call pair_gradient(dim, x(:,i) + (0.5_rk*dt)*v(:,i), x(:,j) + (0.5_rk*dt)*v(:,j), h(i), h(j), g, d, hij)
-      vg = dot_product(v(:,i) - v(:,j), g)
+      vij = v(:,i) - v(:,j)
+      vg = dot_product(vij, g)
       drho(i) = drho(i) + m(j)*vg
       drho(j) = drho(j) + m(i)*vg
+      ! (grad_j W_ji = -g and v_ji = -v_ij: the same product for j)
+      do b = 1, 3
+        grad(3*b-2:3*b,i) = grad(3*b-2:3*b,i) + (m(j)*g(b))*vij
+        grad(3*b-2:3*b,j) = grad(3*b-2:3*b,j) + (m(i)*g(b))*vij
+      end do
       heat(i) = heat(i) + m(j)*0.5_rk*visc(k)*vg
       heat(j) = heat(j) + m(i)*0.5_rk*visc(k)*vg
     end do
@@ -177,10 +199,11 @@ contains
   !> expand in tension, it parts (no pressure: the volume change would do
   !> no work either way); without this, particles that fly apart thin out
   !> and must then be squeezed back to their density before they push.
-  pure subroutine particle_update(mat, n, dt, m, drho, heat, rho, e, p, c)
+  pure subroutine particle_update(mat, n, dt, m, drho, heat, strong, rho, e, p, c)
     type(material_cfg_t), intent(in) :: mat
     integer, intent(in) :: n
     real(rk), intent(in) :: dt, m(:), drho(:), heat(:)
+    logical, intent(in) :: strong(:)
     real(rk), intent(inout) :: rho(:), e(:), p(:), c(:)
     real(rk), dimension(block_size) :: vol, zero, j_old, j_new, w_visc, q, bulk_tan, stiff, pp, rho_old
     logical :: no_tension(block_size)
@@ -207,6 +230,82 @@ contains
         k = first + i - 1
         if (p(k) == 0.0_rk .and. pp(i) == 0.0_rk) rho(k) = max(rho(k), rho_old(i))
         call particle_pressure(mat, rho(k), e(k), p(k), c(k))
+        c(k) = wave_speed(mat, strong(k), rho(k), c(k))
+      end do
+    end do
+  end subroutine
+
+  !> The speed of the fastest wave in a particle of density rho whose
+  !> bulk sound speed is c_bulk: c_bulk, or with its strength the
+  !> longitudinal wave's sqrt(c_bulk^2 + 4 G / (3 rho)), which the step
+  !> must follow.
+  pure elemental real(rk) function wave_speed(mat, strong, rho, c_bulk) result(c)
+    type(material_cfg_t), intent(in) :: mat
+    logical, intent(in) :: strong
+    real(rk), intent(in) :: rho, c_bulk
+    c = c_bulk
+    if (strong) c = sqrt(c_bulk**2 + 4.0_rk*mat%shear_modulus/(3.0_rk*rho))
+  end function
+
+  !> The deviatoric stress s(6,:) of particles 1..n of material mat over
+  !> dt, for those that keep their strength (strong: made from an element
+  !> that had not fractured, and not fractured since; the others keep
+  !> s = 0): the velocity gradient L = -grad/rho (sph_rates; rho of step n)
+  !> gives the strain rate and spin that the elements' strength_block takes
+  !> (Jaumann rotation, hypoelastic trial step, radial return); plastic
+  !> work heats (Taylor-Quinney) and softens as in an element; the
+  !> material's fracture criterion (fracture_update, at the pressure p of
+  !> step n; a particle carries no tension, so it does not spall) makes the
+  !> particle strengthless for good. heat (J/(kg s)) is raised by the
+  !> deviatoric work of the step, s_mid : D / rho, which particle_update
+  !> books with the pressure's.
+  pure subroutine particle_strength(mat, n, dt, rho, grad, p, strong, s, eps_p, hard, soft, temp, damage, heat)
+    type(material_cfg_t), intent(in) :: mat
+    integer, intent(in) :: n
+    real(rk), intent(in) :: dt, rho(:), grad(:,:), p(:)
+    logical, intent(inout) :: strong(:)
+    real(rk), intent(inout) :: s(:,:), eps_p(:), hard(:), soft(:), temp(:), damage(:), heat(:)
+    real(rk), dimension(block_size, 6) :: d, sb
+    real(rk), dimension(block_size, 3) :: w
+    real(rk), dimension(block_size) :: w_dev, w_pl, sf, hd, ep, ep0
+    real(rk) :: l(3,3), t_old
+    integer :: first, nb, i, k
+    logical :: fractured
+    if (dt <= 0.0_rk) return
+    do first = 1, n, block_size
+      nb = min(block_size, n - first + 1)
+      if (.not. any(strong(first:first+nb-1))) cycle
+      do i = 1, nb
+        k = first + i - 1
+        l = reshape(-grad(:,k)/rho(k), [3, 3])
+        d(i,:) = [l(1,1), l(2,2), l(3,3), 0.5_rk*(l(1,2) + l(2,1)), 0.5_rk*(l(2,3) + l(3,2)), 0.5_rk*(l(3,1) + l(1,3))]
+        w(i,:) = [0.5_rk*(l(1,2) - l(2,1)), 0.5_rk*(l(2,3) - l(3,2)), 0.5_rk*(l(3,1) - l(1,3))]
+        sb(i,:) = s(:,k)
+        sf(i) = soft(k)
+        hd(i) = hard(k)
+        ep(i) = eps_p(k)
+        ep0(i) = ep(i)
+      end do
+      call strength_block(mat, block_size, nb, dt, d, w, sf(1:nb), hd(1:nb), sb, ep(1:nb), w_dev(1:nb), w_pl(1:nb))
+      do i = 1, nb
+        k = first + i - 1
+        if (.not. strong(k)) cycle
+        s(:,k) = sb(i,:)
+        hard(k) = hd(i)
+        eps_p(k) = ep(i)
+        heat(k) = heat(k) + w_dev(i)/(rho(k)*dt)
+        if (w_pl(i) > 0.0_rk .and. mat%specific_heat > 0.0_rk) then
+          t_old = temp(k)
+          temp(k) = t_old + mat%taylor_quinney*w_pl(i)/(rho(k)*mat%specific_heat)
+          soft(k) = thermal_softening_update(mat, sf(i), t_old, temp(k))
+        end if
+        if (fracture_enabled(mat)) then
+          call fracture_update(mat, dt, ep(i) - ep0(i), ep(i), von_mises(sb(i,:)), p(k), temp(k), damage(k), fractured)
+          if (fractured) then
+            strong(k) = .false.
+            s(:,k) = 0.0_rk
+          end if
+        end if
       end do
     end do
   end subroutine

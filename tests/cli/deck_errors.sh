@@ -35,6 +35,14 @@ expect share_above_the_large_share 1 "bad_share.nml:6: &numerics.*stabilisation 
 sed 's/&material name = "steel"/\&material name = "steel", eroded = "particles"/' "$W/good.nml" > "$W/particles_no_erosion.nml"
 expect particles_without_erosion 1 "particles_no_erosion.nml:3: &material #1 'steel': eroded = .particles. : 'particles' is what eroded elements become.*set eps_erode > 0" \
   particles_no_erosion.nml
+# eps_convert (strained elements become particles with strength) needs particles
+sed 's/&material name = "steel"/\&material name = "steel", fracture = "plastic_strain", eps_f = 1, eps_erode = 2, eps_convert = 0.8/' \
+  "$W/good.nml" > "$W/convert_no_particles.nml"
+expect convert_without_particles 1 "convert_no_particles.nml:3: &material #1 'steel': eps_convert = 0.8.*only eroded = 'particles' converts" \
+  convert_no_particles.nml
+sed 's/&material name = "steel"/\&material name = "steel", eroded = "particles", fracture = "plastic_strain", eps_f = 1, eps_erode = 2, eps_convert = -1/' \
+  "$W/good.nml" > "$W/convert_negative.nml"
+expect convert_negative 1 "convert_negative.nml:3: &material #1 'steel': eps_convert = -1.*>= 0" convert_negative.nml
 sed 's/&material name = "steel"/\&material name = "steel", eroded = "dust"/' "$W/good.nml" > "$W/eroded_word.nml"
 expect eroded_unknown_word 1 "eroded_word.nml:3: &material #1 'steel': eroded = .dust. : unknown choice.*'free_nodes', 'particles'" eroded_word.nml
 

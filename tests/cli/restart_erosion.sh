@@ -2,14 +2,17 @@
 # Restart with fracture, erosion and eroding contact: the penetration deck
 # run to 2.5 us with a checkpoint at 1.5 us, then restarted from it on 2
 # ranks, gives bitwise the history and fields of the straight run.
-#   restart_erosion.sh EXE [anti_locking | stabilised | edges | particles]
+#   restart_erosion.sh EXE [anti_locking | stabilised | edges | particles | particles_strength]
 # With anti_locking the deck runs with the nodal-averaged pressure, whose
 # reference volumes are rebased at erosion and carried by the checkpoint;
 # stabilised: the stabilised nodal element (theory.md 8.1), whose element
 # share of the nodal pressure is recomputed every cycle, not checkpointed;
 # edges: edge-to-edge contact, whose feature edges erosion changes;
 # particles: eroded elements become particles (issue 15), which the
-# checkpoint carries, and the nodes' masses without them are recomputed.
+# checkpoint carries, and the nodes' masses without them are recomputed;
+# particles_strength: besides, strained elements convert before they
+# fracture (eps_convert), so particles carry their stress, hardening and
+# damage through the checkpoint, and fracture later.
 source "$(dirname "$0")/common.sh" "$1"
 case=penetration
 cp "$ROOT/tests/regression/$case/$case.msh" "$ROOT/tests/regression/$case/$case.nml" "$W/"
@@ -29,16 +32,26 @@ elif [ "${2:-}" = edges ]; then
 elif [ "${2:-}" = particles ]; then
   sed -i "s/eps_erode = 1.5$/eps_erode = 1.5, eroded = 'particles'/" "$W/$case.nml"
   grep -q "eroded = 'particles'" "$W/$case.nml" || { bad "deck_has_particles"; exit 1; }
+elif [ "${2:-}" = particles_strength ]; then
+  sed -i "s/eps_erode = 1.5$/eps_erode = 1.5, eroded = 'particles', eps_convert = 0.8/" "$W/$case.nml"
+  grep -q "eps_convert = 0.8" "$W/$case.nml" || { bad "deck_has_particles_with_strength"; exit 1; }
 fi
 straight_run $case
 eroded=$(grep -o '[0-9]* eroded;' "$W/straight.log" | cut -d' ' -f1)
 echo "MEASURED $eroded elements eroded in the straight run"
 [ "${eroded:-0}" -gt 0 ] && ok "elements_eroded_before_the_end" || bad "elements_eroded_before_the_end"
-if [ "${2:-}" = particles ]; then
+if [ "${2:-}" = particles ] || [ "${2:-}" = particles_strength ]; then
   made=$(grep -c 'particles' "$W/out/${case}_history.csv")
   n=$(tail -1 "$W/straight/${case}_history.csv" | awk -F, '{print $(NF-4)}')
   echo "MEASURED particles at the end of the straight run: $n"
   awk "BEGIN{exit !($n > 0)}" && ok "particles_made" || bad "particles_made"
+fi
+if [ "${2:-}" = particles_strength ]; then
+  # the checkpoint the restart starts from holds particles that keep their strength
+  strong=$($PYTHON -c "import h5py, sys; a = h5py.File(sys.argv[1], 'r')['particles'][1:]; print(int((a[:, 26] > 0).sum()))" \
+           "$W/out/${case}_ckpt1.h5")
+  echo "MEASURED particles keeping their strength in the checkpoint: $strong"
+  [ "${strong:-0}" -gt 0 ] && ok "checkpoint_has_particles_with_strength" || bad "checkpoint_has_particles_with_strength"
 fi
 restart_matches_straight $case 2
 [ $fails -eq 0 ]

@@ -16,7 +16,8 @@ program test_sph
   use udar_strings, only: r2s, itoa
   use udar_config, only: material_cfg_t, eos_linear, eos_mie_gruneisen
   use udar_sph, only: spline_w, spline_dw, sph_forces, sph_rates, particle_update, particle_pressure, element_to_particle, sph_pairs, &
-                      smoothing_length, sph_stable_dt
+                      smoothing_length, sph_stable_dt, particle_strength, wave_speed
+  use udar_config, only: strength_perfectly_plastic, fracture_plastic_strain
   use unit_checks, only: check, check_summary
   implicit none
   integer, parameter :: n_cloud = 80, max_pairs = 20000
@@ -52,6 +53,7 @@ program test_sph
   call pressure_tests()
   call conversion_tests()
   call head_on_pair()
+  call strength_tests()
   call check_summary()
 
 contains
@@ -59,7 +61,7 @@ contains
   !> A random cloud: pairs against brute force, then conservation.
   subroutine cloud_tests()
     real(rk) :: x(3,n_cloud), v(3,n_cloud), m(n_cloud), rho(n_cloud), p(n_cloud), c(n_cloud), hh(n_cloud), &
-                acc(3,n_cloud), dedt(n_cloud), drho(n_cloud), vsig(n_cloud), u(3)
+                acc(3,n_cloud), dedt(n_cloud), drho(n_cloud), vsig(n_cloud), u(3), s(6,n_cloud), grad(9,n_cloud), su(6)
     real(rk), allocatable :: coef(:)
     integer, allocatable :: pairs(:,:), brute(:,:)
     integer :: np, nb, i, j, cell_start(4097), order(n_cloud), cand(n_cloud + 4096)
@@ -100,8 +102,10 @@ contains
     dedt = 0
     drho = 0
     vsig = 0
-    call sph_forces(3, 1.0_rk, 2.0_rk, np, pairs, x, v, m, rho, p, c, hh, coef, acc, vsig)
-    call sph_rates(3, 0.0_rk, np, pairs, x, v, m, hh, coef, drho, dedt)
+    s = 0
+    grad = 0
+    call sph_forces(3, 1.0_rk, 2.0_rk, np, pairs, x, v, m, rho, p, c, hh, s, coef, acc, vsig)
+    call sph_rates(3, 0.0_rk, np, pairs, x, v, m, hh, coef, drho, dedt, grad)
     ! de/dt = p/rho^2 drho/dt + heat
     dedt = dedt + p/rho**2*drho
     mom = 0
@@ -123,17 +127,52 @@ contains
                'sum m x x a '//r2s(norm2(ang)/scale_l)//' of sum m |x| |a|')
     call check('rates_conserve_energy', abs(power) < 1e-14_rk*scale_e, &
                'sum m (v.a + de/dt) '//r2s(abs(power)/scale_e)//' of its terms')
+    ! with deviatoric stresses: momentum still exact, and the internal
+    ! energy gains s : L / rho = -s : grad / rho^2 (L = -grad/rho)
+    do i = 1, n_cloud
+      call random_number(su)
+      s(:,i) = 4e8_rk*(su - 0.5_rk)
+      s(1:3,i) = s(1:3,i) - sum(s(1:3,i))/3
+    end do
+    acc = 0
+    dedt = 0
+    drho = 0
+    grad = 0
+    call sph_forces(3, 1.0_rk, 2.0_rk, np, pairs, x, v, m, rho, p, c, hh, s, coef, acc, vsig)
+    call sph_rates(3, 0.0_rk, np, pairs, x, v, m, hh, coef, drho, dedt, grad)
+    mom = 0
+    power = 0
+    scale_e = 0
+    scale_f = 0
+    do i = 1, n_cloud
+      dedt(i) = dedt(i) + p(i)/rho(i)**2*drho(i) - stress_power(s(:,i), grad(:,i))/rho(i)**2
+      mom = mom + m(i)*acc(:,i)
+      scale_f = scale_f + m(i)*norm2(acc(:,i))
+      power = power + m(i)*(dot_product(v(:,i), acc(:,i)) + dedt(i))
+      scale_e = scale_e + m(i)*(abs(dot_product(v(:,i), acc(:,i))) + abs(dedt(i)))
+    end do
+    call check('stress_rates_conserve_momentum', norm2(mom) < 1e-14_rk*scale_f, &
+               'sum m a '//r2s(norm2(mom)/scale_f)//' of sum m |a|')
+    call check('stress_rates_conserve_energy', abs(power) < 1e-14_rk*scale_e, &
+               'sum m (v.a + de/dt) '//r2s(abs(power)/scale_e)//' of its terms')
     call check('signal_speed_at_least_2c', all(vsig >= 2.0_rk*4500.0_rk .or. vsig == 0.0_rk) .and. any(vsig > 9000.0_rk), &
                'largest '//r2s(maxval(vsig))//' m/s')
     call check('stable_dt_by_hand', abs(sph_stable_dt(n_cloud, 0.3_rk, hh, c, vsig) - &
                minval(0.3_rk*hh/max(vsig, c))) < 1e-25_rk, r2s(sph_stable_dt(n_cloud, 0.3_rk, hh, c, vsig))//' s')
   end subroutine
 
+  !> s : grad for a symmetric s (xx,yy,zz,xy,yz,zx) and grad column by column.
+  pure real(rk) function stress_power(s, g) result(w)
+    real(rk), intent(in) :: s(6), g(9)
+    w = s(1)*g(1) + s(2)*g(5) + s(3)*g(9) + s(4)*(g(4) + g(2)) + s(5)*(g(8) + g(6)) + s(6)*(g(3) + g(7))
+  end function
+
   !> A cubic lattice of 9^3 particles, spacing a, h = 1.2 a, uniform
   !> density and pressure.
   subroutine lattice_tests()
     integer, parameter :: nl = 9, n = nl**3
-    real(rk) :: x(3,n), v(3,n), m(n), rho(n), p(n), c(n), hh(n), acc(3,n), dedt(n), drho(n), vsig(n), a, eps, rho0
+    real(rk) :: x(3,n), v(3,n), m(n), rho(n), p(n), c(n), hh(n), acc(3,n), dedt(n), drho(n), vsig(n), a, eps, rho0, &
+                s(6,n), grad(9,n), l(3,3), gam
     real(rk), allocatable :: coef(:)
     integer, allocatable :: pairs(:,:)
     integer :: np, i, j, k, q, centre, face, cell_start(4097), order(n), cand(n + 4096)
@@ -164,8 +203,10 @@ contains
     drho = 0
     vsig = 0
     ! no viscosity: the compression's rate alone
-    call sph_forces(3, 0.0_rk, 0.0_rk, np, pairs, x, v, m, rho, p, c, hh, coef, acc, vsig)
-    call sph_rates(3, 0.0_rk, np, pairs, x, v, m, hh, coef, drho, dedt)
+    s = 0
+    grad = 0
+    call sph_forces(3, 0.0_rk, 0.0_rk, np, pairs, x, v, m, rho, p, c, hh, s, coef, acc, vsig)
+    call sph_rates(3, 0.0_rk, np, pairs, x, v, m, hh, coef, drho, dedt, grad)
     call check('uniform_pressure_interior_at_rest', norm2(acc(:,centre)) < 1e-10_rk*norm2(acc(:,face)), &
                '|a| centre '//r2s(norm2(acc(:,centre)))//' m/s2, face '//r2s(norm2(acc(:,face))))
     call check('uniform_pressure_pushes_a_face_out', acc(1,face) > 0.0_rk .and. &
@@ -175,6 +216,92 @@ contains
     call check('continuity_under_uniform_compression', abs(drho(centre)/(3.0_rk*eps*rho0) - 1.0_rk) < 0.02_rk, &
                'ratio '//r2s(drho(centre)/(3.0_rk*eps*rho0)))
     call check('no_heat_without_viscosity', all(dedt == 0.0_rk), 'largest '//r2s(maxval(abs(dedt))))
+    l = reshape(-grad(:,centre)/rho0, [3, 3])
+    call check('velocity_gradient_under_uniform_compression', all(abs(l - (-eps)*identity()) < 0.02_rk*eps), &
+               'L diagonal '//r2s(l(1,1))//' '//r2s(l(2,2))//' '//r2s(l(3,3))//' 1/s against '//r2s(-eps))
+    ! simple shear v_x = gamma' y: L_xy = gamma', nothing else
+    gam = 2e3_rk
+    do q = 1, n
+      v(:,q) = [gam*x(2,q), 0.0_rk, 0.0_rk]
+    end do
+    grad = 0
+    drho = 0
+    dedt = 0
+    call sph_rates(3, 0.0_rk, np, pairs, x, v, m, hh, coef, drho, dedt, grad)
+    l = reshape(-grad(:,centre)/rho0, [3, 3])
+    print '(a)', 'MEASURED velocity gradient under simple shear: L_xy '//r2s(l(1,2))//' against '//r2s(gam)
+    call check('velocity_gradient_under_simple_shear', abs(l(1,2)/gam - 1.0_rk) < 0.02_rk .and. &
+               maxval(abs(l - gam*reshape([0, 0, 0, 1, 0, 0, 0, 0, 0], [3, 3]))) < 0.02_rk*gam, &
+               'L_xy '//r2s(l(1,2))//', largest other '//r2s(maxval(abs(l - gam*reshape([0, 0, 0, 1, 0, 0, 0, 0, 0], [3, 3])))))
+  end subroutine
+
+  pure function identity() result(i3)
+    real(rk) :: i3(3,3)
+    i3 = reshape([1, 0, 0, 0, 1, 0, 0, 0, 1], [3, 3])
+  end function
+
+  !> A particle that keeps its strength, sheared at a constant rate gamma'
+  !> (its velocity gradient given: L_xy = gamma'), perfectly plastic: the
+  !> elastic s_xy = G gamma' t up to the von Mises limit sigma_y/sqrt(3),
+  !> then s_xy = sigma_y/sqrt(3); the deviatoric work booked as heat is
+  !> the area under the curve, tau_y^2/(2G) + tau_y (gamma - gamma_y); at
+  !> eps_f it fractures: no stress, no strength kept. A particle without
+  !> strength (strong = .false.) keeps s = 0.
+  subroutine strength_tests()
+    type(material_cfg_t) :: mat
+    integer, parameter :: n_steps = 4000
+    real(rk) :: rho(2), grad(9,2), p(2), s(6,2), eps_p(2), hard(2), soft(2), temp(2), damage(2), heat(2), &
+                dt, gam, tau_y, work, t, worst, want
+    logical :: strong(2)
+    integer :: k
+    mat%rho0 = 7850.0_rk
+    mat%shear_modulus = 80e9_rk
+    mat%strength = strength_perfectly_plastic
+    mat%yield_stress = 400e6_rk
+    mat%specific_heat = 0.0_rk
+    mat%fracture = fracture_plastic_strain
+    mat%eps_f = 0.01_rk
+    rho = mat%rho0
+    p = 1e9_rk
+    gam = 1e4_rk
+    dt = 1e-9_rk
+    grad = 0
+    grad(4,:) = -rho*gam            ! L = -grad/rho: column 2, row 1
+    s = 0
+    eps_p = 0
+    hard = mat%yield_stress
+    soft = 1
+    temp = 294
+    damage = 0
+    strong = [.true., .false.]
+    tau_y = mat%yield_stress/sqrt(3.0_rk)
+    work = 0
+    worst = 0
+    do k = 1, n_steps
+      heat = 0
+      call particle_strength(mat, 2, dt, rho, grad, p, strong, s, eps_p, hard, soft, temp, damage, heat)
+      work = work + heat(1)*dt*rho(1)
+      t = k*dt
+      if (.not. strong(1)) exit
+      want = min(mat%shear_modulus*gam*t, tau_y)
+      ! (the Jaumann rotation at gamma = gam t <= 0.02 changes s_xy by gamma^2/2 of it)
+      worst = max(worst, abs(s(4,1) - want)/tau_y)
+    end do
+    print '(a)', 'MEASURED particle strength under simple shear: largest |s_xy - analytic| '//r2s(worst)//' of tau_y'
+    call check('particle_shear_elastic_then_yield', worst < 1e-3_rk, 'largest difference '//r2s(worst)//' of tau_y')
+    t = k*dt
+    want = tau_y**2/(2.0_rk*mat%shear_modulus) + tau_y*(gam*t - tau_y/mat%shear_modulus)
+    call check('particle_deviatoric_work_as_heat', abs(work/want - 1.0_rk) < 2e-3_rk, &
+               'work '//r2s(work)//' J/m3 against '//r2s(want))
+    call check('particle_fractures_at_eps_f', .not. strong(1) .and. all(s(:,1) == 0.0_rk) .and. &
+               eps_p(1) >= mat%eps_f .and. eps_p(1) < mat%eps_f + 2.0_rk*gam*dt, &
+               'step '//itoa(k)//', eps_p '//r2s(eps_p(1)))
+    call check('strengthless_particle_keeps_no_stress', all(s(:,2) == 0.0_rk) .and. heat(2) == 0.0_rk .and. &
+               eps_p(2) == 0.0_rk, 's_xy '//r2s(s(4,2)))
+    call check('wave_speed_with_strength', abs(wave_speed(mat, .true., mat%rho0, 4500.0_rk) - &
+               sqrt(4500.0_rk**2 + 4.0_rk/3.0_rk*80e9_rk/7850.0_rk)) < 1e-9_rk .and. &
+               wave_speed(mat, .false., mat%rho0, 4500.0_rk) == 4500.0_rk, 'c_L '// &
+               r2s(wave_speed(mat, .true., mat%rho0, 4500.0_rk))//' m/s')
   end subroutine
 
   !> The EOS without tension.
@@ -248,7 +375,8 @@ contains
   subroutine head_on_pair()
     type(material_cfg_t) :: steel
     real(rk) :: x(3,2), v(3,2), m(2), rho(2), e(2), p(2), c(2), hh(2), acc(3,2), dedt(2), drho(2), vsig(2), &
-                dt, e0, en, closest, e_low, coef(1)
+                dt, e0, en, closest, e_low, coef(1), s(6,2), grad(9,2)
+    logical :: strong(2)
     integer :: pairs(2,1), step, np
     steel%rho0 = 7850.0_rk
     steel%eos = eos_linear
@@ -273,12 +401,15 @@ contains
       drho = 0
       vsig = 0
       np = merge(1, 0, norm2(x(:,1) - x(:,2)) < 2.0_rk*hh(1))
-      call sph_forces(3, 0.0_rk, 0.0_rk, np, pairs, x, v, m, rho, p, c, hh, coef, acc, vsig)
+      s = 0
+      strong = .false.
+      call sph_forces(3, 0.0_rk, 0.0_rk, np, pairs, x, v, m, rho, p, c, hh, s, coef, acc, vsig)
       if (step == 1) dt = sph_stable_dt(2, 0.2_rk, hh, c, vsig)
       v = v + dt*acc
-      call sph_rates(3, dt, np, pairs, x, v, m, hh, coef, drho, dedt)
+      grad = 0
+      call sph_rates(3, dt, np, pairs, x, v, m, hh, coef, drho, dedt, grad)
       x = x + dt*v
-      call particle_update(steel, 2, dt, m, drho, dedt, rho, e, p, c)
+      call particle_update(steel, 2, dt, m, drho, dedt, strong, rho, e, p, c)
       closest = min(closest, norm2(x(:,1) - x(:,2)))
       en = sum(0.5_rk*m*sum(v**2, dim=1)) + sum(m*e)
       e_low = min(e_low, en)
