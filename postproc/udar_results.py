@@ -338,7 +338,8 @@ class LazyFields(_LazyMapping):
 
 #: The datasets of a step's particles group (count > 0), in the order of doc/output-format.md.
 PARTICLE_FIELDS = ("coordinates", "velocity", "mass", "density", "pressure",
-                   "specific_internal_energy", "temperature", "plastic_strain", "part_id", "element")
+                   "specific_internal_energy", "temperature", "plastic_strain", "part_id", "element",
+                   "von_mises", "strength_kept")
 _PARTICLE_INTEGERS = ("part_id", "element")     # stored as float64, returned as int64
 _PARTICLE_VECTORS = ("coordinates", "velocity")
 

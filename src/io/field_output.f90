@@ -40,8 +40,8 @@ module udar_field_output
             fw_elem_scalar, fw_particles, fw_end_step, fw_close
 
   !> The particles' scalar fields (fw_particles; /steps/NNNNNN/particles/...)
-  character(len=*), parameter, public :: particle_scalars(8) = [character(len=24) :: 'mass', 'density', 'pressure', &
-      'specific_internal_energy', 'temperature', 'plastic_strain', 'part_id', 'element']
+  character(len=*), parameter, public :: particle_scalars(10) = [character(len=24) :: 'mass', 'density', 'pressure', &
+      'specific_internal_energy', 'temperature', 'plastic_strain', 'part_id', 'element', 'von_mises', 'strength_kept']
 
   ! Field kinds, used to pick Center/AttributeType in the XDMF.
   integer, parameter :: fk_node_vector = 1, fk_node_scalar = 2, fk_elem_scalar = 3

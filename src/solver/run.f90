@@ -929,7 +929,7 @@ contains
       allocate(values(pt%n, size(particle_scalars)))
       do q = 1, pt%n
         values(q,:) = [pt%m(q), pt%rho(q), pt%p(q), pt%e(q), pt%temp(q), pt%eps_p(q), real(pt%part(q), rk), &
-                       real(pt%elem(q) - 1, rk)]
+                       real(pt%elem(q) - 1, rk), von_mises(pt%s(:,q)), merge(1.0_rk, 0.0_rk, pt%strong(q))]
       end do
       call fw_particles(fw, pt%x(:,1:pt%n), pt%v(:,1:pt%n), values, ok, msg)
     end subroutine
