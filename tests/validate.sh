@@ -9,7 +9,9 @@
 # (ERODED=particles tests/validate_long_rod.sh), the seed paper's Fig. 4
 # and normal cylinder and the long rod's conversion limit
 # (tests/validate_particles.sh), and Fig. 3's spread over five perturbed
-# runs per friction value (tests/validate_fig3_spread.sh). Every mesh
+# runs per friction value (tests/validate_fig3_spread.sh), and the OFHC
+# Taylor bar with particles that keep their strength
+# (tests/validate_taylor_particles.sh). Every mesh
 # of every script is compared with doc/validation/meshes.csv first, so a
 # wrong one stops make validate before the first run. The long-rod
 # refinements (0.7 and 0.5 mm, hours) are run by hand: see
@@ -23,6 +25,8 @@ MESHES_ONLY=1 tests/validate_long_rod.sh 2d
 MESHES_ONLY=1 tests/validate_paper.sh
 MESHES_ONLY=1 tests/validate_particles.sh
 MESHES_ONLY=1 tests/validate_fig3_spread.sh
+tests/validate_taylor_particles.sh
+MESHES_ONLY=1 tests/validate_taylor_particles.sh
 tests/validate_taylor.sh
 tests/validate_taylor.sh 2d
 tests/validate_long_rod.sh
@@ -32,3 +36,4 @@ tests/validate_contact.sh
 ERODED=particles tests/validate_long_rod.sh
 tests/validate_particles.sh
 tests/validate_fig3_spread.sh
+tests/validate_taylor_particles.sh

@@ -31,38 +31,50 @@ FOOTPRINT_M = 13.56e-3       # Johnson and Cook (1983)
 LENGTH_M = 16.21e-3
 
 
-def main(run_dir, deck):
-    out = os.path.join(run_dir, 'out')
-    f = udar_results.FieldFile(os.path.join(out, deck + '.h5'))
+def measure(path):
+    """The last step of field file path: particles made (n), their mass and
+    the converted elements' (kg), r95 (m: the radius holding 95 % of the
+    particles' mass, nan without particles), and over the remaining
+    elements' nodes and the particles the length and the footprint (m: the
+    farthest point from the axis within 0.5 mm of the lowest)."""
+    f = udar_results.FieldFile(path)
     s = f.step(-1)
     p = s.particles
-    n = 0 if p is None else len(p['mass'])
-    checks.above('particles_made', n, 500)
     conn = f.connectivity
     x0 = f.x0
     a, b, c, d = (x0[conn[:, k]] for k in range(4))
     el_mass = RHO0 * np.abs(np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a))) / 6.0
-    converted = np.asarray(s.fields['fracture_state']) == 2
-    p_mass = np.asarray(p['mass'])
-    checks.compare('particle_mass_is_converted_element_mass', p_mass.sum(), el_mass[converted].sum(), 1e-12, 'kg')
-    h = np.genfromtxt(os.path.join(out, deck + '_history.csv'), delimiter=',', names=True, comments='#')
-    checks.below('mass_change', np.abs(h['mass'] - h['mass'][0]).max(), 0.0, 'kg')
-    checks.below('energy_error_max', np.abs(h['energy_error']).max(), 0.02)
-    # the radius within which 95 % of the particles' mass lies
-    xp = p.coordinates
-    r = np.hypot(xp[:, 0], xp[:, 1])
-    order = np.argsort(r)
-    share = np.cumsum(p_mass[order]) / p_mass.sum()
-    r95 = r[order][np.searchsorted(share, 0.95)]
-    checks.below('particle_mass_radius_95', r95, 1.25 * FOOTPRINT_M / 2, 'm')
-    # length and footprint over the remaining elements' nodes and the particles
+    state = s.fields['fracture_state'] if 'fracture_state' in s.fields.elem_fields else np.zeros(len(conn))
+    converted = np.asarray(state) == 2
+    n = 0 if p is None else p.count
+    xp = np.zeros((0, 3)) if p is None else p.coordinates
+    p_mass = np.zeros(0) if p is None else np.asarray(p['mass'])
+    r95 = float('nan')
+    if n > 0:
+        r = np.hypot(xp[:, 0], xp[:, 1])
+        order = np.argsort(r)
+        share = np.cumsum(p_mass[order]) / p_mass.sum()
+        r95 = r[order][np.searchsorted(share, 0.95)]
     live = np.unique(conn[~converted].ravel())
     pts = np.vstack([s.coordinates[live], xp])
     z = pts[:, 2]
     rad = np.hypot(pts[:, 0], pts[:, 1])
     face = z <= z.min() + 5e-4
-    length, footprint = np.ptp(z), 2 * rad[face].max()
-    print(f"MEASURED {n} particles ({p_mass.sum() * 1e3:.4f} g); 95 % of their mass within {r95 * 1e3:.2f} mm of the "
+    return {'n': n, 'particle_mass': p_mass.sum(), 'converted_mass': el_mass[converted].sum(), 'r95': r95,
+            'length': np.ptp(z), 'footprint': 2 * rad[face].max()}
+
+
+def main(run_dir, deck):
+    out = os.path.join(run_dir, 'out')
+    m = measure(os.path.join(out, deck + '.h5'))
+    n, r95, length, footprint = m['n'], m['r95'], m['length'], m['footprint']
+    checks.above('particles_made', n, 500)
+    checks.compare('particle_mass_is_converted_element_mass', m['particle_mass'], m['converted_mass'], 1e-12, 'kg')
+    h = np.genfromtxt(os.path.join(out, deck + '_history.csv'), delimiter=',', names=True, comments='#')
+    checks.below('mass_change', np.abs(h['mass'] - h['mass'][0]).max(), 0.0, 'kg')
+    checks.below('energy_error_max', np.abs(h['energy_error']).max(), 0.02)
+    checks.below('particle_mass_radius_95', r95, 1.25 * FOOTPRINT_M / 2, 'm')
+    print(f"MEASURED {n} particles ({m['particle_mass'] * 1e3:.4f} g); 95 % of their mass within {r95 * 1e3:.2f} mm of the "
           f"axis (the experiment's footprint radius {FOOTPRINT_M * 500:.2f} mm); energy error at most "
           f"{np.abs(h['energy_error']).max():.3e}")
     print(f"MEASURED length {length * 1e3:.3f} mm ({100 * (length / LENGTH_M - 1):+.1f} % against the experiment), "
@@ -71,4 +83,10 @@ def main(run_dir, deck):
 
 
 if __name__ == '__main__':
-    main(sys.argv[1], sys.argv[2])
+    if sys.argv[1] == '--measure':
+        # one CSV row fragment per file: particles, length_mm, footprint_mm, r95_mm
+        for path in sys.argv[2:]:
+            m = measure(path)
+            print(f"{m['n']},{m['length'] * 1e3:.3f},{m['footprint'] * 1e3:.3f},{m['r95'] * 1e3:.2f}")
+    else:
+        main(sys.argv[1], sys.argv[2])
