@@ -491,8 +491,9 @@ contains
         if (fracture_on) then
           write(line, '(a,i0,a,i0,a,es10.3,a)') '         fracture: ', bal%n_fractured, ' elements fractured, ', &
             bal%n_eroded, ' eroded (', bal%eroded_energy, ' J of internal energy eroded)'
-          if (pt%enabled) write(line, '(a,i0,a,i0,a,i0,a,es10.3,a)') '         fracture: ', bal%n_fractured, &
-            ' elements fractured, ', bal%n_eroded, ' eroded, become ', pt%n, ' particles (', bal%particle_mass, ' kg)'
+          if (pt%enabled) write(line, '(a,i0,a,i0,a,i0,a,es10.3,a,i0,a)') '         fracture: ', bal%n_fractured, &
+            ' elements fractured or converted, ', bal%n_eroded, ' eroded, become ', pt%n, ' particles (', &
+            bal%particle_mass, ' kg; ', count(pt%strong(1:pt%n)), ' keep their strength)'
           call log_info(line)
         end if
         do k = 1, ct%n_interfaces
