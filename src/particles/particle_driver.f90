@@ -375,8 +375,12 @@ contains
     end do
     pt%drho(1:pt%n+pt%n_ghosts) = 0
     pt%dheat(1:pt%n+pt%n_ghosts) = 0
-    pt%grad(:,1:pt%n+pt%n_ghosts) = 0
-    call sph_rates(3, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad)
+    if (any(pt%strong(1:pt%n))) then
+      pt%grad(:,1:pt%n+pt%n_ghosts) = 0
+      call sph_rates(3, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad)
+    else
+      call sph_rates(3, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat)
+    end if
     ! each run of particles of one material together (the kernel takes one)
     i = 1
     do while (i <= pt%n)

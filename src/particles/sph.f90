@@ -163,11 +163,13 @@ contains
   !> sum_i m_i (v_i . dv_i/dt + de_i/dt) = 0 with
   !> de_i/dt = p_i/rho_i^2 drho_i/dt + heat_i + s_i : L_i / rho_i: the
   !> internal energy gains what the stresses and the viscosity take from
-  !> the motion. Added to drho, heat and grad (zero them first).
+  !> the motion. Added to drho, heat and grad (zero them first); grad only
+  !> when asked for (particles that keep their strength: no work otherwise).
   pure subroutine sph_rates(dim, dt, np, pairs, x, v, m, h, visc, drho, heat, grad)
     integer, intent(in) :: dim, np, pairs(:,:)
     real(rk), intent(in) :: dt, x(:,:), v(:,:), m(:), h(:), visc(:)
-    real(rk), intent(inout) :: drho(:), heat(:), grad(:,:)
+    real(rk), intent(inout) :: drho(:), heat(:)
+    real(rk), intent(inout), optional :: grad(:,:)
     integer :: k, i, j, b
     real(rk) :: g(3), d, hij, vg, vij(3)
     do k = 1, np
@@ -179,10 +181,12 @@ contains
       drho(i) = drho(i) + m(j)*vg
       drho(j) = drho(j) + m(i)*vg
       ! (grad_j W_ji = -g and v_ji = -v_ij: the same product for j)
-      do b = 1, 3
-        grad(3*b-2:3*b,i) = grad(3*b-2:3*b,i) + (m(j)*g(b))*vij
-        grad(3*b-2:3*b,j) = grad(3*b-2:3*b,j) + (m(i)*g(b))*vij
-      end do
+      if (present(grad)) then
+        do b = 1, 3
+          grad(3*b-2:3*b,i) = grad(3*b-2:3*b,i) + (m(j)*g(b))*vij
+          grad(3*b-2:3*b,j) = grad(3*b-2:3*b,j) + (m(i)*g(b))*vij
+        end do
+      end if
       heat(i) = heat(i) + m(j)*0.5_rk*visc(k)*vg
       heat(j) = heat(j) + m(i)*0.5_rk*visc(k)*vg
     end do
