@@ -17,7 +17,8 @@ passed=0; failed=0
 # runs them one after another); results print in the order listed, as soon
 # as each and those before it are done. Each test has its own folder, so
 # lanes never share files; tests that time signals or look for processes
-# by name run alone (run_alone).
+# by name run alone (run_alone). CHECK_ONLY=REGEX runs only the tests
+# whose names match (bash regex), e.g. CHECK_ONLY=particles.
 JOBS=${CHECK_JOBS:-2}
 RESULTS=$WORK/.results; mkdir -p "$RESULTS"
 listed=0; printed=0
@@ -49,12 +50,14 @@ print_done() {   # results in list order, up to the first still running
 }
 
 run_test() {   # name, command...
+  [[ $1 =~ ${CHECK_ONLY:-} ]] || return 0
   while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do wait -n; print_done; done
   listed=$((listed+1))
   one_test $listed "$@" &
 }
 
 run_alone() {   # name, command...: nothing else running meanwhile
+  [[ $1 =~ ${CHECK_ONLY:-} ]] || return 0
   wait; print_done
   listed=$((listed+1))
   one_test $listed "$@"

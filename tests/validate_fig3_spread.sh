@@ -8,7 +8,9 @@
 # element size near the impact (the deck's mesh is 1e-3; the finer mesh of
 # validation.md 4z is H=0.5e-3 SPEEDS="0.998 1.000", 40-56 min a run here
 # two at a time: doc/validation/fig3_spread_h0.5mm.csv); SPEEDS the speed
-# factors.
+# factors. EPS_CONVERT=X: strained elements that have not fractured become
+# particles that keep their strength (&material eps_convert = X, the
+# material; doc/validation/<name>_convertX.csv).
 # Runs that finished before in the work folder are kept, not run again.
 #   tests/validate_fig3_spread.sh
 #   H=0.5e-3 SPEEDS="0.998 1.000 1.002" tests/validate_fig3_spread.sh
@@ -19,6 +21,7 @@ if [ "$H" = 1e-3 ]; then
 else
   name=fig3_spread_h$(awk -v h="$H" 'BEGIN{printf "%g", h * 1000}')mm; mesh_options=(-setnumber h "$H")
 fi
+[ -n "${EPS_CONVERT:-}" ] && name=${name}_convert$EPS_CONVERT
 source "$(dirname "$0")/validate_common.sh" $name
 mesh_checked "$W/oblique_cylinder.msh" input/oblique_cylinder/oblique_cylinder.geo "${mesh_options[@]}"
 meshes_checked
@@ -36,6 +39,10 @@ for f in 0.18 0.0; do
         input/oblique_cylinder/oblique_cylinder.nml > "$W/$run.nml"
     grep -q "friction = $f," "$W/$run.nml" && grep -q "velocity = $vx, 0.0, $vz" "$W/$run.nml" && \
       grep -q "eroded = 'particles'" "$W/$run.nml" || { echo "deck edit failed: $run"; exit 1; }
+    if [ -n "${EPS_CONVERT:-}" ]; then
+      sed -i "s|eroded = 'particles'$|eroded = 'particles', eps_convert = $EPS_CONVERT|" "$W/$run.nml"
+      grep -q "eps_convert = $EPS_CONVERT" "$W/$run.nml" || { echo "deck edit failed: eps_convert"; exit 1; }
+    fi
     runs+=("$run")
     # a run that finished before (its log's summary line and its field file) is not run again
     if grep -q '^udar: done: ' "$W/$run.log" 2>/dev/null && [ -f "$W/$run/$run.h5" ]; then

@@ -157,7 +157,7 @@ contains
       pt%damage(q) = recv(first+16)
       pt%strong(q) = dom%mat(pt%mat(q))%strength /= strength_none .and. any(pt%s(:,q) /= 0.0_rk)
       pt%h(q) = smoothing_length(pt%m(q), pt%rho(q), smoothing_factor, 3)
-      call particle_pressure(dom%mat(pt%mat(q)), pt%rho(q), pt%e(q), pt%p(q), pt%c(q))
+      call particle_pressure(dom%mat(pt%mat(q)), pt%rho(q), pt%e(q), pt%strong(q), pt%p(q), pt%c(q))
       pt%c(q) = wave_speed(dom%mat(pt%mat(q)), pt%strong(q), pt%rho(q), pt%c(q))
       pt%vsig(q) = 2.0_rk*pt%c(q)
       ! the element, wherever this rank holds it, keeps none of it

@@ -1,8 +1,9 @@
 !> Kernels of the particles that failed material becomes (issue 15,
 !> theory.md section 15): smoothed particle hydrodynamics in Monaghan's
 !> symmetric form with the cubic B-spline kernel, the particles' pressure
-!> from the material's EOS with no tension (failed material carries
-!> compression only), and the conversion of an element into a particle.
+!> from the material's EOS (failed material carries compression only;
+!> particles that keep their strength carry tension too), and the
+!> conversion of an element into a particle.
 !> Pure procedures on plain arrays: no domain, no MPI, no module state.
 !> Every pair sum runs over a pair list in the order given, so a caller
 !> that gives the pairs in one order gets one result whatever its ranks.
@@ -74,24 +75,30 @@ contains
 
   !> The pressure and sound speed of a particle of material mat at density
   !> rho and specific internal energy e (J/kg): the element's EOS at
-  !> J = rho0/rho, with no tension (p >= 0: the particle is failed
-  !> material, which still resists compression); the sound speed at
-  !> min(J, 1) (expanded failed material has no stiffness of its own: the
-  !> EOS's tension branch, extrapolated far, would give sound speeds that
-  !> grow without bound as particles part).
-  pure elemental subroutine particle_pressure(mat, rho, e, p, c)
+  !> J = rho0/rho; with tension false no tension (p >= 0: failed material,
+  !> which still resists compression), with tension true (a particle that
+  !> keeps its strength: unfailed material) the EOS's tension branch as an
+  !> element has it. The sound speed at min(J, 1) (expanded failed material
+  !> has no stiffness of its own: the EOS's tension branch, extrapolated
+  !> far, would give sound speeds that grow without bound as particles
+  !> part; and the step of a strong particle in tension is that of its
+  !> uncompressed state).
+  pure elemental subroutine particle_pressure(mat, rho, e, tension, p, c)
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: rho, e
+    logical, intent(in) :: tension
     real(rk), intent(out) :: p, c
     real(rk) :: j, a, b
     j = mat%rho0/rho
     if (mat%eos == eos_mie_gruneisen) then
       call eos_mie_gruneisen_ab(mat%rho0, mat%c0, mat%s, mat%gamma0, j, a, b)
-      p = max(a + b*e, 0.0_rk)
-      c = sqrt(eos_mie_gruneisen_c2(mat%rho0, mat%c0, mat%s, mat%gamma0, min(j, 1.0_rk), p))
+      p = a + b*e
+      if (.not. tension) p = max(p, 0.0_rk)
+      c = sqrt(eos_mie_gruneisen_c2(mat%rho0, mat%c0, mat%s, mat%gamma0, min(j, 1.0_rk), max(p, 0.0_rk)))
     else
       call eos_linear_ab(mat%bulk_modulus, j, a, b)
-      p = max(a + b*e, 0.0_rk)
+      p = a + b*e
+      if (.not. tension) p = max(p, 0.0_rk)
       c = sqrt(eos_linear_c2(mat%bulk_modulus, mat%rho0))
     end if
   end subroutine
@@ -197,12 +204,13 @@ contains
   !> solution at a constant rate of dilatation: never negative), then the
   !> energy equation with the EOS solved exactly as the elements do
   !> (volumetric_update: de = heat dt - (p(n) + p(n+1))/2 d(1/rho), no
-  !> tension, no element viscosity), and the sound speed. p, c in: of
-  !> step n; out: of step n+1. A particle without pressure at both ends of
-  !> the step keeps its density if it would fall: failed material does not
-  !> expand in tension, it parts (no pressure: the volume change would do
-  !> no work either way); without this, particles that fly apart thin out
-  !> and must then be squeezed back to their density before they push.
+  !> element viscosity; tension only where strong), and the sound speed.
+  !> p, c in: of step n; out: of step n+1. A strengthless particle without
+  !> pressure at both ends of the step keeps its density if it would fall:
+  !> failed material does not expand in tension, it parts (no pressure: the
+  !> volume change would do no work either way); without this, particles
+  !> that fly apart thin out and must then be squeezed back to their
+  !> density before they push.
   pure subroutine particle_update(mat, n, dt, m, drho, heat, strong, rho, e, p, c)
     type(material_cfg_t), intent(in) :: mat
     integer, intent(in) :: n
@@ -213,9 +221,9 @@ contains
     logical :: no_tension(block_size)
     integer :: first, nb, i, k
     zero = 0
-    no_tension = .true.
     do first = 1, n, block_size
       nb = min(block_size, n - first + 1)
+      no_tension(1:nb) = .not. strong(first:first+nb-1)
       do i = 1, nb
         k = first + i - 1
         j_old(i) = mat%rho0/rho(k)
@@ -232,8 +240,8 @@ contains
                              q(1:nb), bulk_tan(1:nb), stiff(1:nb))
       do i = 1, nb
         k = first + i - 1
-        if (p(k) == 0.0_rk .and. pp(i) == 0.0_rk) rho(k) = max(rho(k), rho_old(i))
-        call particle_pressure(mat, rho(k), e(k), p(k), c(k))
+        if (no_tension(i) .and. p(k) == 0.0_rk .and. pp(i) == 0.0_rk) rho(k) = max(rho(k), rho_old(i))
+        call particle_pressure(mat, rho(k), e(k), strong(k), p(k), c(k))
         c(k) = wave_speed(mat, strong(k), rho(k), c(k))
       end do
     end do
@@ -259,8 +267,8 @@ contains
   !> (Jaumann rotation, hypoelastic trial step, radial return); plastic
   !> work heats (Taylor-Quinney) and softens as in an element; the
   !> material's fracture criterion (fracture_update, at the pressure p of
-  !> step n; a particle carries no tension, so it does not spall) makes the
-  !> particle strengthless for good. heat (J/(kg s)) is raised by the
+  !> step n: a strong particle carries tension, so it spalls at p_spall as
+  !> an element does) makes the particle strengthless for good. heat (J/(kg s)) is raised by the
   !> deviatoric work of the step, s_mid : D / rho, which particle_update
   !> books with the pressure's.
   pure subroutine particle_strength(mat, n, dt, rho, grad, p, strong, s, eps_p, hard, soft, temp, damage, heat)

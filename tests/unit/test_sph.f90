@@ -18,6 +18,7 @@ program test_sph
   use udar_sph, only: spline_w, spline_dw, sph_forces, sph_rates, particle_update, particle_pressure, element_to_particle, sph_pairs, &
                       smoothing_length, sph_stable_dt, particle_strength, wave_speed
   use udar_config, only: strength_perfectly_plastic, fracture_plastic_strain
+  use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
   use unit_checks, only: check, check_summary
   implicit none
   integer, parameter :: n_cloud = 80, max_pairs = 20000
@@ -51,6 +52,7 @@ program test_sph
   call cloud_tests()
   call lattice_tests()
   call pressure_tests()
+  call tension_tests()
   call conversion_tests()
   call head_on_pair()
   call strength_tests()
@@ -304,30 +306,85 @@ contains
                r2s(wave_speed(mat, .true., mat%rho0, 4500.0_rk))//' m/s')
   end subroutine
 
-  !> The EOS without tension.
+  !> The EOS without tension, and with it.
   subroutine pressure_tests()
     type(material_cfg_t) :: lin, mg
-    real(rk) :: p, c, eta, ph
+    real(rk) :: p, c, eta, ph, a, b
     lin%rho0 = 7850.0_rk
     lin%eos = eos_linear
     lin%bulk_modulus = 160e9_rk
-    call particle_pressure(lin, 1.01_rk*lin%rho0, 1e4_rk, p, c)
+    call particle_pressure(lin, 1.01_rk*lin%rho0, 1e4_rk, .false., p, c)
     call check('linear_eos_in_compression', abs(p - 160e9_rk*0.01_rk) < 1e-6_rk*p .and. &
                abs(c - sqrt(160e9_rk/7850.0_rk)) < 1e-9_rk*c, 'p '//r2s(p)//' Pa, c '//r2s(c))
-    call particle_pressure(lin, 0.99_rk*lin%rho0, 1e4_rk, p, c)
+    call particle_pressure(lin, 0.99_rk*lin%rho0, 1e4_rk, .false., p, c)
     call check('no_tension_linear', p == 0.0_rk, 'p '//r2s(p)//' Pa at rho 0.99 rho0')
     mg%rho0 = 8930.0_rk
     mg%eos = eos_mie_gruneisen
     mg%c0 = 3940.0_rk
     mg%s = 1.49_rk
     mg%gamma0 = 2.02_rk
-    call particle_pressure(mg, 1.1_rk*mg%rho0, 2e5_rk, p, c)
+    call particle_pressure(mg, 1.1_rk*mg%rho0, 2e5_rk, .false., p, c)
     eta = 1.0_rk - 1.0_rk/1.1_rk
     ph = mg%rho0*mg%c0**2*eta/(1.0_rk - mg%s*eta)**2
     call check('mie_gruneisen_by_hand', abs(p - (ph*(1.0_rk - 0.5_rk*mg%gamma0*eta) + mg%gamma0*mg%rho0*2e5_rk)) < 1e-9_rk*p, &
                'p '//r2s(p)//' Pa')
-    call particle_pressure(mg, 0.95_rk*mg%rho0, 0.0_rk, p, c)
+    call particle_pressure(mg, 0.95_rk*mg%rho0, 0.0_rk, .false., p, c)
     call check('no_tension_mie_gruneisen', p == 0.0_rk .and. c > 0.0_rk, 'p '//r2s(p)//' Pa at rho 0.95 rho0')
+    ! a particle that keeps its strength is unfailed material: the
+    ! element's EOS, tension branch included
+    call particle_pressure(lin, 0.99_rk*lin%rho0, 1e4_rk, .true., p, c)
+    call eos_linear_ab(lin%bulk_modulus, 1.0_rk/0.99_rk, a, b)
+    call check('tension_linear_when_strong', p < 0.0_rk .and. p == a + b*1e4_rk, 'p '//r2s(p)//' Pa at rho 0.99 rho0')
+    call particle_pressure(mg, 0.95_rk*mg%rho0, 0.0_rk, .true., p, c)
+    call eos_mie_gruneisen_ab(mg%rho0, mg%c0, mg%s, mg%gamma0, 1.0_rk/0.95_rk, a, b)
+    call check('tension_mie_gruneisen_when_strong', p < -1e9_rk .and. p == a, 'p '//r2s(p)//' Pa at rho 0.95 rho0')
+  end subroutine
+
+  !> Two particles expanded at the same rate, one strong, one strengthless:
+  !> the strong one's density falls and its pressure turns to tension (the
+  !> EOS), the strengthless one keeps its density and no pressure (failed
+  !> material parts); below -p_spall the strong one spalls (strengthless
+  !> for good) as an element would.
+  subroutine tension_tests()
+    type(material_cfg_t) :: mat
+    real(rk) :: m(2), drho(2), heat(2), rho(2), e(2), p(2), c(2), grad(9,2), s(6,2), eps_p(2), hard(2), soft(2), &
+                temp(2), damage(2), dt
+    logical :: strong(2)
+    mat%rho0 = 7850.0_rk
+    mat%eos = eos_linear
+    mat%bulk_modulus = 160e9_rk
+    mat%shear_modulus = 80e9_rk
+    mat%strength = strength_perfectly_plastic
+    mat%yield_stress = 400e6_rk
+    mat%p_spall = 1e9_rk
+    m = 1e-6_rk
+    rho = mat%rho0
+    e = 0
+    p = 0
+    c = 4500.0_rk
+    heat = 0
+    dt = 1e-8_rk
+    drho = -rho*1e5_rk          ! dilatation 1e5 1/s: 1e-3 in the step
+    strong = [.true., .false.]
+    call particle_update(mat, 2, dt, m, drho, heat, strong, rho, e, p, c)
+    call check('strong_particle_carries_tension', rho(1) < mat%rho0 .and. abs(p(1) + 160e9_rk*1e-3_rk) < 1e-3_rk*160e6_rk, &
+               'p '//r2s(p(1))//' Pa against -K 1e-3 = '//r2s(-160e6_rk))
+    call check('strengthless_particle_parts', rho(2) == mat%rho0 .and. p(2) == 0.0_rk, &
+               'rho '//r2s(rho(2))//', p '//r2s(p(2)))
+    ! spall: at -1.5 p_spall the strong particle fractures
+    p = -1.5e9_rk
+    grad = 0
+    s = 0
+    eps_p = 0
+    hard = mat%yield_stress
+    soft = 1
+    temp = 294
+    damage = 0
+    strong = [.true., .false.]
+    s(1:3,1) = [1e6_rk, -0.5e6_rk, -0.5e6_rk]
+    call particle_strength(mat, 2, dt, rho, grad, p, strong, s, eps_p, hard, soft, temp, damage, heat)
+    call check('strong_particle_spalls_at_p_spall', .not. strong(1) .and. all(s(:,1) == 0.0_rk), &
+               'strong '//merge('T', 'F', strong(1)))
   end subroutine
 
   !> A tetrahedron's corners become one particle.
@@ -395,7 +452,7 @@ contains
     e_low = huge(1.0_rk)
     dt = 0
     do step = 1, 20000
-      if (step == 1) call particle_pressure(steel, rho, e, p, c)
+      if (step == 1) call particle_pressure(steel, rho, e, .false., p, c)
       acc = 0
       dedt = 0
       drho = 0
