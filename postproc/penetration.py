@@ -19,7 +19,12 @@ along -y), and every "z" below is y, every distance from the axis |x|. At each s
   the smallest distance from the z axis of those faces within --radius of the impact
   face's level (the hole's rim, for an impact on the axis);
 * with particles (&material eroded = 'particles'), at the end of each row: the number and
-  mass of the rod's particles and of the target's, and the lowest z of the rod's particles.
+  mass of the rod's particles and of the target's, the lowest z of the rod's particles,
+  and the rod's material on its axis: the extent along --axis of the rod's material within
+  --radius of the initial axis line (through --axis-point): the nodes of the rod elements
+  not eroded whose centroid lies that close, and the rod's particles within --radius or
+  half their spacing (m/rho)^(1/3)/2, whichever is larger (fractured material and
+  particles included: what the seed paper's Fig. 3 measures along the cylinder's axis).
 
     /usr/bin/python3 postproc/penetration.py out/long_rod.h5 --rod rod --target block --radius 1.25e-3
     /usr/bin/python3 postproc/penetration.py out/long_rod_2d.h5 --radius 1.25e-3     (2D: axis y)
@@ -71,19 +76,25 @@ def upward_boundary(x, conn, elements, up_axis=2):
     return x[f].mean(axis=1)[up]
 
 
-def measure(ff, rod, target, radius, axis=(0.0, 0.0, -1.0)):
+def measure(ff, rod, target, radius, axis=(0.0, 0.0, -1.0), axis_point=(0.0, 0.0, 0.0)):
     """Per step: time (s), crater depth (m), residual rod length (m), rod velocity (m/s),
     rod tip z (m), eroded rod and target elements, intact rod length (m), deepest crater
     point anywhere (m), crater diameter (m); when the file has particles also the rod's and
     the target's particles (rod_particles, target_particles), their mass (rod_particle_mass,
-    target_particle_mass, kg) and the lowest z of the rod's particles (rod_particle_tip, m;
-    nan without any)."""
+    target_particle_mass, kg), the lowest z of the rod's particles (rod_particle_tip, m;
+    nan without any) and the extent of the rod's material on its initial axis line
+    (rod_on_axis, m: elements and particles, see the module's notes; 0 without any)."""
     conn = ff.connectivity
     planar = conn.shape[1] == 3          # a 2D file: the axis is y, the radius x
     k = 1 if planar else 2               # the coordinate along the axis
     if planar and tuple(axis) == (0.0, 0.0, -1.0):
         axis = (0.0, -1.0, 0.0)
     axis = np.asarray(axis, float) / np.linalg.norm(axis)
+    axis_point = np.asarray(axis_point, float)
+
+    def from_line(p):
+        d = p - axis_point
+        return np.linalg.norm(d - np.outer(d @ axis, axis), axis=1)
 
     def off_axis(p):
         return np.abs(p[..., 0]) if planar else np.hypot(p[..., 0], p[..., 1])
@@ -132,15 +143,25 @@ def measure(ff, rod, target, radius, axis=(0.0, 0.0, -1.0)):
         if with_particles:
             pt = st.particles
             if pt is not None and pt.count:
-                pp, mass, z = pt["part_id"], pt["mass"], pt.coordinates[:, k]
+                pp, mass, z = np.asarray(pt["part_id"]), np.asarray(pt["mass"]), pt.coordinates[:, k]
+                xp, rho = pt.coordinates, np.asarray(pt["density"])
             else:  # a step without any (yet)
                 pp, mass, z = np.zeros(0, int), np.zeros(0), np.zeros(0)
+                xp, rho = np.zeros((0, 3)), np.zeros(0)
             rod_p, tgt_p = pp == rod_pid, pp == tgt_pid
+            # the rod's material on its initial axis line: elements and particles
+            on_line = rod_alive & (from_line(centroid) < radius)
+            along = [x[np.unique(conn[on_line])] @ axis]
+            near = rod_p.copy()
+            near[rod_p] = from_line(xp[rod_p]) < np.maximum(radius, 0.5 * np.cbrt(mass[rod_p] / rho[rod_p]))
+            along.append(xp[near] @ axis)
+            along = np.concatenate(along)
             rows[-1].update(rod_particles=int(np.count_nonzero(rod_p)),
                             rod_particle_mass=float(mass[rod_p].sum()),
                             target_particles=int(np.count_nonzero(tgt_p)),
                             target_particle_mass=float(mass[tgt_p].sum()),
-                            rod_particle_tip=float(z[rod_p].min()) if rod_p.any() else float("nan"))
+                            rod_particle_tip=float(z[rod_p].min()) if rod_p.any() else float("nan"),
+                            rod_on_axis=float(np.ptp(along)) if len(along) else 0.0)
     return rows
 
 
@@ -216,7 +237,7 @@ def self_test_particles(rows_without):
         with ur.open_fields(path) as ff:
             rows = measure(ff, "rod", "block", 0.5)
         new = ("rod_particles", "rod_particle_mass", "target_particles", "target_particle_mass",
-               "rod_particle_tip")
+               "rod_particle_tip", "rod_on_axis")
         same = all(set(r) - set(new) == set(r0) and all(
             r[key] == r0[key] or (np.isnan(r[key]) and np.isnan(r0[key])) for key in r0)
             for r, r0 in zip(rows, rows_without))
@@ -231,14 +252,22 @@ def self_test_particles(rows_without):
                    and abs(r1["target_particle_mass"] - 1.5e-3) < 1e-15 and r1["rod_particle_tip"] == -2.5,
                    "t = 1: rod 2 particles %g kg (5e-3), target 2 %g kg (1.5e-3), rod particle tip %g (-2.5)"
                    % (r1["rod_particle_mass"], r1["target_particle_mass"], r1["rod_particle_tip"]))
+        # on the axis: at t = 0 the rod's four tets (z 0..4); at t = 1 its two left
+        # (z 2..4) and its particles at z = -0.5 and -2.5: 4 + 2.5 (the third part's
+        # particle at -9 does not count); with the line moved 1 m off, nothing is near it
+        test.check(abs(r0["rod_on_axis"] - 4.0) < 1e-12 and abs(r1["rod_on_axis"] - 6.5) < 1e-12,
+                   "rod on its axis: %g (4), %g (6.5)" % (r0["rod_on_axis"], r1["rod_on_axis"]))
+        with ur.open_fields(path) as ff:
+            off = measure(ff, "rod", "block", 0.5, axis_point=(1.0, 0.0, 0.0))
+        test.check(off[1]["rod_on_axis"] == 0.0, "nothing within 0.5 of a line 1 off: %g" % off[1]["rod_on_axis"])
         rc, out, _ = test.run_main(main, [path, "--radius", "0.5", "--length", "4"])
         lines = out.splitlines()
         head, last = lines[0].split(), lines[-1].split()
         test.check(rc == 0 and head[10:] == ["P/L", "rod_ptcl", "rod_ptcl_g", "tgt_ptcl", "tgt_ptcl_g",
-                                             "ptcl_tip_mm"]
+                                             "ptcl_tip_mm", "on_axis_mm"]
                    and last[1] == "2000.000" and last[10] == "0.500"
-                   and last[11:] == ["2", "5.00000", "2", "1.50000", "-2500.000"]
-                   and lines[1].split()[11:] == ["0", "0.00000", "0", "0.00000", "nan"],
+                   and last[11:] == ["2", "5.00000", "2", "1.50000", "-2500.000", "6500.000"]
+                   and lines[1].split()[11:] == ["0", "0.00000", "0", "0.00000", "nan", "4000.000"],
                    "CLI: particle columns after P/L, column 2 still the crater: %s" % " ".join(last))
         rc, out, _ = test.run_main(main, [plain, "--radius", "0.5"])
         test.check(rc == 0 and len(out.splitlines()[0].split()) == 10 and len(out.splitlines()[-1].split()) == 10
@@ -300,6 +329,9 @@ def main(argv=None):
     ap.add_argument("--length", type=float, default=0.0, help="m, initial rod length: also print P/L")
     ap.add_argument("--axis", type=float, nargs=3, default=(0.0, 0.0, -1.0), metavar=("AX", "AY", "AZ"),
                     help="the projectile's initial axis, into the target (default 0 0 -1)")
+    ap.add_argument("--axis-point", type=float, nargs=3, default=(0.0, 0.0, 0.0), metavar=("PX", "PY", "PZ"),
+                    help="m, a point of the projectile's initial axis (default 0 0 0): the line along "
+                         "which the rod's material on its axis is measured (files with particles)")
     ap.add_argument("--self-test", action="store_true", help="run the built-in checks")
     a = ap.parse_args(argv)
     if a.self_test:
@@ -307,23 +339,24 @@ def main(argv=None):
     if not a.h5:
         ap.error("give a field file or --self-test")
     ff = ur.open_fields(a.h5)
-    rows = measure(ff, a.rod, a.target, a.radius, a.axis)
+    rows = measure(ff, a.rod, a.target, a.radius, a.axis, a.axis_point)
     ff.close()
     # the particle columns come last (after P/L): the others keep their positions
     particles = bool(rows) and "rod_particles" in rows[0]
     print("%10s %12s %14s %14s %12s %10s %10s %10s %12s %12s%s%s"
           % ("t_us", "crater_mm", "rod_length_mm", "rod_vz_m_s", "rod_tip_mm", "rod_ero", "tgt_ero",
              "intact_mm", "deepest_mm", "crater_d_mm", "  P/L" if a.length else "",
-             " %9s %11s %9s %11s %12s" % ("rod_ptcl", "rod_ptcl_g", "tgt_ptcl", "tgt_ptcl_g",
-                                          "ptcl_tip_mm") if particles else ""))
+             " %9s %11s %9s %11s %12s %12s" % ("rod_ptcl", "rod_ptcl_g", "tgt_ptcl", "tgt_ptcl_g",
+                                               "ptcl_tip_mm", "on_axis_mm") if particles else ""))
     for r in rows:
         print("%10.3f %12.3f %14.3f %14.1f %12.3f %10d %10d %10.3f %12.3f %12.3f%s%s"
               % (r["time"] * 1e6, r["depth"] * 1e3, r["rod_length"] * 1e3, r["rod_velocity"], r["rod_tip"] * 1e3,
                  r["rod_eroded"], r["target_eroded"], r["rod_intact_length"] * 1e3, r["crater_deepest"] * 1e3,
                  r["crater_diameter"] * 1e3, "  %.3f" % (r["depth"] / a.length) if a.length else "",
-                 " %9d %11.5f %9d %11.5f %12.3f" % (
+                 " %9d %11.5f %9d %11.5f %12.3f %12.3f" % (
                      r["rod_particles"], r["rod_particle_mass"] * 1e3, r["target_particles"],
-                     r["target_particle_mass"] * 1e3, r["rod_particle_tip"] * 1e3) if particles else ""))
+                     r["target_particle_mass"] * 1e3, r["rod_particle_tip"] * 1e3,
+                     r["rod_on_axis"] * 1e3) if particles else ""))
     return 0
 
 
