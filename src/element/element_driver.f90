@@ -11,7 +11,7 @@ module udar_element_driver
   use udar_domain, only: domain_t, block_size
   use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_pressure_forces, tet_volumes, &
       tet_stiffness_bound
-  use udar_fracture, only: el_eroded
+  use udar_fracture, only: el_eroded, erode_reasons
   use udar_hydro, only: dilatational_speed2, step_shear_modulus, step_volumetric_share, tangent_bulk_modulus
   use udar_element_shared, only: element_block_t, pass_outcome_t, block_volume_ratios, material_update, &
       material_finish, block_nodes_done, add_block_ticks, block_ratios_done, begin_update_pass, end_update_pass
@@ -96,7 +96,7 @@ contains
   subroutine element_update(dom, dt, bad_elem, bad_j, n_eroded, eroded_any, dt_stable, dt_node)
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
-    integer, intent(out) :: bad_elem, bad_j, n_eroded(3)
+    integer, intent(out) :: bad_elem, bad_j, n_eroded(erode_reasons)
     logical, intent(out) :: eroded_any
     real(rk), intent(out) :: dt_stable
     integer, intent(out) :: dt_node

@@ -20,6 +20,7 @@ module udar_element_shared
   use udar_domain, only: domain_t, block_size
   use udar_strength, only: strength_block, thermal_softening_update, von_mises
   use udar_fracture, only: el_fractured, el_eroded, el_intact, erode_strain, erode_time_step, erode_inverted, &
+                           erode_converted, erode_reasons, &
       fracture_update, fracture_enabled, erosion_enabled, deviatoric_rate
   use udar_hydro, only: volumetric_update, blended_volume_ratios, blended_pressures
   use udar_config, only: tet_stabilised
@@ -51,7 +52,7 @@ module udar_element_shared
   !> non-positive (0: none), the owned elements eroded by reason, and
   !> whether any local element was eroded.
   type :: pass_outcome_t
-    integer :: bad_elem = 0, bad_j = 0, n_eroded(3) = 0
+    integer :: bad_elem = 0, bad_j = 0, n_eroded(erode_reasons) = 0
     logical :: eroded_any = .false.
     real(rk) :: r_min = huge(1.0_rk)       !< s2, the smallest m/k of the nodes so far
     integer :: dt_node = 0                 !< the node setting it
@@ -72,7 +73,7 @@ contains
   !> (the nodal time step 2 sqrt(min m/k) and its node).
   subroutine end_update_pass(out, bad_elem, bad_j, n_eroded, eroded_any, dt_stable, dt_node)
     type(pass_outcome_t), intent(in) :: out
-    integer, intent(out) :: bad_elem, bad_j, n_eroded(3)
+    integer, intent(out) :: bad_elem, bad_j, n_eroded(erode_reasons)
     logical, intent(out) :: eroded_any
     real(rk), intent(out) :: dt_stable
     integer, intent(out) :: dt_node
@@ -248,7 +249,7 @@ contains
         if (dom%el_state(e) == el_fractured .and. dom%el_eps_tot(e) >= mat%eps_erode) then
           call erode(dom, e, erode_strain, out)
         else if (distorted) then
-          call erode(dom, e, erode_strain, out)
+          call erode(dom, e, erode_converted, out)
         else if (eb%dt_el(i) < dom%erode_dt_limit) then
           call erode(dom, e, erode_time_step, out)
         end if

@@ -11,8 +11,11 @@ module udar_fracture
   public :: fracture_update, jc_fracture_strain, fracture_enabled, erosion_enabled, deviatoric_rate
 
   integer, parameter, public :: el_intact = 0, el_fractured = 1, el_eroded = 2
-  !> why an element was eroded (counters in the log)
-  integer, parameter, public :: erode_strain = 1, erode_time_step = 2, erode_inverted = 3
+  !> why an element was eroded (counters in the log): fractured and
+  !> strained past eps_erode, its step collapsed, inverted within a step,
+  !> or intact and strained past eps_convert (a particle with strength)
+  integer, parameter, public :: erode_strain = 1, erode_time_step = 2, erode_inverted = 3, erode_converted = 4, &
+                                erode_reasons = 4
 
 contains
 

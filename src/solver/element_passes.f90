@@ -6,6 +6,7 @@
 module udar_element_passes
   use udar_kinds, only: rk
   use udar_domain, only: domain_t
+  use udar_fracture, only: erode_reasons
   use udar_element_driver, only: tet_volumes_pass => element_volumes, tet_update => element_update, &
       tet_forces_averaged => element_forces_averaged, tet_stiffness_bounds => element_stiffness_bounds, &
       tet_altitudes => element_altitudes, tet_current_volume => current_volume
@@ -33,7 +34,7 @@ contains
   subroutine element_update(dom, dt, bad_elem, bad_j, n_eroded, eroded_any, dt_stable, dt_node)
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
-    integer, intent(out) :: bad_elem, bad_j, n_eroded(3)
+    integer, intent(out) :: bad_elem, bad_j, n_eroded(erode_reasons)
     logical, intent(out) :: eroded_any
     real(rk), intent(out) :: dt_stable
     integer, intent(out) :: dt_node

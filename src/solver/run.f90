@@ -21,7 +21,8 @@ module udar_run
   use udar_element_passes, only: element_volumes, element_update, nodal_pressures, element_time_steps, &
       element_forces_averaged, element_stiffness_bounds, nodal_stable_dt, nodal_reference_volumes, current_volume, &
       element_altitudes
-  use udar_fracture, only: fracture_enabled, erosion_enabled, el_intact, el_eroded
+  use udar_fracture, only: fracture_enabled, erosion_enabled, el_intact, el_eroded, erode_reasons, erode_strain, &
+      erode_time_step, erode_inverted, erode_converted
   use udar_nodal, only: update_velocities, apply_velocity_conditions, apply_rigid_walls, apply_axis, update_positions, &
       keep_constrained_positions, restore_constrained_positions, walls_on_points
   use udar_particle_model, only: particles_t
@@ -133,7 +134,7 @@ contains
                 contact_seconds, dt_local, imbalance
     integer :: bad, bad_avg, bad_gidx, bad_tag, bad_part, last_print_cycle, no, k, stop_code, cycles_run, n_slave, &
                dt_node, dt_warn_level
-    integer :: n_eroded_now(3), n_eroded_by(3)
+    integer :: n_eroded_now(erode_reasons), n_eroded_by(erode_reasons)
     logical, allocatable :: owned_gone(:)                  !< owned elements already passed to the contact surfaces
     integer, allocatable :: new_gidx(:), all_gidx(:), erosion_counts(:)
     logical :: ok, done, history_due, print_due, stopping, eroded_any, fracture_on, fields_due, ended, last_step
@@ -537,12 +538,14 @@ contains
       call write_status(base, 'complete', '')
     end if
     if (fracture_on) then
-      do k = 1, 3
+      do k = 1, erode_reasons
         n_eroded_by(k) = int(comms_sum_int(int(n_eroded_by(k), i8)))
       end do
-      write(line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'fracture: ', bal%n_fractured, ' elements fractured, ', &
-        bal%n_eroded, ' eroded; in this run ', n_eroded_by(1), ' by strain, ', n_eroded_by(2), &
-        ' by time step, ', n_eroded_by(3), ' inverted within a step'
+      write(line, '(a,i0,a,a,i0,a,i0,a,i0,a,i0,a)') 'fracture: ', bal%n_fractured, ' elements fractured', &
+        trim(merge(' or converted', '             ', pt%enabled))//', ', bal%n_eroded, ' eroded; in this run ', n_eroded_by(erode_strain), ' by strain, ', n_eroded_by(erode_time_step), &
+        ' by time step, ', n_eroded_by(erode_inverted), ' inverted within a step'
+      if (n_eroded_by(erode_converted) > 0) line = trim(line)//', '//itoa(n_eroded_by(erode_converted))// &
+        ' intact past eps_convert (particles with their strength)'
       call log_info(line)
     end if
     if (ct%n_interfaces > 0) then

@@ -13,7 +13,7 @@ module udar_tri_driver
   use udar_config, only: geometry_axisymmetric
   use udar_tri3, only: tri_geometry, tri_smallest_altitude, tri_velocity_gradient, tri_internal_forces, &
       tri_stiffness_bound, tri_patch_share
-  use udar_fracture, only: el_eroded
+  use udar_fracture, only: el_eroded, erode_reasons
   use udar_hydro, only: dilatational_speed2, step_shear_modulus, tangent_bulk_modulus, step_volumetric_share
   use udar_element_shared, only: element_block_t, pass_outcome_t, block_volume_ratios, material_update, &
       material_finish, block_nodes_done, add_block_ticks, block_ratios_done, begin_update_pass, end_update_pass
@@ -57,7 +57,7 @@ contains
   subroutine tri_element_update(dom, dt, bad_elem, bad_j, n_eroded, eroded_any, dt_stable, dt_node)
     type(domain_t), intent(inout) :: dom
     real(rk), intent(in) :: dt
-    integer, intent(out) :: bad_elem, bad_j, n_eroded(3)
+    integer, intent(out) :: bad_elem, bad_j, n_eroded(erode_reasons)
     logical, intent(out) :: eroded_any
     real(rk), intent(out) :: dt_stable
     integer, intent(out) :: dt_node
