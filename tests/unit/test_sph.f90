@@ -269,13 +269,7 @@ contains
     dt = 1e-9_rk
     grad = 0
     grad(4,:) = -rho*gam            ! L = -grad/rho: column 2, row 1
-    s = 0
-    eps_p = 0
-    hard = mat%yield_stress
-    soft = 1
-    temp = 294
-    damage = 0
-    strong = [.true., .false.]
+    call two_fresh_particles(mat, s, eps_p, hard, soft, temp, damage, strong)
     tau_y = mat%yield_stress/sqrt(3.0_rk)
     work = 0
     worst = 0
@@ -374,6 +368,19 @@ contains
     ! spall: at -1.5 p_spall the strong particle fractures
     p = -1.5e9_rk
     grad = 0
+    call two_fresh_particles(mat, s, eps_p, hard, soft, temp, damage, strong)
+    s(1:3,1) = [1e6_rk, -0.5e6_rk, -0.5e6_rk]
+    call particle_strength(mat, 2, dt, rho, grad, p, strong, s, eps_p, hard, soft, temp, damage, heat)
+    call check('strong_particle_spalls_at_p_spall', .not. strong(1) .and. all(s(:,1) == 0.0_rk), &
+               'strong '//merge('T', 'F', strong(1)))
+  end subroutine
+
+  !> Two unstrained particles at room temperature, the first strong, the
+  !> second strengthless.
+  subroutine two_fresh_particles(mat, s, eps_p, hard, soft, temp, damage, strong)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(out) :: s(6,2), eps_p(2), hard(2), soft(2), temp(2), damage(2)
+    logical, intent(out) :: strong(2)
     s = 0
     eps_p = 0
     hard = mat%yield_stress
@@ -381,10 +388,6 @@ contains
     temp = 294
     damage = 0
     strong = [.true., .false.]
-    s(1:3,1) = [1e6_rk, -0.5e6_rk, -0.5e6_rk]
-    call particle_strength(mat, 2, dt, rho, grad, p, strong, s, eps_p, hard, soft, temp, damage, heat)
-    call check('strong_particle_spalls_at_p_spall', .not. strong(1) .and. all(s(:,1) == 0.0_rk), &
-               'strong '//merge('T', 'F', strong(1)))
   end subroutine
 
   !> A tetrahedron's corners become one particle.
