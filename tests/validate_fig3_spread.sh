@@ -54,17 +54,18 @@ for f in 0.18 0.0; do
 done
 [ ${#todo[@]} = 0 ] || printf '%s\n' "${todo[@]}" | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"
 csv=doc/validation/$name.csv
-echo "friction,speed_factor,t_us,crater_on_axis_mm,cylinder_left_along_axis_mm,intact_along_axis_mm,crater_deepest_mm,crater_rim_diameter_mm,cylinder_velocity_along_axis_m_s,cylinder_particles,cylinder_particle_mass_g,energy_error,wall_s" > $csv
+echo "friction,speed_factor,t_us,crater_on_axis_mm,cylinder_left_along_axis_mm,intact_along_axis_mm,crater_deepest_mm,crater_rim_diameter_mm,cylinder_velocity_along_axis_m_s,cylinder_particles,cylinder_particle_mass_g,energy_error,wall_s,cylinder_on_axis_with_particles_mm" > $csv
 for run in "${runs[@]}"; do
   f=${run#f}; f=${f%%_s*}; s=${run##*_s}
+  # the cylinder's axis: through the centre of its front face (0, 0, 2.6 mm: oblique_cylinder.geo)
   line=$($PYTHON postproc/penetration.py "$W/$run/$run.h5" --rod cylinder --target plate --radius 0.5e-3 \
-         --axis 0.5 0 -0.8660254 | tail -1)
+         --axis 0.5 0 -0.8660254 --axis-point 0 0 2.6e-3 | tail -1)
   err=$(log_value "$W/$run.log" energy_error)
   wall=$(log_value "$W/$run.log" wall_s)
   # penetration.py columns: t depth length velocity tip rod_eroded target_eroded intact deepest diameter
-  # rod_particles rod_particle_mass ...
+  # rod_particles rod_particle_mass target_particles target_particle_mass rod_particle_tip on_axis
   echo "$line" | awk -v f=$f -v s=$s -v e=$err -v w=$wall \
-    '{printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.4f,%s,%s\n", f, s, $1, $2, $3, $8, $9, $10, $4, $11, $12, e, w}' | tee -a $csv
+    '{printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%.4f,%s,%s,%s\n", f, s, $1, $2, $3, $8, $9, $10, $4, $11, $12, e, w, $16}' | tee -a $csv
 done
 # pictures like the paper's Fig. 3: the nominal-speed run of each friction
 # value at 12 us, cut next to the symmetry plane (particles within half
@@ -84,7 +85,8 @@ $PYTHON - "$csv" <<'PY'
 import csv, sys
 import numpy as np
 rows = list(csv.DictReader(open(sys.argv[1])))
-cols = ['cylinder_left_along_axis_mm', 'intact_along_axis_mm', 'crater_on_axis_mm', 'crater_deepest_mm']
+cols = ['cylinder_left_along_axis_mm', 'intact_along_axis_mm', 'cylinder_on_axis_with_particles_mm', 'crater_on_axis_mm',
+        'crater_deepest_mm']
 stats = {}
 for f in ('0.18', '0.0'):
     sel = [r for r in rows if r['friction'] == f]
