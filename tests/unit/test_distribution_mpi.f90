@@ -16,6 +16,7 @@ program test_distribution_mpi
   use udar_strings, only: itoa, r2s
   use udar_element_driver, only: element_volumes, element_update
   use udar_element_shared, only: nodal_stable_dt
+  use udar_fracture, only: erode_reasons
   use unit_checks, only: check, check_summary
   use unit_domains, only: elastic_bar_mesh_domain
   implicit none
@@ -30,7 +31,7 @@ program test_distribution_mpi
   integer :: np, me, n, e, k, g, n_bad
   real(rk), allocatable :: s(:)
   real(rk) :: dt_fused, dt_pass
-  integer :: node_fused, node_pass, bad, bad_avg, n_eroded(3)
+  integer :: node_fused, node_pass, bad, bad_avg, n_eroded(erode_reasons)
   logical :: eroded_any
 
   call comms_init()
