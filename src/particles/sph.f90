@@ -268,9 +268,9 @@ contains
   !> work heats (Taylor-Quinney) and softens as in an element; the
   !> material's fracture criterion (fracture_update, at the pressure p of
   !> step n: a strong particle carries tension, so it spalls at p_spall as
-  !> an element does) makes the particle strengthless for good. heat (J/(kg s)) is raised by the
-  !> deviatoric work of the step, s_mid : D / rho, which particle_update
-  !> books with the pressure's.
+  !> an element does) makes the particle strengthless for good. heat
+  !> (J/(kg s)) is raised by the deviatoric work of the step, s_mid : D /
+  !> rho, which particle_update books with the pressure's.
   pure subroutine particle_strength(mat, n, dt, rho, grad, p, strong, s, eps_p, hard, soft, temp, damage, heat)
     type(material_cfg_t), intent(in) :: mat
     integer, intent(in) :: n

@@ -542,8 +542,9 @@ contains
         n_eroded_by(k) = int(comms_sum_int(int(n_eroded_by(k), i8)))
       end do
       write(line, '(a,i0,a,a,i0,a,i0,a,i0,a,i0,a)') 'fracture: ', bal%n_fractured, ' elements fractured', &
-        trim(merge(' or converted', '             ', pt%enabled))//', ', bal%n_eroded, ' eroded; in this run ', n_eroded_by(erode_strain), ' by strain, ', n_eroded_by(erode_time_step), &
-        ' by time step, ', n_eroded_by(erode_inverted), ' inverted within a step'
+        trim(merge(' or converted', '             ', pt%enabled))//', ', bal%n_eroded, ' eroded; in this run ', &
+        n_eroded_by(erode_strain), ' by strain, ', n_eroded_by(erode_time_step), ' by time step, ', &
+        n_eroded_by(erode_inverted), ' inverted within a step'
       if (n_eroded_by(erode_converted) > 0) line = trim(line)//', '//itoa(n_eroded_by(erode_converted))// &
         ' intact past eps_convert (particles with their strength)'
       call log_info(line)
