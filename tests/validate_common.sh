@@ -35,6 +35,16 @@ meshes_checked() {
   if [ "${MESHES_ONLY:-0}" = 1 ]; then exit 0; fi
 }
 
+# With EPS_CONVERT set, every `eroded = 'particles'` material of deck FILE
+# (the group's line ending so) converts its strained intact elements at
+# EPS_CONVERT; stops unless exactly N lines then say so. Nothing without it.
+#   with_eps_convert FILE N
+with_eps_convert() {
+  [ -n "${EPS_CONVERT:-}" ] || return 0
+  sed -i "s|eroded = 'particles'\$|eroded = 'particles', eps_convert = $EPS_CONVERT|" "$1"
+  [ "$(grep -c "eps_convert = $EPS_CONVERT" "$1")" = "$2" ] || { echo "deck edit failed: eps_convert in $1"; exit 1; }
+}
+
 # A figure of a finished run from its log: the mesh line's tetrahedra, or
 # from udar's summary line ("udar: done: N cycles to t = ..., energy error
 # E, W s wall (...)"), so no other line that says "done:" or "energy

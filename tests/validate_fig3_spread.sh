@@ -39,10 +39,7 @@ for f in 0.18 0.0; do
         input/oblique_cylinder/oblique_cylinder.nml > "$W/$run.nml"
     grep -q "friction = $f," "$W/$run.nml" && grep -q "velocity = $vx, 0.0, $vz" "$W/$run.nml" && \
       grep -q "eroded = 'particles'" "$W/$run.nml" || { echo "deck edit failed: $run"; exit 1; }
-    if [ -n "${EPS_CONVERT:-}" ]; then
-      sed -i "s|eroded = 'particles'$|eroded = 'particles', eps_convert = $EPS_CONVERT|" "$W/$run.nml"
-      grep -q "eps_convert = $EPS_CONVERT" "$W/$run.nml" || { echo "deck edit failed: eps_convert"; exit 1; }
-    fi
+    with_eps_convert "$W/$run.nml" 1
     runs+=("$run")
     # a run that finished before (its log's summary line and its field file) is not run again
     if grep -q '^udar: done: ' "$W/$run.log" 2>/dev/null && [ -f "$W/$run/$run.h5" ]; then

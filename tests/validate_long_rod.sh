@@ -41,10 +41,7 @@ for v in ${VELOCITIES:-1500 2000 2500}; do
   if [ "${ERODED:-}" = particles ]; then
     sed -i "s|eps_erode = 2.0$|eps_erode = 2.0, eroded = 'particles'|" "$W/$run.nml"
     [ "$(grep -c "eroded = 'particles'" "$W/$run.nml")" = 2 ] || { echo "deck edit failed: eroded"; exit 1; }
-    if [ -n "${EPS_CONVERT:-}" ]; then
-      sed -i "s|eroded = 'particles'$|eroded = 'particles', eps_convert = $EPS_CONVERT|" "$W/$run.nml"
-      [ "$(grep -c "eps_convert = $EPS_CONVERT" "$W/$run.nml")" = 2 ] || { echo "deck edit failed: eps_convert"; exit 1; }
-    fi
+    with_eps_convert "$W/$run.nml" 2
     if [ -n "${EPS_F:-}" ]; then
       sed -i "s|eps_f = 1.5, eps_erode = 2.0|eps_f = $EPS_F, eps_erode = $EPS_F|" "$W/$run.nml"
       [ "$(grep -c "eps_f = $EPS_F, eps_erode = $EPS_F" "$W/$run.nml")" = 2 ] || { echo "deck edit failed: eps_f"; exit 1; }

@@ -31,11 +31,7 @@ for r in "${runs[@]}"; do
       -e "s|eps_erode = $4$|eps_erode = $5, eroded = 'particles'|" input/$2/$2.nml > "$W/$1.nml"
   [ "$(grep -c "eps_erode = $5, eroded = 'particles'" "$W/$1.nml")" = "$(grep -c "eps_erode = $4$" input/$2/$2.nml)" ] || \
     { echo "deck edit failed: $1"; exit 1; }
-  if [ -n "${EPS_CONVERT:-}" ]; then
-    sed -i "s|eroded = 'particles'|eroded = 'particles', eps_convert = $EPS_CONVERT|" "$W/$1.nml"
-    [ "$(grep -c "eps_convert = $EPS_CONVERT" "$W/$1.nml")" = "$(grep -c "eps_erode = $4$" input/$2/$2.nml)" ] || \
-      { echo "deck edit failed: $1 eps_convert"; exit 1; }
-  fi
+  with_eps_convert "$W/$1.nml" "$(grep -c "eps_erode = $4$" input/$2/$2.nml)"
 done
 printf '%s\n' "${runs[@]}" | cut -d' ' -f1 | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"
 csv=doc/validation/particle_decks$tag.csv

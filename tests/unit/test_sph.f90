@@ -256,10 +256,7 @@ contains
                 dt, gam, tau_y, work, t, worst, want
     logical :: strong(2)
     integer :: k
-    mat%rho0 = 7850.0_rk
-    mat%shear_modulus = 80e9_rk
-    mat%strength = strength_perfectly_plastic
-    mat%yield_stress = 400e6_rk
+    mat = plastic_steel()
     mat%specific_heat = 0.0_rk
     mat%fracture = fracture_plastic_strain
     mat%eps_f = 0.01_rk
@@ -344,12 +341,9 @@ contains
     real(rk) :: m(2), drho(2), heat(2), rho(2), e(2), p(2), c(2), grad(9,2), s(6,2), eps_p(2), hard(2), soft(2), &
                 temp(2), damage(2), dt
     logical :: strong(2)
-    mat%rho0 = 7850.0_rk
+    mat = plastic_steel()
     mat%eos = eos_linear
     mat%bulk_modulus = 160e9_rk
-    mat%shear_modulus = 80e9_rk
-    mat%strength = strength_perfectly_plastic
-    mat%yield_stress = 400e6_rk
     mat%p_spall = 1e9_rk
     m = 1e-6_rk
     rho = mat%rho0
@@ -374,6 +368,16 @@ contains
     call check('strong_particle_spalls_at_p_spall', .not. strong(1) .and. all(s(:,1) == 0.0_rk), &
                'strong '//merge('T', 'F', strong(1)))
   end subroutine
+
+  !> A steel of the strength tests: rho0 7850 kg/m3, G 80 GPa, perfectly
+  !> plastic at 400 MPa.
+  function plastic_steel() result(mat)
+    type(material_cfg_t) :: mat
+    mat%rho0 = 7850.0_rk
+    mat%shear_modulus = 80e9_rk
+    mat%strength = strength_perfectly_plastic
+    mat%yield_stress = 400e6_rk
+  end function
 
   !> Two unstrained particles at room temperature, the first strong, the
   !> second strengthless.
