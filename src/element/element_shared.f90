@@ -40,6 +40,7 @@ module udar_element_shared
     real(rk) :: j_new(ld), jbar(ld), je(ld), share(ld)   !< -: volume ratios and the element's own share
     real(rk) :: s(ld,6), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld)
     real(rk) :: trd(ld), w_dev(ld), w_pl(ld), bulk(ld), visc(ld)
+    real(rk) :: eta(ld)                    !< -: rho/rho0 at the step's start
     real(rk) :: lam(ld)                    !< N/m: the stiffness bound the driver puts here, before viscosity
     real(rk) :: dt_el(ld)                  !< s: own step (eroding materials only)
     real(rk) :: p_app(ld), p_node(ld)      !< Pa: the pressure in the element's own forces and in its nodes' average
@@ -172,7 +173,9 @@ contains
     eb%e_int(1:nb) = dom%el_e(first:last)
     eb%p(1:nb) = dom%el_p(first:last)
     eb%trd(1:nb) = eb%d(1:nb,1) + eb%d(1:nb,2) + eb%d(1:nb,3)
-    call strength_block(mat, ld, nb, dt, eb%d, eb%w, eb%soft, eb%hard, eb%s, eb%eps, eb%w_dev, eb%w_pl)
+    eb%eta(1:nb) = 1.0_rk/dom%el_j(first:last)
+    call strength_block(mat, ld, nb, dt, eb%d, eb%w, eb%soft, dom%el_temp(first:last), eb%p, eb%eta, eb%hard, eb%s, &
+                        eb%eps, eb%w_dev, eb%w_pl)
     if (eb%fracturing .or. eb%erodible) then
       ! fractured material carries no shear: no deviatoric work, no flow
       do i = 1, nb

@@ -3,7 +3,8 @@
 !> the EOS (both EOS are linear in e), and the stable time step.
 module udar_hydro
   use udar_kinds, only: rk, block_size
-  use udar_config, only: material_cfg_t, eos_mie_gruneisen, strength_none
+  use udar_config, only: material_cfg_t, eos_mie_gruneisen, strength_none, shear_constant
+  use udar_flow_models, only: shear_modulus_at
   use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
   implicit none
   private
@@ -12,7 +13,7 @@ module udar_hydro
   real(rk), parameter :: compression_noise = 1.0e-12_rk
   public :: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_volume_ratios, blended_pressures, &
             blend_exponent, &
-            step_shear_modulus, step_volumetric_share, tangent_bulk_modulus
+            step_shear_modulus, block_shear_modulus, step_volumetric_share, tangent_bulk_modulus
 
   !> The share of an element's volumetric stiffness that the nodal time step
   !> of the nodal-averaged elements counts beyond their own beta: their
@@ -218,6 +219,22 @@ contains
     type(material_cfg_t), intent(in) :: mat
     g = 0.0_rk
     if (mat%strength /= strength_none) g = mat%shear_modulus
+  end function
+
+  !> The shear modulus of a block's stiffness bound: step_shear_modulus, or
+  !> where it depends on the state (shear_model) the largest of the block's
+  !> elements at pressure p (Pa), temperature temp (K) and volume ratio j.
+  pure real(rk) function block_shear_modulus(mat, nb, p, temp, j) result(g)
+    type(material_cfg_t), intent(in) :: mat
+    integer, intent(in) :: nb
+    real(rk), intent(in) :: p(nb), temp(nb), j(nb)
+    integer :: i
+    g = step_shear_modulus(mat)
+    if (mat%shear_model == shear_constant .or. mat%strength == strength_none) return
+    g = 0.0_rk
+    do i = 1, nb
+      g = max(g, shear_modulus_at(mat, p(i), temp(i), 1.0_rk/j(i)))
+    end do
   end function
 
   !> The tangent bulk modulus rho c_b^2 of the stiffness bound from the

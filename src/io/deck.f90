@@ -26,7 +26,8 @@ module udar_deck
   use udar_config, only: config_t, run_cfg_t, mesh_cfg_t, material_cfg_t, part_cfg_t, &
        boundary_cfg_t, contact_cfg_t, numerics_cfg_t, output_cfg_t, eos_linear, eos_mie_gruneisen, tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
        strength_none, strength_elastic, strength_perfectly_plastic, strength_linear_hardening, &
-       strength_johnson_cook, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
+       strength_johnson_cook, strength_zerilli_armstrong, strength_steinberg_guinan, shear_constant, &
+       shear_steinberg_guinan, melt_constant, melt_steinberg_guinan, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
        wall_coulomb, &
        jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
        overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook, &
@@ -69,10 +70,15 @@ module udar_deck
   ! ------------------------------------------------- string forms of the codes
   character(len=20), parameter :: eos_words(2) = [character(len=20) :: 'linear', 'mie_gruneisen']
   integer, parameter :: eos_codes(2) = [eos_linear, eos_mie_gruneisen]
-  character(len=20), parameter :: strength_words(5) = [character(len=20) :: 'none', 'elastic', &
-       'perfectly_plastic', 'linear_hardening', 'johnson_cook']
-  integer, parameter :: strength_codes(5) = [strength_none, strength_elastic, &
-       strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook]
+  character(len=20), parameter :: strength_words(7) = [character(len=20) :: 'none', 'elastic', &
+       'perfectly_plastic', 'linear_hardening', 'johnson_cook', 'zerilli_armstrong', 'steinberg_guinan']
+  integer, parameter :: strength_codes(7) = [strength_none, strength_elastic, &
+       strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
+       strength_zerilli_armstrong, strength_steinberg_guinan]
+  character(len=20), parameter :: shear_words(2) = [character(len=20) :: 'constant', 'steinberg_guinan']
+  integer, parameter :: shear_codes(2) = [shear_constant, shear_steinberg_guinan]
+  character(len=20), parameter :: melt_words(2) = [character(len=20) :: 'constant', 'steinberg_guinan']
+  integer, parameter :: melt_codes(2) = [melt_constant, melt_steinberg_guinan]
   character(len=20), parameter :: kind_words(3) = [character(len=20) :: 'fixed', 'symmetry', 'rigid_wall']
   integer, parameter :: kind_codes(3) = [bc_fixed, bc_symmetry, bc_rigid_wall]
   character(len=20), parameter :: wall_words(3) = [character(len=20) :: 'frictionless', 'sticking', 'coulomb']
@@ -144,6 +150,25 @@ module udar_deck
        var_t('material', 'jc_m', 'r', 1, 0, '-', '> 0'), &
        var_t('material', 'jc_rate0', 'r', 1, 0, '1/s', '> 0'), &
        var_t('material', 'jc_rate_form', 'c', 1, code_len, '', ''), &
+       var_t('material', 'za_c0', 'r', 1, 0, 'Pa', '>= 0'), &
+       var_t('material', 'za_c1', 'r', 1, 0, 'Pa', '>= 0'), &
+       var_t('material', 'za_c2', 'r', 1, 0, 'Pa', '>= 0'), &
+       var_t('material', 'za_c3', 'r', 1, 0, '1/K', '>= 0'), &
+       var_t('material', 'za_c4', 'r', 1, 0, '1/K', '>= 0'), &
+       var_t('material', 'za_c5', 'r', 1, 0, 'Pa', '>= 0'), &
+       var_t('material', 'za_n', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'za_rate0', 'r', 1, 0, '1/s', '> 0'), &
+       var_t('material', 'sg_y0', 'r', 1, 0, 'Pa', '> 0'), &
+       var_t('material', 'sg_ymax', 'r', 1, 0, 'Pa', '> 0'), &
+       var_t('material', 'sg_beta', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'sg_n', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'sg_eps_i', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'shear_model', 'c', 1, code_len, '', ''), &
+       var_t('material', 'sg_a', 'r', 1, 0, '1/Pa', '>= 0'), &
+       var_t('material', 'sg_b', 'r', 1, 0, '1/K', '>= 0'), &
+       var_t('material', 'sg_t0', 'r', 1, 0, 'K', '> 0'), &
+       var_t('material', 'melt_model', 'c', 1, code_len, '', ''), &
+       var_t('material', 'melt_a', 'r', 1, 0, '-', '>= 0'), &
        var_t('material', 't_melt', 'r', 1, 0, 'K', '> 0'), &
        var_t('material', 't_room', 'r', 1, 0, 'K', '> 0'), &
        var_t('material', 'specific_heat', 'r', 1, 0, 'J/(kg K)', '> 0'), &
@@ -163,6 +188,7 @@ module udar_deck
        var_t('part', 'group', 'c', 1, max_name_len, '', ''), &
        var_t('part', 'material', 'c', 1, max_name_len, '', ''), &
        var_t('part', 'velocity', 'r', 3, 0, 'm/s', 'finite numbers'), &
+       var_t('part', 'initial_temperature', 'r', 1, 0, 'K', '> 0'), &
        var_t('boundary', 'kind', 'c', 1, code_len, '', ''), &
        var_t('boundary', 'surface', 'c', 1, max_name_len, '', ''), &
        var_t('boundary', 'point', 'r', 3, 0, 'm', 'finite numbers'), &
@@ -231,6 +257,8 @@ module udar_deck
     character(len=code_len) :: kind = ''
     character(len=code_len) :: wall_type = 'frictionless'
     character(len=code_len) :: jc_rate_form = 'total'
+    character(len=code_len) :: shear_model = 'constant'
+    character(len=code_len) :: melt_model = 'constant'
     character(len=code_len) :: weights = 'area'
     character(len=code_len) :: initial_overlap = 'report'
     character(len=code_len) :: fracture = 'none'
@@ -326,7 +354,7 @@ contains
     character(len=:), allocatable :: text
     character(len=code_len), allocatable :: eos_txt(:), str_txt(:), kind_txt(:), wall_txt(:), rate_txt(:), &
                                             weights_txt(:), overlap_txt(:), frac_txt(:), &
-                                            eroded_txt(:)
+                                            eroded_txt(:), shear_txt(:), melt_txt(:)
     character(len=code_len) :: tet_txt, geometry_txt
     integer :: ios, k, j, ig, gk, first(n_group_kinds), cnt(n_group_kinds), nread(n_group_kinds)
     logical :: misspelled(n_group_kinds)
@@ -386,7 +414,8 @@ contains
     allocate(cfg%materials(cnt(g_material)), cfg%parts(cnt(g_part)), &
              cfg%boundaries(cnt(g_boundary)), cfg%contacts(cnt(g_contact)))
     allocate(eos_txt(cnt(g_material)), str_txt(cnt(g_material)), rate_txt(cnt(g_material)), &
-             frac_txt(cnt(g_material)), eroded_txt(cnt(g_material)), kind_txt(cnt(g_boundary)), &
+             frac_txt(cnt(g_material)), eroded_txt(cnt(g_material)), shear_txt(cnt(g_material)), &
+             melt_txt(cnt(g_material)), kind_txt(cnt(g_boundary)), &
              wall_txt(cnt(g_boundary)), weights_txt(cnt(g_contact)), overlap_txt(cnt(g_contact)))
     do gk = 1, n_group_kinds
       if (group_once(gk)) then
@@ -419,6 +448,8 @@ contains
         eos_txt(k) = v%eos
         str_txt(k) = v%strength
         rate_txt(k) = v%jc_rate_form
+        shear_txt(k) = v%shear_model
+        melt_txt(k) = v%melt_model
         frac_txt(k) = v%fracture
         eroded_txt(k) = v%eroded
       case (g_part)
@@ -447,6 +478,7 @@ contains
       if (meshes(1)%line > 0) call check_mesh(ctx, meshes(1), cfg%mesh, trim(path), geometry_txt)
       do k = 1, size(mats)
         call check_material(ctx, mats(k), cfg, k, eos_txt(k), str_txt(k), rate_txt(k), frac_txt(k), eroded_txt(k), &
+                            shear_txt(k), melt_txt(k), &
                             mats(1:k-1))
       end do
       do k = 1, size(parts)
@@ -636,11 +668,14 @@ contains
         call material_nml(m%name, m%rho0, v%eos, m%bulk_modulus, m%c0, m%s, m%gamma0, &
              v%strength, m%shear_modulus, m%youngs_modulus, m%poisson_ratio, m%yield_stress, &
              m%hardening_modulus, m%jc_a, m%jc_b, m%jc_n, m%jc_c, m%jc_m, m%jc_rate0, v%jc_rate_form, &
+             m%za_c0, m%za_c1, m%za_c2, m%za_c3, m%za_c4, m%za_c5, m%za_n, m%za_rate0, &
+             m%sg_y0, m%sg_ymax, m%sg_beta, m%sg_n, m%sg_eps_i, v%shear_model, m%sg_a, m%sg_b, m%sg_t0, &
+             v%melt_model, m%melt_a, &
              m%t_melt, m%t_room, m%specific_heat, m%taylor_quinney, m%initial_temperature, &
              v%fracture, m%eps_f, m%jc_d1, m%jc_d2, m%jc_d3, m%jc_d4, m%jc_d5, m%p_spall, m%eps_erode, v%eroded, m%eps_convert)
       end associate
     case ('part')
-      call part_nml(v%part%group, v%part%material, v%part%velocity)
+      call part_nml(v%part%group, v%part%material, v%part%velocity, v%part%initial_temperature)
     case ('boundary')
       call boundary_nml(v%kind, v%bnd%surface, v%bnd%point, v%bnd%normal, v%wall_type, v%bnd%friction)
     case ('contact')
@@ -681,26 +716,34 @@ contains
 
     subroutine material_nml(name, rho0, eos, bulk_modulus, c0, s, gamma0, strength, shear_modulus, &
                             youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
-                            jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, t_melt, t_room, specific_heat, &
+                            jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, &
+                            za_c0, za_c1, za_c2, za_c3, za_c4, za_c5, za_n, za_rate0, &
+                            sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, shear_model, sg_a, sg_b, sg_t0, &
+                            melt_model, melt_a, t_melt, t_room, specific_heat, &
                             taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
                             jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert)
-      character(len=*), intent(inout) :: name, eos, strength, jc_rate_form, fracture, eroded
+      character(len=*), intent(inout) :: name, eos, strength, jc_rate_form, fracture, eroded, shear_model, melt_model
       real(rk), intent(inout) :: rho0, bulk_modulus, c0, s, gamma0, shear_modulus, youngs_modulus, &
            poisson_ratio, yield_stress, hardening_modulus, jc_a, jc_b, jc_n, jc_c, jc_m, jc_rate0, &
+           za_c0, za_c1, za_c2, za_c3, za_c4, za_c5, za_n, za_rate0, sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, &
+           sg_a, sg_b, sg_t0, melt_a, &
            t_melt, t_room, specific_heat, taylor_quinney, initial_temperature, eps_f, jc_d1, jc_d2, &
            jc_d3, jc_d4, jc_d5, p_spall, eps_erode, eps_convert
       namelist /material/ name, rho0, eos, bulk_modulus, c0, s, gamma0, strength, shear_modulus, &
                           youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
-                          jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, t_melt, t_room, specific_heat, &
+                          jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, &
+                          za_c0, za_c1, za_c2, za_c3, za_c4, za_c5, za_n, za_rate0, &
+                          sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, shear_model, sg_a, sg_b, sg_t0, &
+                          melt_model, melt_a, t_melt, t_room, specific_heat, &
                           taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
                           jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert
       read(text, nml=material, iostat=ios, iomsg=msg)
     end subroutine material_nml
 
-    subroutine part_nml(group, material, velocity)
+    subroutine part_nml(group, material, velocity, initial_temperature)
       character(len=*), intent(inout) :: group, material
-      real(rk), intent(inout) :: velocity(3)
-      namelist /part/ group, material, velocity
+      real(rk), intent(inout) :: velocity(3), initial_temperature
+      namelist /part/ group, material, velocity, initial_temperature
       read(text, nml=part, iostat=ios, iomsg=msg)
     end subroutine part_nml
 
@@ -794,15 +837,16 @@ contains
   !> Material models: ranges, what each EOS / strength / fracture model needs,
   !> parameters set for a model that is not selected, and the derived elastic
   !> moduli.
-  subroutine check_material(ctx, inst, cfg, k, eos_txt, str_txt, rate_txt, frac_txt, eroded_txt, earlier_inst)
+  subroutine check_material(ctx, inst, cfg, k, eos_txt, str_txt, rate_txt, frac_txt, eroded_txt, shear_txt, melt_txt, &
+                            earlier_inst)
     type(ctx_t), intent(inout) :: ctx
     type(inst_t), intent(in) :: inst
     type(config_t), intent(inout) :: cfg
     integer, intent(in) :: k
-    character(len=*), intent(in) :: eos_txt, str_txt, rate_txt, frac_txt, eroded_txt
+    character(len=*), intent(in) :: eos_txt, str_txt, rate_txt, frac_txt, eroded_txt, shear_txt, melt_txt
     type(inst_t), intent(in) :: earlier_inst(:)    !< of materials 1 .. k-1
 
-    logical :: eos_ok, str_ok, rate_ok, frac_ok, e_set, nu_set, en_ok, plastic, elastic_needed, jc_fracture
+    logical :: eos_ok, str_ok, rate_ok, frac_ok, e_set, nu_set, en_ok, plastic, elastic_needed, jc_fracture, modelled
     real(rk) :: k_en, g_en, k_mg
     character(len=:), allocatable :: sname, fname
     integer :: j
@@ -941,6 +985,52 @@ contains
             call not_used('jc_rate0', "strength = 'johnson_cook' or fracture = 'johnson_cook'")
           end if
         end if
+        if (m%strength == strength_zerilli_armstrong) then
+          call ranges('za_c0 za_c1 za_c2 za_c3 za_c4 za_c5 za_n za_rate0')
+          if (.not. (m%za_c0 + m%za_c1 > 0 .or. m%za_c2 > 0 .or. m%za_c5 > 0)) &
+               call report(ctx, inst%line, prefix(inst)//'za_c0, za_c1, za_c2 and za_c5 are all 0: '//sname// &
+               ' needs a flow stress (za_c0 + za_c1 > 0 or za_c2 > 0; Zerilli and Armstrong 1987)')
+          call need(ctx, inst, 'specific_heat', positive(m%specific_heat), &
+               '> 0 for '//sname//' (the temperature of its thermal term)')
+        else
+          call not_used('za_c0 za_c1 za_c2 za_c3 za_c4 za_c5 za_n za_rate0', "strength = 'zerilli_armstrong'")
+        end if
+        if (m%strength == strength_steinberg_guinan) then
+          call need(ctx, inst, 'sg_y0', positive(m%sg_y0), '> 0 for '//sname)
+          if (.not. is_bad(inst, 'sg_y0')) call need(ctx, inst, 'sg_ymax', positive(m%sg_ymax) .and. &
+               m%sg_ymax >= m%sg_y0, '>= sg_y0 = '//r2s(m%sg_y0)//' Pa for '//sname)
+          call ranges('sg_beta sg_n sg_eps_i')
+        else
+          call not_used('sg_y0 sg_ymax sg_beta sg_n sg_eps_i', "strength = 'steinberg_guinan'")
+        end if
+      end if
+      modelled = str_ok .and. (m%strength == strength_zerilli_armstrong .or. m%strength == strength_steinberg_guinan)
+      ! the shear modulus and melt models serve the models that take the state
+      if (choice(ctx, inst, 'shear_model', shear_txt, shear_words, shear_codes, m%shear_model)) then
+        if (m%shear_model == shear_steinberg_guinan) then
+          if (str_ok .and. .not. modelled) call complain(ctx, inst, 'shear_model', "'steinberg_guinan' serves "// &
+               "strength = 'zerilli_armstrong' or 'steinberg_guinan' (the other models take shear_modulus)")
+          call ranges('sg_a sg_b sg_t0')
+          if (positive(m%sg_b)) call need(ctx, inst, 'specific_heat', positive(m%specific_heat), &
+               "> 0 for shear_model = 'steinberg_guinan' with sg_b > 0 (the temperature)")
+          if (positive(m%eps_convert)) call complain(ctx, inst, 'shear_model', "'steinberg_guinan' with "// &
+               'eps_convert: particles that keep their strength take a constant shear modulus for now')
+        else
+          call not_used('sg_a sg_b sg_t0', "shear_model = 'steinberg_guinan'")
+        end if
+      end if
+      if (choice(ctx, inst, 'melt_model', melt_txt, melt_words, melt_codes, m%melt_model)) then
+        if (m%melt_model == melt_steinberg_guinan) then
+          if (str_ok .and. .not. modelled) call complain(ctx, inst, 'melt_model', "'steinberg_guinan' serves "// &
+               "strength = 'zerilli_armstrong' or 'steinberg_guinan' (Johnson-Cook takes t_melt)")
+          call need(ctx, inst, 't_melt', positive(m%t_melt), "> 0 for melt_model = 'steinberg_guinan' "// &
+               '(the melt temperature at rho0)')
+          if (eos_ok .and. m%eos /= eos_mie_gruneisen) call complain(ctx, inst, 'melt_model', &
+               "'steinberg_guinan' takes gamma0 of eos = 'mie_gruneisen'")
+          call ranges('melt_a')
+        else
+          call not_used('melt_a', "melt_model = 'steinberg_guinan'")
+        end if
       end if
 
       ! thermal data (also used for output when the model does not need it)
@@ -1077,12 +1167,16 @@ contains
             call complain(ctx, inst, 'material', 'no &material of that name (defined: '//names//')')
           else
             p%material = mats(found)%name    ! the material's own spelling
+            if (.not. is_set(inst, 'initial_temperature')) p%initial_temperature = mats(found)%initial_temperature
           end if
         end if
       end if
     end associate
 
-    call check_ranges(ctx, inst, cfg_vals(cfg, g_part, k))
+    call check_ranges(ctx, inst, cfg_vals(cfg, g_part, k), 'velocity')
+    ! a temperature of its own, or its material's (set above)
+    if (is_set(inst, 'initial_temperature')) &
+         call check_ranges(ctx, inst, cfg_vals(cfg, g_part, k), 'initial_temperature')
   end subroutine check_part
 
   subroutine check_boundary(ctx, inst, cfg, k, kind_txt, wall_txt)
@@ -1529,14 +1623,19 @@ contains
                 val(m%shear_modulus, 'youngs_modulus, poisson_ratio'), val(m%youngs_modulus), &
                 val(m%poisson_ratio), val(m%yield_stress), val(m%hardening_modulus), val(m%jc_a), &
                 val(m%jc_b), val(m%jc_n), val(m%jc_c), val(m%jc_m), val(m%jc_rate0), &
-                choice_val(m%jc_rate_form, rate_words, rate_codes), val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), &
+                choice_val(m%jc_rate_form, rate_words, rate_codes), &
+                val(m%za_c0), val(m%za_c1), val(m%za_c2), val(m%za_c3), val(m%za_c4), val(m%za_c5), val(m%za_n), &
+                val(m%za_rate0), val(m%sg_y0), val(m%sg_ymax), val(m%sg_beta), val(m%sg_n), val(m%sg_eps_i), &
+                choice_val(m%shear_model, shear_words, shear_codes), val(m%sg_a), val(m%sg_b), val(m%sg_t0), &
+                choice_val(m%melt_model, melt_words, melt_codes), val(m%melt_a), val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), &
                 val(m%initial_temperature, 't_room'), choice_val(m%fracture, fracture_words, fracture_codes), &
                 val(m%eps_f), val(m%jc_d1), val(m%jc_d2), val(m%jc_d3), val(m%jc_d4), val(m%jc_d5), &
                 val(m%p_spall), val(m%eps_erode), choice_val(m%eroded, eroded_words, eroded_codes), val(m%eps_convert)]
       end associate
     case (g_part)
       associate(p => cfg%parts(k))
-        vals = [val_t(c=p%group), val_t(c=p%material), val(p%velocity)]
+        vals = [val_t(c=p%group), val_t(c=p%material), val(p%velocity), &
+                val(p%initial_temperature, "the material's initial_temperature")]
       end associate
     case (g_boundary)
       associate(b => cfg%boundaries(k))

@@ -9,6 +9,8 @@ module udar_config
             numerics_cfg_t, output_cfg_t, contact_cfg_t, config_t
   public :: eos_linear, eos_mie_gruneisen, strength_none, strength_elastic, &
             strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
+            strength_zerilli_armstrong, strength_steinberg_guinan, shear_constant, shear_steinberg_guinan, &
+            melt_constant, melt_steinberg_guinan, &
             bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, wall_coulomb, &
             tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
             jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
@@ -18,7 +20,12 @@ module udar_config
   ! integer codes the kernels dispatch on (strings stay in the deck)
   integer, parameter :: eos_linear = 1, eos_mie_gruneisen = 2
   integer, parameter :: strength_none = 0, strength_elastic = 1, strength_perfectly_plastic = 2, &
-                        strength_linear_hardening = 3, strength_johnson_cook = 4
+                        strength_linear_hardening = 3, strength_johnson_cook = 4, &
+                        strength_zerilli_armstrong = 5, strength_steinberg_guinan = 6
+  !> the shear modulus: the deck's constant, or Steinberg-Guinan's G(p, T)
+  integer, parameter :: shear_constant = 0, shear_steinberg_guinan = 1
+  !> the melt temperature: the deck's t_melt, or Steinberg-Guinan's T_m(rho)
+  integer, parameter :: melt_constant = 0, melt_steinberg_guinan = 1
   integer, parameter :: bc_fixed = 1, bc_symmetry = 2, bc_rigid_wall = 3
   integer, parameter :: wall_frictionless = 1, wall_sticking = 2, wall_coulomb = 3
   !> tetrahedron formulations (&numerics tet_formulation; doc/theory.md section 8)
@@ -74,6 +81,20 @@ module udar_config
     real(rk) :: jc_a = -1.0_rk, jc_b = 0.0_rk, jc_n = 1.0_rk, jc_c = 0.0_rk, jc_m = 1.0_rk  !< Pa, Pa, -, -, -
     real(rk) :: jc_rate0 = 1.0_rk              !< 1/s
     integer  :: jc_rate_form = jc_rate_total   !< strain rate in the rate term: total or plastic
+    !> Zerilli-Armstrong (1987): sigma = c0 + (c1 + c2 eps_p^1/2) exp(-c3 T + c4 T ln(rate/rate0)) + c5 eps_p^n
+    real(rk) :: za_c0 = 0.0_rk, za_c1 = 0.0_rk, za_c2 = 0.0_rk   !< Pa, Pa, Pa
+    real(rk) :: za_c3 = 0.0_rk, za_c4 = 0.0_rk                   !< 1/K, 1/K
+    real(rk) :: za_c5 = 0.0_rk, za_n = 1.0_rk                    !< Pa, -
+    real(rk) :: za_rate0 = 1.0_rk                                !< 1/s
+    !> Steinberg-Cochran-Guinan (1980): Y = min(y0 (1 + beta (eps_p + eps_i))^n, ymax) G/G0
+    real(rk) :: sg_y0 = -1.0_rk, sg_ymax = -1.0_rk               !< Pa, Pa
+    real(rk) :: sg_beta = 0.0_rk, sg_n = 0.0_rk, sg_eps_i = 0.0_rk   !< -, -, -
+    integer  :: shear_model = shear_constant
+    !> Steinberg-Guinan shear modulus: G = G0 (1 + A p eta^(-1/3) - B (T - t0)), eta = rho/rho0
+    real(rk) :: sg_a = 0.0_rk, sg_b = 0.0_rk, sg_t0 = 300.0_rk    !< 1/Pa, 1/K, K
+    integer  :: melt_model = melt_constant
+    !> Steinberg-Guinan melt: T_m = t_melt exp(2 a (1 - 1/eta)) eta^(2 (gamma0 - a - 1/3))
+    real(rk) :: melt_a = 0.0_rk                                  !< -
     real(rk) :: t_melt = -1.0_rk               !< K
     real(rk) :: t_room = 294.0_rk              !< K
     real(rk) :: specific_heat = -1.0_rk        !< J/(kg K)
@@ -96,6 +117,7 @@ module udar_config
     character(len=max_name_len) :: group = ''     !< gmsh physical volume group name
     character(len=max_name_len) :: material = ''  !< a &material name
     real(rk) :: velocity(3) = 0.0_rk              !< m/s
+    real(rk) :: initial_temperature = -1.0_rk     !< K; below 0: the material's initial_temperature
   end type
 
   type :: boundary_cfg_t

@@ -79,6 +79,7 @@ module udar_domain
     type(material_cfg_t), allocatable :: mat(:)
     integer :: n_parts = 0
     character(len=max_name_len), allocatable :: part_name(:)
+    real(rk), allocatable :: part_temp0(:)   !< K, each part's initial temperature
     ! ---- conditions: velocity constraints and rigid walls
     integer, allocatable :: fixed_nodes(:)
     integer, allocatable :: sym_nodes(:)        !< one entry per (node, plane)

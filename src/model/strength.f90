@@ -4,7 +4,9 @@
 module udar_strength
   use udar_kinds, only: rk, block_size
   use udar_config, only: material_cfg_t, strength_none, strength_elastic, &
-      strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, jc_rate_plastic
+      strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, jc_rate_plastic, &
+      strength_zerilli_armstrong, strength_steinberg_guinan
+  use udar_flow_models, only: melt_temperature, shear_modulus_at, model_flow_stress, model_return
   implicit none
   private
   public :: strength_block, yield_stress, von_mises, thermal_softening, thermal_softening_update, &
@@ -18,10 +20,14 @@ contains
   end function
 
   !> Flow stress of the material at plastic strain eps_p, equivalent strain
-  !> rate rate (1/s) and temperature temp (K).
-  pure real(rk) function yield_stress(mat, eps_p, rate, temp) result(sy)
+  !> rate rate (1/s) and temperature temp (K); the models of
+  !> udar_flow_models also at pressure p (Pa, default 0) and eta = rho/rho0
+  !> (default 1).
+  pure real(rk) function yield_stress(mat, eps_p, rate, temp, p, eta) result(sy)
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: eps_p, rate, temp
+    real(rk), intent(in), optional :: p, eta
+    real(rk) :: pp, et, slope
     select case (mat%strength)
     case (strength_perfectly_plastic)
       sy = mat%yield_stress
@@ -29,6 +35,13 @@ contains
       sy = mat%yield_stress + mat%hardening_modulus*eps_p
     case (strength_johnson_cook)
       sy = jc_hardening(mat, eps_p)*jc_rate_factor(mat, rate)*jc_thermal_factor(mat, temp)
+    case (strength_zerilli_armstrong, strength_steinberg_guinan)
+      pp = 0.0_rk
+      et = 1.0_rk
+      if (present(p)) pp = p
+      if (present(eta)) et = eta
+      call model_flow_stress(mat, eps_p, rate, temp, melt_temperature(mat, et), &
+                             shear_modulus_at(mat, pp, temp, et)/mat%shear_modulus, sy, slope)
     case default
       sy = huge(1.0_rk)
     end select
@@ -44,21 +57,26 @@ contains
   !> (state, updated here), soft = thermal softening (state, from the
   !> temperature at the step's start). Johnson-Cook uses the step's
   !> equivalent deviatoric (total) strain rate; both are fixed in the return.
-  pure subroutine strength_block(mat, ld, nb, dt, d, w, soft, hard, s, eps_p, w_dev, w_plastic)
+  !> The models of udar_flow_models (Zerilli-Armstrong, Steinberg-Guinan)
+  !> take the temperature temp (K), pressure p (Pa) and eta = rho/rho0 of
+  !> the step's start, and the same total rate; their shear modulus (trial
+  !> step and return) is shear_modulus_at those, hard keeps their flow stress.
+  pure subroutine strength_block(mat, ld, nb, dt, d, w, soft, temp, p, eta, hard, s, eps_p, w_dev, w_plastic)
     type(material_cfg_t), intent(in) :: mat
     integer, intent(in) :: ld, nb
-    real(rk), intent(in) :: dt, d(ld,6), w(ld,3), soft(nb)
+    real(rk), intent(in) :: dt, d(ld,6), w(ld,3), soft(nb), temp(nb), p(nb), eta(nb)
     real(rk), intent(inout) :: hard(nb), s(ld,6), eps_p(nb)
     real(rk), intent(inout) :: w_dev(nb), w_plastic(nb)
-    real(rk), dimension(block_size) :: q_trial, rate, rot_work, trial_work, scale, d_eps, sy
+    real(rk), dimension(block_size) :: q_trial, rate, rot_work, trial_work, scale, d_eps, sy, g2dt, g_el
     real(rk) :: a, b, cc, c, r11, r12, r13, r21, r22, r23, r31, r32, r33
-    real(rk) :: t11, t12, t13, t21, t22, t23, t31, t32, t33, x(6), dd(6), tr3, g2dt, factor
+    real(rk) :: t11, t12, t13, t21, t22, t23, t31, t32, t33, x(6), dd(6), tr3, factor, t_m, slope
     integer :: i
     if (mat%strength == strength_none) then
       s(1:nb,:) = 0.0_rk; w_dev(1:nb) = 0.0_rk; w_plastic(1:nb) = 0.0_rk
       return
     end if
-    g2dt = 2.0_rk*mat%shear_modulus*dt
+    g_el(1:nb) = shear_modulus_at(mat, p, temp, eta)
+    g2dt(1:nb) = 2.0_rk*g_el(1:nb)*dt
     do i = 1, nb
       a = 0.5_rk*dt*w(i,1); b = 0.5_rk*dt*w(i,2); cc = 0.5_rk*dt*w(i,3)
       c = 2.0_rk/(1.0_rk + a*a + b*b + cc*cc)
@@ -87,7 +105,7 @@ contains
       dd(1) = d(i,1) - tr3; dd(2) = d(i,2) - tr3; dd(3) = d(i,3) - tr3
       dd(4) = d(i,4); dd(5) = d(i,5); dd(6) = d(i,6)
       rot_work(i) = dot6(x, dd)
-      x = x + g2dt*dd
+      x = x + g2dt(i)*dd
       trial_work(i) = dot6(x, dd)
       s(i,1) = x(1); s(i,2) = x(2); s(i,3) = x(3); s(i,4) = x(4); s(i,5) = x(5); s(i,6) = x(6)
       q_trial(i) = sqrt(1.5_rk*(x(1)**2 + x(2)**2 + x(3)**2 + 2.0_rk*(x(4)**2 + x(5)**2 + x(6)**2)))
@@ -114,6 +132,21 @@ contains
           if (q_trial(i) > sy(i)) &
             call jc_return(mat, dt, q_trial(i), eps_p(i), soft(i), factor, .false., d_eps(i), sy(i), hard(i))
         end if
+      end do
+    case (strength_zerilli_armstrong, strength_steinberg_guinan)
+      do i = 1, nb
+        d_eps(i) = 0.0_rk
+        t_m = melt_temperature(mat, eta(i))
+        call model_flow_stress(mat, eps_p(i), rate(i), temp(i), t_m, g_el(i)/mat%shear_modulus, sy(i), slope)
+        if (q_trial(i) <= sy(i)) cycle
+        if (g_el(i) <= 0.0_rk) then
+          ! no shear stiffness left: no deviator either
+          s(i,:) = 0.0_rk
+          cycle
+        end if
+        call model_return(mat, g_el(i), q_trial(i), eps_p(i), rate(i), temp(i), t_m, g_el(i)/mat%shear_modulus, &
+                          d_eps(i), sy(i))
+        hard(i) = sy(i)
       end do
     case default
       d_eps(1:nb) = 0.0_rk
@@ -149,6 +182,10 @@ contains
       initial_hardening = mat%yield_stress
     case (strength_johnson_cook)
       initial_hardening = mat%jc_a
+    case (strength_zerilli_armstrong)
+      initial_hardening = mat%za_c0 + mat%za_c1
+    case (strength_steinberg_guinan)
+      initial_hardening = min(mat%sg_y0*(1.0_rk + mat%sg_beta*mat%sg_eps_i)**mat%sg_n, mat%sg_ymax)
     case default
       initial_hardening = huge(1.0_rk)
     end select

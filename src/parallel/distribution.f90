@@ -126,6 +126,7 @@ contains
     ! on ghosts, which the halo overwrites)
     loc%n_parts = glob%n_parts
     loc%part_name = glob%part_name
+    loc%part_temp0 = glob%part_temp0
     loc%fixed_nodes = pack(node_l(glob%fixed_nodes), node_l(glob%fixed_nodes) /= 0)
     loc%sym_nodes = pack(node_l(glob%sym_nodes), node_l(glob%sym_nodes) /= 0)
     allocate(loc%sym_normal(size(loc%sym_nodes), 3))

@@ -279,7 +279,7 @@ contains
     real(rk), intent(inout) :: s(:,:), eps_p(:), hard(:), soft(:), temp(:), damage(:), heat(:)
     real(rk), dimension(block_size, 6) :: d, sb
     real(rk), dimension(block_size, 3) :: w
-    real(rk), dimension(block_size) :: w_dev, w_pl, sf, hd, ep, ep0
+    real(rk), dimension(block_size) :: w_dev, w_pl, sf, hd, ep, ep0, eta
     real(rk) :: l(3,3), t_old
     integer :: first, nb, i, k
     logical :: fractured
@@ -297,8 +297,10 @@ contains
         hd(i) = hard(k)
         ep(i) = eps_p(k)
         ep0(i) = ep(i)
+        eta(i) = rho(k)/mat%rho0
       end do
-      call strength_block(mat, block_size, nb, dt, d, w, sf(1:nb), hd(1:nb), sb, ep(1:nb), w_dev(1:nb), w_pl(1:nb))
+      call strength_block(mat, block_size, nb, dt, d, w, sf(1:nb), temp(first:first+nb-1), p(first:first+nb-1), &
+                          eta(1:nb), hd(1:nb), sb, ep(1:nb), w_dev(1:nb), w_pl(1:nb))
       do i = 1, nb
         k = first + i - 1
         if (.not. strong(k)) cycle

@@ -134,9 +134,13 @@ contains
     ! materials and parts
     dom%mat = cfg%materials
     dom%n_parts = size(cfg%parts)
-    allocate(dom%part_name(dom%n_parts))
+    allocate(dom%part_name(dom%n_parts), dom%part_temp0(dom%n_parts))
     do ip = 1, dom%n_parts
       dom%part_name(ip) = cfg%parts(ip)%group
+      ! its own initial temperature, or its material's
+      dom%part_temp0(ip) = cfg%parts(ip)%initial_temperature
+      if (dom%part_temp0(ip) <= 0.0_rk) &
+        dom%part_temp0(ip) = cfg%materials(material_index(cfg, cfg%parts(ip)%material))%initial_temperature
     end do
     allocate(el_mass(dom%n_elems))
     do e = 1, dom%n_elems
@@ -216,7 +220,7 @@ contains
              dom%el_soft(ne))
     do e = 1, ne
       dom%el_mass(e) = dom%mat(dom%el_mat(e))%rho0*dom%el_vol0(e)
-      dom%el_temp(e) = dom%mat(dom%el_mat(e))%initial_temperature
+      dom%el_temp(e) = dom%part_temp0(dom%el_part(e))
       dom%el_hard(e) = initial_hardening(dom%mat(dom%el_mat(e)))
       dom%el_soft(e) = thermal_softening(dom%mat(dom%el_mat(e)), dom%el_temp(e))
     end do

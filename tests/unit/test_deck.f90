@@ -76,6 +76,8 @@ contains
     call test_fracture_jc()
     call test_fracture_plastic()
     call test_fracture_errors()
+    call test_strength_models()
+    call test_strength_model_errors()
 
     failures = nfail
   end subroutine run_all
@@ -577,6 +579,94 @@ contains
 
   end subroutine test_fracture_errors
 
+  !> Zerilli-Armstrong and Steinberg-Guinan with the shear modulus and melt
+  !> models, a part at its own temperature: the values, the resolved deck
+  !> and its round trip.
+  subroutine test_strength_models()
+    type(config_t) :: cfg
+    type(input_errors_t) :: errs
+    integer :: before
+
+    call deck_read(dir//'strength_models.nml', cfg, errs)
+    if (errs%count() /= 0) then
+      call fail('strength_models', 'unexpected errors')
+      call dump(errs)
+      return
+    end if
+    before = nfail
+    associate(cu => cfg%materials(1), w => cfg%materials(2))
+      call check(cu%strength == strength_zerilli_armstrong .and. cu%za_c2 == 890e6_rk .and. &
+                 cu%za_c4 == 0.000115_rk .and. cu%za_n == 1 .and. cu%za_rate0 == 1, 'copper ZA constants')
+      call check(cu%shear_model == shear_constant .and. cu%melt_model == melt_constant, 'copper default models')
+      call check(w%strength == strength_steinberg_guinan .and. w%sg_ymax == 4.0e9_rk .and. w%sg_n == 0.13_rk, &
+                 'tungsten SCG constants')
+      call check(w%shear_model == shear_steinberg_guinan .and. w%sg_a == 1.03e-11_rk .and. w%sg_t0 == 300, &
+                 'tungsten shear model (case-insensitive), default t0')
+      call check(w%melt_model == melt_steinberg_guinan .and. w%melt_a == 1.3_rk, 'tungsten melt model')
+    end associate
+    call check(cfg%parts(1)%initial_temperature == 720, 'part 1 at 720 K')
+    call check(cfg%parts(2)%initial_temperature == 294, "part 2 at its material's (t_room)")
+    call check(text_has_line(cfg%resolved_text, "  shear_model = 'steinberg_guinan'", &
+               '! constant | steinberg_guinan'), 'resolved shear_model with its choices')
+    call check(text_has_line(cfg%resolved_text, "  sg_a = 1.03e-11", '! 1/Pa'), 'resolved sg_a')
+    if (nfail == before) then
+      call pass('strength_models')
+    else
+      write(*, '(a)') cfg%resolved_text
+    end if
+    call round_trip('strength_models_round_trip', cfg, cfg%resolved_text)
+
+  contains
+
+    subroutine check(ok, what)
+      logical, intent(in) :: ok
+      character(len=*), intent(in) :: what
+      if (.not. ok) call fail('strength_models', what)
+    end subroutine check
+
+  end subroutine test_strength_models
+
+  !> The mistakes of the models of issue 16, one or two per material.
+  subroutine test_strength_model_errors()
+    character(len=*), parameter :: f = 'bad_strength_models.nml'
+    type(config_t) :: cfg
+    type(input_errors_t) :: errs
+    integer :: before
+
+    call deck_read(dir//f, cfg, errs)
+    before = nfail
+    call has(f//":4: &material #1 'a': za_c0, za_c1, za_c2 and za_c5 are all 0", 'needs a flow stress')
+    call has(f//":4: &material #1 'a': specific_heat is required but not set", &
+             "strength = 'zerilli_armstrong' (the temperature")
+    call has(f//":7: &material #2 'b': sg_ymax = 0.1e9 : must be >= sg_y0", '')
+    call has(f//":10: &material #3 'c': shear_model = 'steinberg_guinan' : 'steinberg_guinan' serves", &
+             "the other models take shear_modulus")
+    call has(f//":11: &material #4 'd': t_melt is required but not set", "melt_model = 'steinberg_guinan'")
+    call has(f//":13: &material #4 'd': melt_model = 'steinberg_guinan' :", "takes gamma0 of eos = 'mie_gruneisen'")
+    call has(f//":13: &material #4 'd': za_c2 = 890e6 : set, but only used with", "strength = 'zerilli_armstrong'")
+    call has(f//":14: &part #1 'sphere': initial_temperature = -5 : must be > 0 (K)", '')
+    if (nfail == before .and. errs%count() /= 8) &
+         call fail('strength_model_errors', 'expected 8 messages, got '//itoa(errs%count()))
+    if (nfail == before) then
+      call pass('strength_model_errors')
+    else
+      call dump(errs)
+    end if
+
+  contains
+
+    subroutine has(a, b, c)
+      character(len=*), intent(in) :: a, b
+      character(len=*), intent(in), optional :: c
+      character(len=:), allocatable :: c_
+      c_ = ''
+      if (present(c)) c_ = c
+      if (.not. errs%contains_text(a, b, c_)) &
+           call fail('strength_model_errors', 'no message containing "'//a//'" "'//b//'" "'//c_//'"')
+    end subroutine has
+
+  end subroutine test_strength_model_errors
+
   subroutine write_file(path, text)
     character(len=*), intent(in) :: path, text
     integer :: u
@@ -651,12 +741,20 @@ contains
         if (m%jc_d5 /= n%jc_d5) why = 'material%jc_d5'
         if (m%p_spall /= n%p_spall) why = 'material%p_spall'
         if (m%eps_erode /= n%eps_erode) why = 'material%eps_erode'
+        if (any([m%za_c0, m%za_c1, m%za_c2, m%za_c3, m%za_c4, m%za_c5, m%za_n, m%za_rate0] /= &
+                [n%za_c0, n%za_c1, n%za_c2, n%za_c3, n%za_c4, n%za_c5, n%za_n, n%za_rate0])) why = 'material%za_*'
+        if (any([m%sg_y0, m%sg_ymax, m%sg_beta, m%sg_n, m%sg_eps_i, m%sg_a, m%sg_b, m%sg_t0, m%melt_a] /= &
+                [n%sg_y0, n%sg_ymax, n%sg_beta, n%sg_n, n%sg_eps_i, n%sg_a, n%sg_b, n%sg_t0, n%melt_a])) &
+             why = 'material%sg_*, melt_a'
+        if (m%shear_model /= n%shear_model) why = 'material%shear_model'
+        if (m%melt_model /= n%melt_model) why = 'material%melt_model'
       end associate
     end do
     do k = 1, size(a%parts)
       if (a%parts(k)%group /= b%parts(k)%group) why = 'part%group'
       if (a%parts(k)%material /= b%parts(k)%material) why = 'part%material'
       if (any(a%parts(k)%velocity /= b%parts(k)%velocity)) why = 'part%velocity'
+      if (a%parts(k)%initial_temperature /= b%parts(k)%initial_temperature) why = 'part%initial_temperature'
     end do
     do k = 1, size(a%boundaries)
       associate(p => a%boundaries(k), q => b%boundaries(k))

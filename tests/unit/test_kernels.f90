@@ -155,7 +155,7 @@ contains
     db(1,:) = d; wb(1,:) = w_test; sb(1,:) = s; eb(1) = eps
     soft(1) = thermal_softening(mat, temp)
     hard(1) = yield_stress(mat, eps, 0.0_rk, mat%t_room)   ! rate factor 1, no softening
-    call strength_block(mat, 1, 1, dt, db, wb, soft, hard, sb, eb, wdb, wpb)
+    call strength_block(mat, 1, 1, dt, db, wb, soft, [temp], [0.0_rk], [1.0_rk], hard, sb, eb, wdb, wpb)
     de = eb(1) - eps
     s = sb(1,:); eps = eb(1); wd = wdb(1); wp = wpb(1)
   end subroutine

@@ -1,0 +1,146 @@
+!> Unit tests of the flow stress models beyond Johnson-Cook (issue 16):
+!> Zerilli-Armstrong and Steinberg-Cochran-Guinan with their shear modulus
+!> and melt models, against values computed by hand from the published
+!> equations and OFHC copper constants (Zerilli and Armstrong 1987;
+!> Steinberg 1996, half-hard OFHC copper), and their return through the
+!> element's strength kernel.
+program test_flow_models
+  use udar_kinds, only: rk
+  use udar_strings, only: r2s
+  use udar_config, only: material_cfg_t, strength_zerilli_armstrong, strength_steinberg_guinan, &
+      shear_steinberg_guinan, melt_steinberg_guinan, eos_mie_gruneisen
+  use udar_strength, only: strength_block, von_mises, yield_stress
+  use udar_flow_models, only: melt_temperature, shear_modulus_at
+  use unit_checks, only: check, check_summary
+  implicit none
+
+  call test_zerilli_armstrong()
+  call test_steinberg_guinan()
+  call test_returns()
+  call check_summary()
+
+contains
+
+  !> OFHC copper, Zerilli and Armstrong (1987): c0 = 65 MPa, c2 = 890 MPa,
+  !> c3 = 0.0028 1/K, c4 = 0.000115 1/K.
+  type(material_cfg_t) function za_copper() result(mat)
+    mat%rho0 = 8930; mat%shear_modulus = 47.7e9_rk; mat%strength = strength_zerilli_armstrong
+    mat%za_c0 = 65e6_rk; mat%za_c2 = 890e6_rk; mat%za_c3 = 0.0028_rk; mat%za_c4 = 0.000115_rk
+    mat%specific_heat = 383; mat%t_melt = 1356
+  end function
+
+  !> Half-hard OFHC copper, Steinberg (1996): Y0 0.12 GPa, Ymax 0.64 GPa,
+  !> beta 36, n 0.45, A 2.83 /Mbar, B 3.77e-4 /K, T_m0 1790 K, a 1.5,
+  !> gamma0 2.02.
+  type(material_cfg_t) function scg_copper() result(mat)
+    mat%rho0 = 8930; mat%shear_modulus = 47.7e9_rk; mat%strength = strength_steinberg_guinan
+    mat%eos = eos_mie_gruneisen; mat%c0 = 3940; mat%s = 1.489_rk; mat%gamma0 = 2.02_rk
+    mat%sg_y0 = 0.12e9_rk; mat%sg_ymax = 0.64e9_rk; mat%sg_beta = 36; mat%sg_n = 0.45_rk
+    mat%shear_model = shear_steinberg_guinan; mat%sg_a = 2.83e-11_rk; mat%sg_b = 3.77e-4_rk
+    mat%melt_model = melt_steinberg_guinan; mat%t_melt = 1790; mat%melt_a = 1.5_rk
+    mat%specific_heat = 383
+  end function
+
+  subroutine test_zerilli_armstrong()
+    type(material_cfg_t) :: mat
+    real(rk) :: sy
+    mat = za_copper()
+    ! 65 + 890 sqrt(0.1) exp(298 (0.000115 ln 1000 - 0.0028)) MPa
+    sy = yield_stress(mat, 0.1_rk, 1.0e3_rk, 298.0_rk)
+    call check('za_copper_hand_value', abs(sy/219.819154e6_rk - 1) < 1e-8_rk, &
+               'sigma(0.1, 1e3/s, 298 K) = '//r2s(sy)//' Pa (hand: 219.819154 MPa)')
+    ! rates below za_rate0 count as za_rate0: 65 + 890 sqrt(0.1) exp(-298 0.0028) MPa
+    sy = yield_stress(mat, 0.1_rk, 1.0e-3_rk, 298.0_rk)
+    call check('za_rate_floor', abs(sy/187.184099e6_rk - 1) < 1e-8_rk, &
+               'sigma(0.1, 1e-3/s, 298 K) = '//r2s(sy)//' Pa (at za_rate0 = 1/s: 187.184099 MPa)')
+    call check('za_virgin', abs(yield_stress(mat, 0.0_rk, 1.0e3_rk, 298.0_rk) - 65e6_rk) < 1e-6_rk, &
+               'FCC: sigma(0) = c0 = 65 MPa')
+    call check('za_no_strength_above_melt', yield_stress(mat, 0.1_rk, 1.0e3_rk, 1400.0_rk) == 0, &
+               'T = 1400 K > t_melt = 1356 K: sigma = 0')
+    ! the BCC terms: c1 exp(...) + c5 eps^n
+    mat%za_c2 = 0; mat%za_c1 = 1000e6_rk; mat%za_c5 = 266e6_rk; mat%za_n = 0.289_rk
+    sy = yield_stress(mat, 0.2_rk, 1.0e3_rk, 298.0_rk)
+    call check('za_bcc_hand_value', abs(sy - (65e6_rk + 1000e6_rk*exp(298*(0.000115_rk*log(1.0e3_rk) - 0.0028_rk)) &
+               + 266e6_rk*0.2_rk**0.289_rk)) < 1e-6_rk*sy, 'sigma = '//r2s(sy)//' Pa')
+  end subroutine
+
+  subroutine test_steinberg_guinan()
+    type(material_cfg_t) :: mat
+    real(rk) :: sy, g, tm
+    mat = scg_copper()
+    ! 120 (1 + 36 0.1)^0.45 MPa at p = 0, T = t0 = 300 K
+    sy = yield_stress(mat, 0.1_rk, 1.0e3_rk, 300.0_rk)
+    call check('scg_copper_hand_value', abs(sy/238.463696e6_rk - 1) < 1e-8_rk, &
+               'Y(0.1, p = 0, 300 K) = '//r2s(sy)//' Pa (hand: 238.463696 MPa)')
+    ! G0 (1 + 2.83e-11 1e10 / 1.05^(1/3) - 3.77e-4 200)
+    g = shear_modulus_at(mat, 10.0e9_rk, 500.0_rk, 1.05_rk)
+    call check('sg_shear_modulus_hand_value', abs(g/57.3847545e9_rk - 1) < 1e-8_rk, &
+               'G(10 GPa, 500 K, eta 1.05) = '//r2s(g)//' Pa (hand: 57.3847545 GPa)')
+    sy = yield_stress(mat, 0.1_rk, 1.0e3_rk, 500.0_rk, 10.0e9_rk, 1.05_rk)
+    call check('scg_flow_scales_with_g', abs(sy/286.880097e6_rk - 1) < 1e-8_rk, &
+               'Y(0.1, 10 GPa, 500 K, eta 1.05) = '//r2s(sy)//' Pa (hand: 286.880097 MPa)')
+    call check('scg_ymax', abs(yield_stress(mat, 2.0_rk, 1.0e3_rk, 300.0_rk) - 0.64e9_rk) < 1e-6_rk, &
+               'Y(eps_p = 2) = Ymax = 0.64 GPa')
+    ! 1790 exp(3 (1 - 1/1.1)) 1.1^(2 (2.02 - 1.5 - 1/3)) K
+    tm = melt_temperature(mat, 1.1_rk)
+    call check('sg_melt_hand_value', abs(tm/2436.40931_rk - 1) < 1e-8_rk, &
+               'T_m(eta 1.1) = '//r2s(tm)//' K (hand: 2436.40931 K)')
+    call check('scg_no_strength_above_melt', yield_stress(mat, 0.1_rk, 1.0e3_rk, 1800.0_rk) == 0 .and. &
+               yield_stress(mat, 0.1_rk, 1.0e3_rk, 1800.0_rk, 0.0_rk, 1.1_rk) > 0, &
+               '1800 K: melted at eta 1 (1790 K), solid at eta 1.1 (2436 K)')
+  end subroutine
+
+  !> Uniaxial-strain loading of one element through strength_block: after
+  !> each plastic step the deviator lies on the flow surface at its new
+  !> plastic strain (and the state's G); melt takes the deviator away.
+  subroutine test_returns()
+    type(material_cfg_t) :: mat
+    real(rk) :: s(6), eps, dt, d(6), err, rate, q
+    integer :: k
+    dt = 1.0e-8_rk
+    d = [-1.0e4_rk, 0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk]
+    rate = 2.0_rk/3.0_rk*1.0e4_rk      ! equivalent rate of dev(d)
+    mat = za_copper()
+    s = 0; eps = 0; err = 0
+    do k = 1, 200
+      call step(mat, dt, d, 400.0_rk, 0.0_rk, 1.0_rk, s, eps)
+      if (eps > 0) err = max(err, abs(von_mises(s)/yield_stress(mat, eps, rate, 400.0_rk) - 1))
+    end do
+    call check('za_return_on_surface', eps > 0.01_rk .and. err < 1e-12_rk, &
+               'eps_p = '//r2s(eps)//', largest |q/sigma - 1| '//r2s(err))
+    mat = scg_copper()
+    s = 0; eps = 0; err = 0
+    do k = 1, 200
+      call step(mat, dt, d, 500.0_rk, 5.0e9_rk, 1.03_rk, s, eps)
+      if (eps > 0) err = max(err, abs(von_mises(s)/yield_stress(mat, eps, rate, 500.0_rk, 5.0e9_rk, 1.03_rk) - 1))
+    end do
+    call check('scg_return_on_surface', eps > 0.01_rk .and. err < 1e-12_rk, &
+               'eps_p = '//r2s(eps)//', largest |q/Y - 1| '//r2s(err))
+    ! the elastic trial takes G(p, T): one small step from zero
+    s = 0; eps = 0
+    call step(mat, dt, [1.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk], 500.0_rk, 10.0e9_rk, 1.05_rk, s, eps)
+    call check('sg_trial_modulus', abs(s(1)/(2*57.3847545e9_rk*dt*(2.0_rk/3.0_rk)) - 1) < 1e-8_rk, &
+               's_xx = '//r2s(s(1))//' = 2 G(p, T) dt dev(d)_xx')
+    ! melted: no deviator left
+    s = 0; eps = 0
+    do k = 1, 50
+      call step(mat, dt, d, 500.0_rk, 0.0_rk, 1.0_rk, s, eps)
+    end do
+    q = von_mises(s)
+    call step(mat, dt, d, 1800.0_rk, 0.0_rk, 1.0_rk, s, eps)
+    call check('scg_melt_return', q > 1e8_rk .and. von_mises(s) == 0, &
+               'q = '//r2s(q)//' Pa at 500 K, '//r2s(von_mises(s))//' Pa above melt')
+  end subroutine
+
+  !> One strength step of a single element at temperature temp, pressure p
+  !> and eta = rho/rho0.
+  subroutine step(mat, dt, d, temp, p, eta, s, eps)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: dt, d(6), temp, p, eta
+    real(rk), intent(inout) :: s(6), eps
+    real(rk) :: db(1,6), wb(1,3), soft(1), hard(1), sb(1,6), eb(1), wdb(1), wpb(1)
+    db(1,:) = d; wb = 0; sb(1,:) = s; eb(1) = eps; soft = 1; hard = 0
+    call strength_block(mat, 1, 1, dt, db, wb, soft, [temp], [p], [eta], hard, sb, eb, wdb, wpb)
+    s = sb(1,:); eps = eb(1)
+  end subroutine
+end program test_flow_models
