@@ -36,7 +36,7 @@ module udar_deck
   use udar_input_errors, only: input_errors_t
   use udar_file_kind, only: not_regular_file
   use udar_log, only: log_warn
-  use udar_nml_scan, only: nml_scan_t, nml_group_t, nml_scan_file
+  use udar_nml_scan, only: nml_scan_t, nml_group_t, nml_scan_file, nml_location
   use udar_strings, only: itoa, r2s, to_lower, replace, shorten, dir_name, base_name
   implicit none
   private
@@ -303,6 +303,7 @@ module udar_deck
   !> Messages of one deck_read, sorted by line before they are handed out.
   type :: ctx_t
     character(len=:), allocatable :: path
+    type(nml_scan_t) :: lines                !< the scan's map of lines to files (includes)
     type(diag_t), allocatable :: d(:)
     integer :: n_dropped = 0                !< messages beyond max_messages
   end type
@@ -372,6 +373,11 @@ contains
       return
     end if
 
+    if (allocated(scan%line_file)) then
+      ctx%lines%files = scan%files
+      ctx%lines%line_file = scan%line_file
+      ctx%lines%line_orig = scan%line_orig
+    end if
     do k = 1, scan%n_issues
       call report(ctx, scan%issues(k)%line, scan%issues(k)%text)
     end do
@@ -921,8 +927,8 @@ contains
             end if
             ! E and nu set only the shear modulus here; a bulk modulus they imply
             ! far from rho0*c0**2 is likely a mistake in one of them: say so
-            if (en_ok .and. abs(k_en - k_mg) > 0.01_rk * k_mg) call log_warn(ctx%path//':'// &
-                 itoa(inst%line)//': '//prefix(inst)//'youngs_modulus and poisson_ratio imply a bulk '// &
+            if (en_ok .and. abs(k_en - k_mg) > 0.01_rk * k_mg) call log_warn( &
+                 nml_location(ctx%lines, inst%line, ctx%path)//': '//prefix(inst)//'youngs_modulus and poisson_ratio imply a bulk '// &
                  'modulus E/(3(1-2nu)) = '//sig4(k_en)//' Pa, '//pct(k_en / k_mg - 1)// &
                  " from the rho0*c0**2 = "//r2s(k_mg)//" Pa that eos = 'mie_gruneisen' uses; "// &
                  'they set only the shear modulus')
@@ -1775,11 +1781,11 @@ contains
     k = 0
     if (present(variable)) k = last_assign(inst, to_lower(trim(variable)))
     if (k > 0) then
-      where = trim(cfg%deck_file)//':'//itoa(inst%a(k)%line)//': '//prefix(inst)// &
+      where = nml_location(scan, inst%a(k)%line, trim(cfg%deck_file))//': '//prefix(inst)// &
               trim(variable)//' = '//as_single_quoted(inst%a(k)%value)
     else
       where = trim(cfg%deck_file)
-      if (inst%line > 0) where = where//':'//itoa(inst%line)
+      if (inst%line > 0) where = nml_location(scan, inst%line, trim(cfg%deck_file))
       where = where//': '//prefix(inst)
       where = where(1:len(where)-2)          ! prefix() ends with ': '
       if (present(variable)) where = where//': '//trim(variable)
@@ -1897,7 +1903,7 @@ contains
       return
     end if
     if (line > 0) then
-      ctx%d = [ctx%d, diag_t(line, ctx%path//':'//itoa(line)//': '//text)]
+      ctx%d = [ctx%d, diag_t(line, nml_location(ctx%lines, line, ctx%path)//': '//text)]
     else
       ctx%d = [ctx%d, diag_t(line, ctx%path//': '//text)]
     end if

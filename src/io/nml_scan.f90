@@ -13,13 +13,20 @@
 !> Reported as issues: text outside any group, a group without its closing '/',
 !> a string without its closing quote, text inside a group that is not part of
 !> an assignment.
+!>
+!> A file (not a string) may include others: a line   include 'file'   (as
+!> Fortran's INCLUDE line; the name relative to the including file's folder)
+!> is replaced by that file's lines, up to max_include_depth deep. The scan's
+!> line numbers count the joined text; nml_location gives a line's own file
+!> and line, for messages. A file that cannot be read is an issue at its
+!> include line.
 module udar_nml_scan
   use udar_strings, only: nml_lower => to_lower, itoa, replace, shorten, is_letter, is_digit
   use udar_file_kind, only: not_regular_file
   implicit none
   private
   public :: nml_assign_t, nml_group_t, nml_issue_t, nml_scan_t
-  public :: nml_scan_file, nml_scan_string, nml_lower
+  public :: nml_scan_file, nml_scan_string, nml_lower, nml_location
 
   character(len=*), parameter :: lf = achar(10)
   integer, parameter :: snippet_len = 40   !< longest piece of deck text quoted in an issue
@@ -27,6 +34,7 @@ module udar_nml_scan
   ! not a deck (a mesh given by mistake, a binary file): the scan stops, so
   ! that it neither prints thousands of lines nor takes minutes.
   integer, parameter :: max_issues = 20, max_groups = 200, max_assigns = 2000
+  integer, parameter :: max_include_depth = 8, path_len = 1024
 
   !> One "variable = value" inside a group.
   type :: nml_assign_t
@@ -64,19 +72,130 @@ module udar_nml_scan
     type(nml_issue_t), allocatable :: issues(:)
     logical :: stopped = .false.            !< a limit was reached: the rest is not scanned
     integer :: n_assigns = 0                !< in all groups
+    !> where each line of the scanned text comes from (files with includes;
+    !> empty for a string): files(line_file(k)), its line line_orig(k)
+    character(len=path_len), allocatable :: files(:)
+    integer, allocatable :: line_file(:), line_orig(:)
   end type
 
 contains
 
-  !> Read the whole file and scan it. ios /= 0 (with iomsg) if it cannot be read.
+  !> Read the whole file, with the files it includes, and scan it. ios /= 0
+  !> (with iomsg) if the file itself cannot be read.
   subroutine nml_scan_file(path, scan, ios, iomsg)
     character(len=*), intent(in) :: path
     type(nml_scan_t), intent(out) :: scan
     integer, intent(out) :: ios
     character(len=*), intent(inout) :: iomsg
-    character(len=:), allocatable :: buf, what
-    integer :: u, sz
+    character(len=:), allocatable :: buf, text
+    character(len=path_len), allocatable :: files(:)
+    integer, allocatable :: line_file(:), line_orig(:), bad_line(:)
+    type(nml_issue_t), allocatable :: bad(:)
+    integer :: k, n_text, n_lines
 
+    call read_text(path, buf, ios, iomsg)
+    if (ios /= 0) return
+    if (.not. has_include(buf)) then
+      ! no includes: the text as it is (a mesh given as a deck stays fast)
+      call nml_scan_string(buf, scan)
+      return
+    end if
+    allocate(files(1), bad(0), bad_line(0))
+    allocate(character(len=len(buf) + 1024) :: text)
+    allocate(line_file(1024), line_orig(1024))
+    n_text = 0
+    n_lines = 0
+    files(1) = path
+    call join_includes(buf, 1, 0)
+    call nml_scan_string(text(1:n_text), scan)
+    call move_alloc(files, scan%files)
+    scan%line_file = line_file(1:n_lines)
+    scan%line_orig = line_orig(1:n_lines)
+    do k = 1, size(bad)
+      call add_issue(scan, bad_line(k), 0, bad(k)%text)
+    end do
+
+  contains
+
+    !> Append the lines of buf (file number f, at include depth depth) to
+    !> text, each include line replaced by its file's lines.
+    recursive subroutine join_includes(buf, f, depth)
+      character(len=*), intent(in) :: buf
+      integer, intent(in) :: f, depth
+      character(len=:), allocatable :: name, inc, sub, why
+      integer :: i, e, line, ios2
+      character(len=256) :: msg2
+      i = 1
+      line = 0
+      do while (i <= len(buf))
+        e = index(buf(i:), lf)
+        if (e == 0) then
+          e = len(buf) + 1
+        else
+          e = i + e - 1
+        end if
+        line = line + 1
+        name = include_name(buf(i:e-1))
+        if (len(name) == 0) then
+          call add_line(buf(i:e-1), f, line)
+        else
+          ! the include line itself stays (a blank line), so messages about it have a place
+          call add_line('', f, line)
+          inc = name
+          if (inc(1:1) /= '/') inc = folder_of(trim(files(f)))//inc
+          why = ''
+          if (depth >= max_include_depth) then
+            why = 'includes nested more than '//itoa(max_include_depth)//' deep (does a file include itself?)'
+          else
+            msg2 = ''
+            call read_text(inc, sub, ios2, msg2)
+            if (ios2 /= 0) why = "cannot read '"//inc//"' (a relative name is taken from the including file's "// &
+                                 'folder): '//trim(msg2)
+          end if
+          if (len(why) > 0) then
+            bad = [bad, nml_issue_t(0, 0, "include '"//name//"': "//why)]
+            bad_line = [bad_line, n_lines]
+          else
+            files = [character(len=path_len) :: files, inc]
+            call join_includes(sub, size(files), depth + 1)
+          end if
+        end if
+        i = e + 1
+      end do
+    end subroutine join_includes
+
+    !> One line onto the joined text and its map (both grow by doubling).
+    subroutine add_line(s, f, line)
+      character(len=*), intent(in) :: s
+      integer, intent(in) :: f, line
+      character(len=:), allocatable :: bigger
+      integer, allocatable :: more(:)
+      if (n_text + len(s) + 1 > len(text)) then
+        allocate(character(len=2*(n_text + len(s) + 1)) :: bigger)
+        bigger(1:n_text) = text(1:n_text)
+        call move_alloc(bigger, text)
+      end if
+      text(n_text+1:n_text+len(s)) = s
+      text(n_text+len(s)+1:n_text+len(s)+1) = lf
+      n_text = n_text + len(s) + 1
+      if (n_lines == size(line_file)) then
+        allocate(more(2*n_lines)); more(1:n_lines) = line_file; call move_alloc(more, line_file)
+        allocate(more(2*n_lines)); more(1:n_lines) = line_orig; call move_alloc(more, line_orig)
+      end if
+      n_lines = n_lines + 1
+      line_file(n_lines) = f
+      line_orig(n_lines) = line
+    end subroutine add_line
+  end subroutine nml_scan_file
+
+  !> The whole of a regular file.
+  subroutine read_text(path, buf, ios, iomsg)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable, intent(out) :: buf
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    character(len=:), allocatable :: what
+    integer :: u, sz
     ! a FIFO or a terminal would block the OPEN or the READ forever
     what = not_regular_file(path)
     if (len(what) > 0) then
@@ -93,9 +212,79 @@ contains
     allocate(character(len=sz) :: buf)
     if (sz > 0) read(u, iostat=ios, iomsg=iomsg) buf
     close(u)
-    if (ios /= 0) return
-    call nml_scan_string(buf, scan)
-  end subroutine nml_scan_file
+  end subroutine read_text
+
+  !> Whether some line of buf starts (after blanks) with 'include' in any
+  !> case: only then are lines looked at one by one.
+  pure logical function has_include(buf)
+    character(len=*), intent(in) :: buf
+    integer :: i, e, k
+    has_include = .false.
+    i = 1
+    do while (i <= len(buf))
+      e = index(buf(i:), lf)
+      if (e == 0) then
+        e = len(buf) + 1
+      else
+        e = i + e - 1
+      end if
+      k = verify(buf(i:e-1), ' '//achar(9)//achar(13))
+      if (k > 0 .and. i + k + 5 <= e - 1) then
+        if (nml_lower(buf(i+k-1:i+k+5)) == 'include') then
+          has_include = .true.
+          return
+        end if
+      end if
+      i = e + 1
+    end do
+  end function has_include
+
+  !> The file name of an include line ("include 'name'", any case, blanks
+  !> and a trailing comment allowed), '' for any other line.
+  function include_name(s) result(name)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: name
+    character(len=:), allocatable :: t
+    character :: q
+    integer :: i, j
+    name = ''
+    i = verify(s, ' '//achar(9)//achar(13))
+    if (i == 0 .or. len(s) - i < 8) return
+    if (nml_lower(s(i:i+6)) /= 'include') return
+    t = adjustl(replace(replace(s, achar(9), ' '), achar(13), ' '))
+    if (len(t) < 9) return
+    if (nml_lower(t(1:7)) /= 'include' .or. t(8:8) /= ' ') return
+    t = adjustl(t(8:))
+    q = t(1:1)
+    if (q /= "'" .and. q /= '"') return
+    j = index(t(2:), q)
+    if (j < 2) return
+    i = verify(t(j+2:), ' ')
+    if (i > 0) then
+      if (t(j+1+i:j+1+i) /= '!') return
+    end if
+    name = t(2:j)
+  end function include_name
+
+  !> The folder of a file name with its '/' ('' for a bare name).
+  pure function folder_of(path) result(dir)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: dir
+    dir = path(1:index(path, '/', back=.true.))
+  end function folder_of
+
+  !> "file:line" of line k of the scanned text: its own file and line when
+  !> the scan joined included files, else default_path:k.
+  function nml_location(scan, k, default_path) result(where)
+    type(nml_scan_t), intent(in) :: scan
+    integer, intent(in) :: k
+    character(len=*), intent(in) :: default_path
+    character(len=:), allocatable :: where
+    where = default_path//':'//itoa(k)
+    if (.not. allocated(scan%line_file)) return
+    if (k < 1 .or. k > size(scan%line_file)) return
+    where = trim(scan%files(scan%line_file(k)))//':'//itoa(scan%line_orig(k))
+  end function nml_location
 
   !> Scan deck text (lines separated by LF; CR and TAB count as blanks).
   subroutine nml_scan_string(text, scan)

@@ -78,6 +78,7 @@ contains
     call test_fracture_errors()
     call test_strength_models()
     call test_strength_model_errors()
+    call test_include()
 
     failures = nfail
   end subroutine run_all
@@ -666,6 +667,40 @@ contains
     end subroutine has
 
   end subroutine test_strength_model_errors
+
+  !> A deck that includes library files: the materials are there; an include
+  !> that cannot be read, and a mistake inside an included file, are
+  !> reported at their own file and line.
+  subroutine test_include()
+    type(config_t) :: cfg
+    type(input_errors_t) :: errs
+    call deck_read(dir//'include_library.nml', cfg, errs)
+    if (errs%count() /= 0) then
+      call fail('include_library', 'unexpected errors')
+      call dump(errs)
+    else if (size(cfg%materials) /= 2) then
+      call fail('include_library', 'expected the two included materials')
+    else if (cfg%materials(1)%za_c2 /= 890e6_rk .or. cfg%materials(2)%jc_b /= 292e6_rk .or. &
+             cfg%parts(2)%material /= 'ofhc_copper_jc') then
+      call fail('include_library', 'the included values')
+    else
+      call pass('include_library')
+    end if
+    call deck_read(dir//'bad_include.nml', cfg, errs)
+    if (.not. errs%contains_text("bad_include.nml:3: include 'no_such_library.nml': cannot read", &
+                                 "taken from the including file's folder", '')) then
+      call fail('include_errors', 'no message for the missing include')
+      call dump(errs)
+    else if (.not. errs%contains_text("decks/bad_library.nml:4: &material #1 'x': rho0 = -1 : must be > 0", '', '')) then
+      call fail('include_errors', 'no message at the included file and line')
+      call dump(errs)
+    else if (errs%count() /= 2) then
+      call fail('include_errors', 'expected 2 messages')
+      call dump(errs)
+    else
+      call pass('include_errors')
+    end if
+  end subroutine test_include
 
   subroutine write_file(path, text)
     character(len=*), intent(in) :: path, text
