@@ -3,5 +3,5 @@ module udar_version
   implicit none
   private
   public :: program_version
-  character(len=*), parameter :: program_version = '0.7.1'
+  character(len=*), parameter :: program_version = '0.8.0'
 end module udar_version
