@@ -128,12 +128,7 @@ contains
       i = 1
       line = 0
       do while (i <= len(buf))
-        e = index(buf(i:), lf)
-        if (e == 0) then
-          e = len(buf) + 1
-        else
-          e = i + e - 1
-        end if
+        e = line_end(buf, i)
         line = line + 1
         name = include_name(buf(i:e-1))
         if (len(name) == 0) then
@@ -214,6 +209,19 @@ contains
     close(u)
   end subroutine read_text
 
+  !> The position of the LF that ends the line starting at i (len + 1 for
+  !> a last line without one).
+  pure integer function line_end(buf, i) result(e)
+    character(len=*), intent(in) :: buf
+    integer, intent(in) :: i
+    e = index(buf(i:), lf)
+    if (e == 0) then
+      e = len(buf) + 1
+    else
+      e = i + e - 1
+    end if
+  end function line_end
+
   !> Whether some line of buf starts (after blanks) with 'include' in any
   !> case: only then are lines looked at one by one.
   pure logical function has_include(buf)
@@ -222,12 +230,7 @@ contains
     has_include = .false.
     i = 1
     do while (i <= len(buf))
-      e = index(buf(i:), lf)
-      if (e == 0) then
-        e = len(buf) + 1
-      else
-        e = i + e - 1
-      end if
+      e = line_end(buf, i)
       k = verify(buf(i:e-1), ' '//achar(9)//achar(13))
       if (k > 0 .and. i + k + 5 <= e - 1) then
         if (nml_lower(buf(i+k-1:i+k+5)) == 'include') then

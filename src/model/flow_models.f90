@@ -8,7 +8,7 @@ module udar_flow_models
       shear_steinberg_guinan, melt_steinberg_guinan
   implicit none
   private
-  public :: melt_temperature, shear_modulus_at, model_flow_stress, model_return
+  public :: melt_temperature, shear_modulus_at, model_flow_stress, model_return, bracketed_newton
 
 contains
 
@@ -110,13 +110,7 @@ contains
       call model_flow_stress(mat, eps_p + de, rate, temp, t_m, g_ratio, sy, slope)
       f = q_trial - g3*de - sy
       if (abs(f) <= 1.0e-13_rk*q_trial) exit
-      if (f > 0.0_rk) then
-        lo = de
-      else
-        hi = de
-      end if
-      de_new = de + f/(g3 + slope)
-      if (de_new <= lo .or. de_new >= hi) de_new = 0.5_rk*(lo + hi)
+      call bracketed_newton(de, f, -(g3 + slope), lo, hi, de_new)
       if (abs(de_new - de) <= 1.0e-14_rk*de_new) then
         de = de_new
         exit
@@ -125,5 +119,22 @@ contains
     end do
     ! on the yield surface by construction of the return
     sy = q_trial - g3*de
+  end subroutine
+
+  !> One step of a Newton iteration kept in its bracket, for a residual f
+  !> that falls strictly in x (fp < 0): the bracket [lo, hi] shrinks to the
+  !> side of x that the sign of f(x) keeps, and a Newton step that leaves
+  !> it is replaced by the bisection.
+  pure subroutine bracketed_newton(x, f, fp, lo, hi, x_new)
+    real(rk), intent(in) :: x, f, fp
+    real(rk), intent(inout) :: lo, hi
+    real(rk), intent(out) :: x_new
+    if (f > 0.0_rk) then
+      lo = x
+    else
+      hi = x
+    end if
+    x_new = x - f/fp
+    if (x_new <= lo .or. x_new >= hi) x_new = 0.5_rk*(lo + hi)
   end subroutine
 end module udar_flow_models

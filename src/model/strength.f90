@@ -6,7 +6,7 @@ module udar_strength
   use udar_config, only: material_cfg_t, strength_none, strength_elastic, &
       strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, jc_rate_plastic, &
       strength_zerilli_armstrong, strength_steinberg_guinan
-  use udar_flow_models, only: melt_temperature, shear_modulus_at, model_flow_stress, model_return
+  use udar_flow_models, only: melt_temperature, shear_modulus_at, model_flow_stress, model_return, bracketed_newton
   implicit none
   private
   public :: strength_block, yield_stress, von_mises, thermal_softening, thermal_softening_update, &
@@ -285,15 +285,9 @@ contains
       ! converged to round-off of the residual (a relative step test alone
       ! never ends for tiny increments, whose residual noise dominates)
       if (abs(f) <= 1.0e-13_rk*q_trial) exit
-      if (f > 0.0_rk) then
-        lo = de
-      else
-        hi = de
-      end if
       fp = -g3 - soft*r*mat%jc_b*mat%jc_n*pw*inv_e
       if (plastic_rate .and. de > de_rate1) fp = fp - soft*h*mat%jc_c/de
-      de_new = de - f/fp
-      if (de_new <= lo .or. de_new >= hi) de_new = 0.5_rk*(lo + hi)
+      call bracketed_newton(de, f, fp, lo, hi, de_new)
       if (abs(de_new - de) <= 1.0e-12_rk*de_new) then
         de = de_new
         exit
