@@ -26,8 +26,8 @@ module udar_deck
   use udar_config, only: config_t, run_cfg_t, mesh_cfg_t, material_cfg_t, part_cfg_t, &
        boundary_cfg_t, contact_cfg_t, numerics_cfg_t, output_cfg_t, eos_linear, eos_mie_gruneisen, tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
        strength_none, strength_elastic, strength_perfectly_plastic, strength_linear_hardening, &
-       strength_johnson_cook, strength_zerilli_armstrong, strength_steinberg_guinan, shear_constant, &
-       shear_steinberg_guinan, melt_constant, melt_steinberg_guinan, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
+       strength_johnson_cook, strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, shear_constant, &
+       shear_steinberg_guinan, shear_mts, melt_constant, melt_steinberg_guinan, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
        wall_coulomb, &
        jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
        overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook, &
@@ -70,13 +70,13 @@ module udar_deck
   ! ------------------------------------------------- string forms of the codes
   character(len=20), parameter :: eos_words(2) = [character(len=20) :: 'linear', 'mie_gruneisen']
   integer, parameter :: eos_codes(2) = [eos_linear, eos_mie_gruneisen]
-  character(len=20), parameter :: strength_words(7) = [character(len=20) :: 'none', 'elastic', &
-       'perfectly_plastic', 'linear_hardening', 'johnson_cook', 'zerilli_armstrong', 'steinberg_guinan']
-  integer, parameter :: strength_codes(7) = [strength_none, strength_elastic, &
+  character(len=20), parameter :: strength_words(8) = [character(len=20) :: 'none', 'elastic', &
+       'perfectly_plastic', 'linear_hardening', 'johnson_cook', 'zerilli_armstrong', 'steinberg_guinan', 'mts']
+  integer, parameter :: strength_codes(8) = [strength_none, strength_elastic, &
        strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
-       strength_zerilli_armstrong, strength_steinberg_guinan]
-  character(len=20), parameter :: shear_words(2) = [character(len=20) :: 'constant', 'steinberg_guinan']
-  integer, parameter :: shear_codes(2) = [shear_constant, shear_steinberg_guinan]
+       strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts]
+  character(len=20), parameter :: shear_words(3) = [character(len=20) :: 'constant', 'steinberg_guinan', 'mts']
+  integer, parameter :: shear_codes(3) = [shear_constant, shear_steinberg_guinan, shear_mts]
   character(len=20), parameter :: melt_words(2) = [character(len=20) :: 'constant', 'steinberg_guinan']
   integer, parameter :: melt_codes(2) = [melt_constant, melt_steinberg_guinan]
   character(len=20), parameter :: kind_words(3) = [character(len=20) :: 'fixed', 'symmetry', 'rigid_wall']
@@ -167,6 +167,28 @@ module udar_deck
        var_t('material', 'sg_a', 'r', 1, 0, '1/Pa', '>= 0'), &
        var_t('material', 'sg_b', 'r', 1, 0, '1/K', '>= 0'), &
        var_t('material', 'sg_t0', 'r', 1, 0, 'K', '> 0'), &
+       var_t('material', 'mts_sigma_a', 'r', 1, 0, 'Pa', '>= 0'), &
+       var_t('material', 'mts_sigma_i', 'r', 1, 0, 'Pa', '>= 0'), &
+       var_t('material', 'mts_g0i', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'mts_rate0i', 'r', 1, 0, '1/s', '> 0'), &
+       var_t('material', 'mts_pi', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'mts_qi', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'mts_g0e', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'mts_rate0e', 'r', 1, 0, '1/s', '> 0'), &
+       var_t('material', 'mts_pe', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'mts_qe', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'mts_kb3', 'r', 1, 0, 'Pa/K', '> 0'), &
+       var_t('material', 'mts_a0', 'r', 1, 0, 'Pa', ''), &
+       var_t('material', 'mts_a1', 'r', 1, 0, 'Pa', ''), &
+       var_t('material', 'mts_a2', 'r', 1, 0, 'Pa s^1/2', ''), &
+       var_t('material', 'mts_a3', 'r', 1, 0, 'Pa/K', ''), &
+       var_t('material', 'mts_theta_iv', 'r', 1, 0, 'Pa', '>= 0'), &
+       var_t('material', 'mts_alpha', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'mts_sigma0es', 'r', 1, 0, 'Pa', '> 0'), &
+       var_t('material', 'mts_g0es', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'mts_rate0es', 'r', 1, 0, '1/s', '> 0'), &
+       var_t('material', 'mts_d', 'r', 1, 0, 'Pa', '>= 0'), &
+       var_t('material', 'mts_t0', 'r', 1, 0, 'K', '> 0'), &
        var_t('material', 'melt_model', 'c', 1, code_len, '', ''), &
        var_t('material', 'melt_a', 'r', 1, 0, '-', '>= 0'), &
        var_t('material', 't_melt', 'r', 1, 0, 'K', '> 0'), &
@@ -232,7 +254,7 @@ module udar_deck
     integer :: i = 0                         !< typ i; for a coded choice its code
     logical :: l = .false.                   !< typ l
     character(len=:), allocatable :: c       !< typ c; for a coded choice its word
-    character(len=80) :: choices = ''        !< coded choice: 'a | b', the resolved deck's unit
+    character(len=160) :: choices = ''       !< coded choice: 'a | b', the resolved deck's unit
     character(len=160) :: from = ''           !< what a derived value is computed from
   end type
 
@@ -676,6 +698,8 @@ contains
              m%hardening_modulus, m%jc_a, m%jc_b, m%jc_n, m%jc_c, m%jc_m, m%jc_rate0, v%jc_rate_form, &
              m%za_c0, m%za_c1, m%za_c2, m%za_c3, m%za_c4, m%za_c5, m%za_n, m%za_rate0, &
              m%sg_y0, m%sg_ymax, m%sg_beta, m%sg_n, m%sg_eps_i, v%shear_model, m%sg_a, m%sg_b, m%sg_t0, &
+             m%mts_sigma_a, m%mts_sigma_i, m%mts_g0i, m%mts_rate0i, m%mts_pi, m%mts_qi, m%mts_g0e, m%mts_rate0e, m%mts_pe, m%mts_qe, &
+             m%mts_kb3, m%mts_a0, m%mts_a1, m%mts_a2, m%mts_a3, m%mts_theta_iv, m%mts_alpha, m%mts_sigma0es, m%mts_g0es, m%mts_rate0es, m%mts_d, m%mts_t0, &
              v%melt_model, m%melt_a, &
              m%t_melt, m%t_room, m%specific_heat, m%taylor_quinney, m%initial_temperature, &
              v%fracture, m%eps_f, m%jc_d1, m%jc_d2, m%jc_d3, m%jc_d4, m%jc_d5, m%p_spall, m%eps_erode, v%eroded, m%eps_convert)
@@ -725,6 +749,8 @@ contains
                             jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, &
                             za_c0, za_c1, za_c2, za_c3, za_c4, za_c5, za_n, za_rate0, &
                             sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, shear_model, sg_a, sg_b, sg_t0, &
+                            mts_sigma_a, mts_sigma_i, mts_g0i, mts_rate0i, mts_pi, mts_qi, mts_g0e, mts_rate0e, mts_pe, mts_qe, &
+                            mts_kb3, mts_a0, mts_a1, mts_a2, mts_a3, mts_theta_iv, mts_alpha, mts_sigma0es, mts_g0es, mts_rate0es, mts_d, mts_t0, &
                             melt_model, melt_a, t_melt, t_room, specific_heat, &
                             taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
                             jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert)
@@ -732,7 +758,8 @@ contains
       real(rk), intent(inout) :: rho0, bulk_modulus, c0, s, gamma0, shear_modulus, youngs_modulus, &
            poisson_ratio, yield_stress, hardening_modulus, jc_a, jc_b, jc_n, jc_c, jc_m, jc_rate0, &
            za_c0, za_c1, za_c2, za_c3, za_c4, za_c5, za_n, za_rate0, sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, &
-           sg_a, sg_b, sg_t0, melt_a, &
+           sg_a, sg_b, sg_t0, melt_a, mts_sigma_a, mts_sigma_i, mts_g0i, mts_rate0i, mts_pi, mts_qi, mts_g0e, mts_rate0e, mts_pe, mts_qe, &
+           mts_kb3, mts_a0, mts_a1, mts_a2, mts_a3, mts_theta_iv, mts_alpha, mts_sigma0es, mts_g0es, mts_rate0es, mts_d, mts_t0, &
            t_melt, t_room, specific_heat, taylor_quinney, initial_temperature, eps_f, jc_d1, jc_d2, &
            jc_d3, jc_d4, jc_d5, p_spall, eps_erode, eps_convert
       namelist /material/ name, rho0, eos, bulk_modulus, c0, s, gamma0, strength, shear_modulus, &
@@ -740,6 +767,8 @@ contains
                           jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, &
                           za_c0, za_c1, za_c2, za_c3, za_c4, za_c5, za_n, za_rate0, &
                           sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, shear_model, sg_a, sg_b, sg_t0, &
+                          mts_sigma_a, mts_sigma_i, mts_g0i, mts_rate0i, mts_pi, mts_qi, mts_g0e, mts_rate0e, mts_pe, mts_qe, &
+                          mts_kb3, mts_a0, mts_a1, mts_a2, mts_a3, mts_theta_iv, mts_alpha, mts_sigma0es, mts_g0es, mts_rate0es, mts_d, mts_t0, &
                           melt_model, melt_a, t_melt, t_room, specific_heat, &
                           taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
                           jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert
@@ -1009,13 +1038,37 @@ contains
         else
           call not_used('sg_y0 sg_ymax sg_beta sg_n sg_eps_i', "strength = 'steinberg_guinan'")
         end if
+        if (m%strength == strength_mts) then
+          call ranges('mts_sigma_a mts_sigma_i mts_g0i mts_rate0i mts_pi mts_qi mts_g0e mts_rate0e mts_pe mts_qe '// &
+                      'mts_theta_iv mts_alpha mts_g0es mts_rate0es')
+          call need(ctx, inst, 'mts_kb3', positive(m%mts_kb3), "> 0 for "//sname// &
+               ' (Boltzmann constant over b^3, e.g. 0.823e6 Pa/K for copper)')
+          call need(ctx, inst, 'mts_sigma0es', positive(m%mts_sigma0es), '> 0 for '//sname// &
+               ' (the saturation threshold stress at 0 K)')
+          call need(ctx, inst, 'specific_heat', positive(m%specific_heat), &
+               '> 0 for '//sname//' (the temperature of its activation terms)')
+        else
+          call not_used('mts_sigma_a mts_sigma_i mts_g0i mts_rate0i mts_pi mts_qi mts_g0e mts_rate0e mts_pe mts_qe '// &
+                        'mts_kb3 mts_a0 mts_a1 mts_a2 mts_a3 mts_theta_iv mts_alpha mts_sigma0es mts_g0es mts_rate0es', &
+                        "strength = 'mts'")
+        end if
       end if
-      modelled = str_ok .and. (m%strength == strength_zerilli_armstrong .or. m%strength == strength_steinberg_guinan)
+      modelled = str_ok .and. (m%strength == strength_zerilli_armstrong .or. m%strength == strength_steinberg_guinan &
+                               .or. m%strength == strength_mts)
       ! the shear modulus and melt models serve the models that take the state
       if (choice(ctx, inst, 'shear_model', shear_txt, shear_words, shear_codes, m%shear_model)) then
+        if (m%shear_model /= shear_constant .and. str_ok .and. .not. modelled) call complain(ctx, inst, 'shear_model', &
+             "'"//trim(shear_txt)//"' serves strength = 'zerilli_armstrong', 'steinberg_guinan' or 'mts' "// &
+             '(the other models take shear_modulus)')
+        if (m%shear_model == shear_mts) then
+          call need(ctx, inst, 'mts_t0', positive(m%mts_t0), "> 0 for shear_model = 'mts' (G = G0 - D/(exp(T0/T) - 1))")
+          call ranges('mts_d')
+          if (positive(m%eps_convert)) call complain(ctx, inst, 'shear_model', "'mts' with "// &
+               'eps_convert: particles that keep their strength take a constant shear modulus for now')
+        else
+          call not_used('mts_d mts_t0', "shear_model = 'mts'")
+        end if
         if (m%shear_model == shear_steinberg_guinan) then
-          if (str_ok .and. .not. modelled) call complain(ctx, inst, 'shear_model', "'steinberg_guinan' serves "// &
-               "strength = 'zerilli_armstrong' or 'steinberg_guinan' (the other models take shear_modulus)")
           call ranges('sg_a sg_b sg_t0')
           if (positive(m%sg_b)) call need(ctx, inst, 'specific_heat', positive(m%specific_heat), &
                "> 0 for shear_model = 'steinberg_guinan' with sg_b > 0 (the temperature)")
@@ -1028,7 +1081,7 @@ contains
       if (choice(ctx, inst, 'melt_model', melt_txt, melt_words, melt_codes, m%melt_model)) then
         if (m%melt_model == melt_steinberg_guinan) then
           if (str_ok .and. .not. modelled) call complain(ctx, inst, 'melt_model', "'steinberg_guinan' serves "// &
-               "strength = 'zerilli_armstrong' or 'steinberg_guinan' (Johnson-Cook takes t_melt)")
+               "strength = 'zerilli_armstrong', 'steinberg_guinan' or 'mts' (Johnson-Cook takes t_melt)")
           call need(ctx, inst, 't_melt', positive(m%t_melt), "> 0 for melt_model = 'steinberg_guinan' "// &
                '(the melt temperature at rho0)')
           if (eos_ok .and. m%eos /= eos_mie_gruneisen) call complain(ctx, inst, 'melt_model', &
@@ -1633,6 +1686,9 @@ contains
                 val(m%za_c0), val(m%za_c1), val(m%za_c2), val(m%za_c3), val(m%za_c4), val(m%za_c5), val(m%za_n), &
                 val(m%za_rate0), val(m%sg_y0), val(m%sg_ymax), val(m%sg_beta), val(m%sg_n), val(m%sg_eps_i), &
                 choice_val(m%shear_model, shear_words, shear_codes), val(m%sg_a), val(m%sg_b), val(m%sg_t0), &
+                val(m%mts_sigma_a), val(m%mts_sigma_i), val(m%mts_g0i), val(m%mts_rate0i), val(m%mts_pi), val(m%mts_qi), val(m%mts_g0e), &
+                val(m%mts_rate0e), val(m%mts_pe), val(m%mts_qe), val(m%mts_kb3), val(m%mts_a0), val(m%mts_a1), val(m%mts_a2), &
+                val(m%mts_a3), val(m%mts_theta_iv), val(m%mts_alpha), val(m%mts_sigma0es), val(m%mts_g0es), val(m%mts_rate0es), val(m%mts_d), val(m%mts_t0), &
                 choice_val(m%melt_model, melt_words, melt_codes), val(m%melt_a), val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), &
                 val(m%initial_temperature, 't_room'), choice_val(m%fracture, fracture_words, fracture_codes), &
                 val(m%eps_f), val(m%jc_d1), val(m%jc_d2), val(m%jc_d3), val(m%jc_d4), val(m%jc_d5), &

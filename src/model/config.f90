@@ -9,7 +9,8 @@ module udar_config
             numerics_cfg_t, output_cfg_t, contact_cfg_t, config_t
   public :: eos_linear, eos_mie_gruneisen, strength_none, strength_elastic, &
             strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
-            strength_zerilli_armstrong, strength_steinberg_guinan, shear_constant, shear_steinberg_guinan, &
+            strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, shear_constant, shear_steinberg_guinan, &
+            shear_mts, &
             melt_constant, melt_steinberg_guinan, &
             bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, wall_coulomb, &
             tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
@@ -21,9 +22,9 @@ module udar_config
   integer, parameter :: eos_linear = 1, eos_mie_gruneisen = 2
   integer, parameter :: strength_none = 0, strength_elastic = 1, strength_perfectly_plastic = 2, &
                         strength_linear_hardening = 3, strength_johnson_cook = 4, &
-                        strength_zerilli_armstrong = 5, strength_steinberg_guinan = 6
+                        strength_zerilli_armstrong = 5, strength_steinberg_guinan = 6, strength_mts = 7
   !> the shear modulus: the deck's constant, or Steinberg-Guinan's G(p, T)
-  integer, parameter :: shear_constant = 0, shear_steinberg_guinan = 1
+  integer, parameter :: shear_constant = 0, shear_steinberg_guinan = 1, shear_mts = 2
   !> the melt temperature: the deck's t_melt, or Steinberg-Guinan's T_m(rho)
   integer, parameter :: melt_constant = 0, melt_steinberg_guinan = 1
   integer, parameter :: bc_fixed = 1, bc_symmetry = 2, bc_rigid_wall = 3
@@ -92,6 +93,21 @@ module udar_config
     integer  :: shear_model = shear_constant
     !> Steinberg-Guinan shear modulus: G = G0 (1 + A p eta^(-1/3) - B (T - t0)), eta = rho/rho0
     real(rk) :: sg_a = 0.0_rk, sg_b = 0.0_rk, sg_t0 = 300.0_rk    !< 1/Pa, 1/K, K
+    !> Mechanical Threshold Stress (Follansbee and Kocks 1988; Banerjee's form): sigma = sigma_a
+    !> + (S_i sigma_i + S_e sigma_e) G/G0, sigma_e evolving with theta0 (1 - F) + theta_iv F
+    real(rk) :: mts_sigma_a = 0.0_rk, mts_sigma_i = 0.0_rk       !< Pa, Pa
+    real(rk) :: mts_g0i = 1.0_rk, mts_rate0i = 1.0e7_rk          !< -, 1/s
+    real(rk) :: mts_pi = 1.0_rk, mts_qi = 1.0_rk                 !< -, -
+    real(rk) :: mts_g0e = 1.0_rk, mts_rate0e = 1.0e7_rk          !< -, 1/s
+    real(rk) :: mts_pe = 1.0_rk, mts_qe = 1.0_rk                 !< -, -
+    real(rk) :: mts_kb3 = 0.0_rk                                 !< Pa/K, Boltzmann's constant over b^3
+    real(rk) :: mts_a0 = 0.0_rk, mts_a1 = 0.0_rk                 !< Pa, Pa
+    real(rk) :: mts_a2 = 0.0_rk, mts_a3 = 0.0_rk                 !< Pa s^1/2, Pa/K
+    real(rk) :: mts_theta_iv = 0.0_rk, mts_alpha = 2.0_rk        !< Pa, -
+    real(rk) :: mts_sigma0es = 0.0_rk, mts_g0es = 1.0_rk         !< Pa, -
+    real(rk) :: mts_rate0es = 1.0e7_rk                           !< 1/s
+    !> the MTS (Varshni) shear modulus: G = G0 - D / (exp(T0/T) - 1), G0 at 0 K
+    real(rk) :: mts_d = 0.0_rk, mts_t0 = 0.0_rk                  !< Pa, K
     integer  :: melt_model = melt_constant
     !> Steinberg-Guinan melt: T_m = t_melt exp(2 a (1 - 1/eta)) eta^(2 (gamma0 - a - 1/3))
     real(rk) :: melt_a = 0.0_rk                                  !< -

@@ -1,14 +1,18 @@
-!> Flow stress models beyond Johnson-Cook (issue 16): Zerilli-Armstrong and
-!> Steinberg-Cochran-Guinan, the shear modulus and melt temperature models
-!> that go with them, and the implicit radial return they share. Pure
-!> kernels; doc/theory.md section 16 states the equations and sources.
+!> Flow stress models beyond Johnson-Cook (issue 16): Zerilli-Armstrong,
+!> Steinberg-Cochran-Guinan and the Mechanical Threshold Stress, the shear
+!> modulus and melt temperature models that go with them, and their radial
+!> returns. Pure kernels; doc/theory.md section 16 states the equations and
+!> sources.
 module udar_flow_models
   use udar_kinds, only: rk
   use udar_config, only: material_cfg_t, strength_zerilli_armstrong, strength_steinberg_guinan, &
-      shear_steinberg_guinan, melt_steinberg_guinan
+      shear_steinberg_guinan, shear_mts, melt_steinberg_guinan
   implicit none
   private
-  public :: melt_temperature, shear_modulus_at, model_flow_stress, model_return, bracketed_newton
+  public :: melt_temperature, shear_modulus_at, model_flow_stress, model_return, bracketed_newton, &
+            mts_flow_stress, mts_return
+  !> strain rates below this count as it in the MTS model's logarithms (1/s)
+  real(rk), parameter :: mts_rate_floor = 1.0e-6_rk
 
 contains
 
@@ -35,8 +39,13 @@ contains
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: p, temp, eta
     g = mat%shear_modulus
-    if (mat%shear_model == shear_steinberg_guinan) &
+    select case (mat%shear_model)
+    case (shear_steinberg_guinan)
       g = max(mat%shear_modulus*(1.0_rk + mat%sg_a*p/eta**(1.0_rk/3.0_rk) - mat%sg_b*(temp - mat%sg_t0)), 0.0_rk)
+    case (shear_mts)
+      ! Varshni's form, G0 at 0 K (Follansbee and Kocks 1988)
+      if (temp > 0.0_rk) g = max(mat%shear_modulus - mat%mts_d/(exp(mat%mts_t0/temp) - 1.0_rk), 0.0_rk)
+    end select
   end function
 
   !> The flow stress (Pa) of the models of this module and its slope
@@ -119,6 +128,89 @@ contains
     end do
     ! on the yield surface by construction of the return
     sy = q_trial - g3*de
+  end subroutine
+
+  !> The parts of the MTS flow stress that do not depend on the internal
+  !> stress sigma_e, at rate (1/s), temperature temp (K) and shear modulus g:
+  !>   fixed = sigma_a + S_i sigma_i G/G0,  s_e = S_e G/G0,
+  !>   S_x = [1 - (k T/(g0x b^3 G) ln(rate0x/rate))^(1/qx)]^(1/px),
+  !> the hardening rate theta0 = a0 + a1 ln rate + a2 rate^1/2 - a3 T (not
+  !> below 0) and the saturation stress
+  !>   sigma_es = sigma0es (rate/rate0es)^(k T/(g0es b^3 G)).
+  pure subroutine mts_terms(mat, rate, temp, g, fixed, s_e, theta0, sigma_es)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: rate, temp, g
+    real(rk), intent(out) :: fixed, s_e, theta0, sigma_es
+    real(rk) :: r, ratio, kt
+    r = max(rate, mts_rate_floor)
+    ratio = g/mat%shear_modulus
+    kt = mat%mts_kb3*temp/g
+    fixed = mat%mts_sigma_a
+    if (mat%mts_sigma_i > 0.0_rk) fixed = fixed + &
+      mts_factor(kt/mat%mts_g0i*log(mat%mts_rate0i/r), mat%mts_pi, mat%mts_qi)*mat%mts_sigma_i*ratio
+    s_e = mts_factor(kt/mat%mts_g0e*log(mat%mts_rate0e/r), mat%mts_pe, mat%mts_qe)*ratio
+    theta0 = max(mat%mts_a0 + mat%mts_a1*log(r) + mat%mts_a2*sqrt(r) - mat%mts_a3*temp, 0.0_rk)
+    sigma_es = mat%mts_sigma0es*(r/mat%mts_rate0es)**(kt/mat%mts_g0es)
+  end subroutine
+
+  !> [1 - x^(1/q)]^(1/p) for x >= 0 (1 for x < 0: faster than the reference
+  !> rate), 0 once x^(1/q) >= 1.
+  pure real(rk) function mts_factor(x, p, q) result(f)
+    real(rk), intent(in) :: x, p, q
+    real(rk) :: y
+    y = max(x, 0.0_rk)**(1.0_rk/q)
+    f = 0.0_rk
+    if (y < 1.0_rk) f = (1.0_rk - y)**(1.0_rk/p)
+  end function
+
+  !> The MTS hardening rate d(sigma_e)/d(eps_p) = theta0 (1 - F) + theta_iv F,
+  !> F = tanh(alpha X)/tanh(alpha), X = sigma_e/sigma_es (not below 0).
+  pure real(rk) function mts_hardening(mat, sigma_e, theta0, sigma_es) result(theta)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: sigma_e, theta0, sigma_es
+    real(rk) :: f
+    f = tanh(mat%mts_alpha*sigma_e/sigma_es)/tanh(mat%mts_alpha)
+    theta = max(theta0*(1.0_rk - f) + mat%mts_theta_iv*f, 0.0_rk)
+  end function
+
+  !> The MTS flow stress (Pa) at internal stress sigma_e; 0 at or above the
+  !> melt temperature t_m.
+  pure real(rk) function mts_flow_stress(mat, sigma_e, rate, temp, t_m, g) result(sy)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: sigma_e, rate, temp, t_m, g
+    real(rk) :: fixed, s_e, theta0, sigma_es
+    sy = 0.0_rk
+    if (temp >= t_m .or. g <= 0.0_rk) return
+    call mts_terms(mat, rate, temp, g, fixed, s_e, theta0, sigma_es)
+    sy = fixed + s_e*sigma_e
+  end function
+
+  !> The MTS return: with the step's rate and temperature fixed and sigma_e
+  !> advanced by the hardening rate of its start (sigma_e + theta de, not
+  !> beyond the saturation sigma_es), the flow stress is linear in de and
+  !>   q_trial - 3 G de = fixed + s_e (sigma_e + theta de)
+  !> is solved in closed form; then de is taken again from the flow stress
+  !> of the capped sigma_e, so the deviator ends on the surface. sigma_e
+  !> (inout) is the element's internal stress. Melted: de = q_trial/(3G).
+  !> Called only where q_trial exceeds the flow stress and g > 0.
+  pure subroutine mts_return(mat, g, q_trial, rate, temp, t_m, sigma_e, de, sy)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: g, q_trial, rate, temp, t_m
+    real(rk), intent(inout) :: sigma_e
+    real(rk), intent(out) :: de, sy
+    real(rk) :: fixed, s_e, theta0, sigma_es, theta, se_new
+    if (temp >= t_m) then
+      de = q_trial/(3.0_rk*g)
+      sy = 0.0_rk
+      return
+    end if
+    call mts_terms(mat, rate, temp, g, fixed, s_e, theta0, sigma_es)
+    theta = mts_hardening(mat, sigma_e, theta0, sigma_es)
+    de = (q_trial - fixed - s_e*sigma_e)/(3.0_rk*g + s_e*theta)
+    se_new = min(sigma_e + theta*de, max(sigma_es, sigma_e))
+    sy = fixed + s_e*se_new
+    de = (q_trial - sy)/(3.0_rk*g)
+    sigma_e = se_new
   end subroutine
 
   !> One step of a Newton iteration kept in its bracket, for a residual f

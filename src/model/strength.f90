@@ -5,8 +5,9 @@ module udar_strength
   use udar_kinds, only: rk, block_size
   use udar_config, only: material_cfg_t, strength_none, strength_elastic, &
       strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, jc_rate_plastic, &
-      strength_zerilli_armstrong, strength_steinberg_guinan
-  use udar_flow_models, only: melt_temperature, shear_modulus_at, model_flow_stress, model_return, bracketed_newton
+      strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts
+  use udar_flow_models, only: melt_temperature, shear_modulus_at, model_flow_stress, model_return, bracketed_newton, &
+      mts_flow_stress, mts_return
   implicit none
   private
   public :: strength_block, yield_stress, von_mises, thermal_softening, thermal_softening_update, &
@@ -22,7 +23,8 @@ contains
   !> Flow stress of the material at plastic strain eps_p, equivalent strain
   !> rate rate (1/s) and temperature temp (K); the models of
   !> udar_flow_models also at pressure p (Pa, default 0) and eta = rho/rho0
-  !> (default 1).
+  !> (default 1); the MTS model at internal stress sigma_e = eps_p (its
+  !> state variable in place of the plastic strain).
   pure real(rk) function yield_stress(mat, eps_p, rate, temp, p, eta) result(sy)
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: eps_p, rate, temp
@@ -42,6 +44,12 @@ contains
       if (present(eta)) et = eta
       call model_flow_stress(mat, eps_p, rate, temp, melt_temperature(mat, et), &
                              shear_modulus_at(mat, pp, temp, et)/mat%shear_modulus, sy, slope)
+    case (strength_mts)
+      pp = 0.0_rk
+      et = 1.0_rk
+      if (present(p)) pp = p
+      if (present(eta)) et = eta
+      sy = mts_flow_stress(mat, eps_p, rate, temp, melt_temperature(mat, et), shear_modulus_at(mat, pp, temp, et))
     case default
       sy = huge(1.0_rk)
     end select
@@ -148,6 +156,19 @@ contains
                           d_eps(i), sy(i))
         hard(i) = sy(i)
       end do
+    case (strength_mts)
+      ! hard is the internal stress sigma_e
+      do i = 1, nb
+        d_eps(i) = 0.0_rk
+        t_m = melt_temperature(mat, eta(i))
+        sy(i) = mts_flow_stress(mat, hard(i), rate(i), temp(i), t_m, g_el(i))
+        if (q_trial(i) <= sy(i)) cycle
+        if (g_el(i) <= 0.0_rk) then
+          s(i,:) = 0.0_rk
+          cycle
+        end if
+        call mts_return(mat, g_el(i), q_trial(i), rate(i), temp(i), t_m, hard(i), d_eps(i), sy(i))
+      end do
     case default
       d_eps(1:nb) = 0.0_rk
     end select
@@ -184,6 +205,8 @@ contains
       initial_hardening = mat%jc_a
     case (strength_zerilli_armstrong)
       initial_hardening = mat%za_c0 + mat%za_c1
+    case (strength_mts)
+      initial_hardening = 0.0_rk          ! sigma_e of annealed material
     case (strength_steinberg_guinan)
       initial_hardening = min(mat%sg_y0*(1.0_rk + mat%sg_beta*mat%sg_eps_i)**mat%sg_n, mat%sg_ymax)
     case default

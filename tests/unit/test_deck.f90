@@ -608,7 +608,7 @@ contains
     call check(cfg%parts(1)%initial_temperature == 720, 'part 1 at 720 K')
     call check(cfg%parts(2)%initial_temperature == 294, "part 2 at its material's (t_room)")
     call check(text_has_line(cfg%resolved_text, "  shear_model = 'steinberg_guinan'", &
-               '! constant | steinberg_guinan'), 'resolved shear_model with its choices')
+               '! constant | steinberg_guinan | mts'), 'resolved shear_model with its choices')
     call check(text_has_line(cfg%resolved_text, "  sg_a = 1.03e-11", '! 1/Pa'), 'resolved sg_a')
     if (nfail == before) then
       call pass('strength_models')
@@ -646,8 +646,12 @@ contains
     call has(f//":13: &material #4 'd': melt_model = 'steinberg_guinan' :", "takes gamma0 of eos = 'mie_gruneisen'")
     call has(f//":13: &material #4 'd': za_c2 = 890e6 : set, but only used with", "strength = 'zerilli_armstrong'")
     call has(f//":14: &part #1 'sphere': initial_temperature = -5 : must be > 0 (K)", '')
-    if (nfail == before .and. errs%count() /= 8) &
-         call fail('strength_model_errors', 'expected 8 messages, got '//itoa(errs%count()))
+    call has(f//":15: &material #5 'e': mts_kb3 is required but not set", "strength = 'mts' (Boltzmann")
+    call has(f//":15: &material #5 'e': mts_sigma0es is required but not set", 'saturation threshold stress')
+    call has(f//":15: &material #5 'e': specific_heat is required but not set", "strength = 'mts'")
+    call has(f//":15: &material #5 'e': mts_t0 is required but not set", "shear_model = 'mts'")
+    if (nfail == before .and. errs%count() /= 12) &
+         call fail('strength_model_errors', 'expected 12 messages, got '//itoa(errs%count()))
     if (nfail == before) then
       call pass('strength_model_errors')
     else
@@ -782,6 +786,13 @@ contains
                 [n%sg_y0, n%sg_ymax, n%sg_beta, n%sg_n, n%sg_eps_i, n%sg_a, n%sg_b, n%sg_t0, n%melt_a])) &
              why = 'material%sg_*, melt_a'
         if (m%shear_model /= n%shear_model) why = 'material%shear_model'
+        if (any([m%mts_sigma_a, m%mts_sigma_i, m%mts_g0i, m%mts_rate0i, m%mts_pi, m%mts_qi, m%mts_g0e, &
+                 m%mts_rate0e, m%mts_pe, m%mts_qe, m%mts_kb3, m%mts_a0, m%mts_a1, m%mts_a2, m%mts_a3, &
+                 m%mts_theta_iv, m%mts_alpha, m%mts_sigma0es, m%mts_g0es, m%mts_rate0es, m%mts_d, m%mts_t0] /= &
+                [n%mts_sigma_a, n%mts_sigma_i, n%mts_g0i, n%mts_rate0i, n%mts_pi, n%mts_qi, n%mts_g0e, &
+                 n%mts_rate0e, n%mts_pe, n%mts_qe, n%mts_kb3, n%mts_a0, n%mts_a1, n%mts_a2, n%mts_a3, &
+                 n%mts_theta_iv, n%mts_alpha, n%mts_sigma0es, n%mts_g0es, n%mts_rate0es, n%mts_d, n%mts_t0])) &
+             why = 'material%mts_*'
         if (m%melt_model /= n%melt_model) why = 'material%melt_model'
       end associate
     end do

@@ -8,7 +8,7 @@ program test_flow_models
   use udar_kinds, only: rk
   use udar_strings, only: r2s
   use udar_config, only: material_cfg_t, strength_zerilli_armstrong, strength_steinberg_guinan, &
-      shear_steinberg_guinan, melt_steinberg_guinan, eos_mie_gruneisen
+      shear_steinberg_guinan, melt_steinberg_guinan, eos_mie_gruneisen, strength_mts, shear_mts
   use udar_strength, only: strength_block, von_mises, yield_stress
   use udar_flow_models, only: melt_temperature, shear_modulus_at
   use unit_checks, only: check, check_summary
@@ -17,6 +17,7 @@ program test_flow_models
   call test_zerilli_armstrong()
   call test_steinberg_guinan()
   call test_returns()
+  call test_mts()
   call check_summary()
 
 contains
@@ -40,6 +41,85 @@ contains
     mat%melt_model = melt_steinberg_guinan; mat%t_melt = 1790; mat%melt_a = 1.5_rk
     mat%specific_heat = 383
   end function
+
+  !> Annealed OFHC copper, MTS (Banerjee's constants as in the Uintah input
+  !> file MTSPlasticAnnCopper.xml): sigma_a 40 MPa, no intrinsic term,
+  !> g0e 1.6, rate0e 1e7/s, pe 2/3, qe 1, k/b^3 0.823e6 Pa/K, a0 2390 MPa,
+  !> a1 12 MPa, a2 1.696 MPa s^1/2, alpha 2, sigma0es 770 MPa, g0es 0.2625,
+  !> rate0es 1e7/s; G = 47.7 GPa - 3 GPa/(exp(180 K/T) - 1).
+  type(material_cfg_t) function mts_copper() result(mat)
+    mat%rho0 = 8930; mat%shear_modulus = 47.7e9_rk; mat%strength = strength_mts
+    mat%shear_model = shear_mts; mat%mts_d = 3.0e9_rk; mat%mts_t0 = 180
+    mat%mts_sigma_a = 40e6_rk; mat%mts_g0e = 1.6_rk; mat%mts_rate0e = 1e7_rk; mat%mts_pe = 2.0_rk/3.0_rk
+    mat%mts_qe = 1; mat%mts_kb3 = 0.823e6_rk; mat%mts_a0 = 2390e6_rk; mat%mts_a1 = 12e6_rk
+    mat%mts_a2 = 1.696e6_rk; mat%mts_alpha = 2; mat%mts_sigma0es = 770e6_rk; mat%mts_g0es = 0.2625_rk
+    mat%mts_rate0es = 1e7_rk; mat%specific_heat = 383; mat%t_melt = 1356
+  end function
+
+  !> The MTS model: the shear modulus and the flow stress at a given internal
+  !> stress against values computed by hand; the internal stress of the
+  !> element's step-by-step return against the evolution equation solved
+  !> by a fine Runge-Kutta integration written here; the return on the surface.
+  subroutine test_mts()
+    type(material_cfg_t) :: mat
+    real(rk) :: g, sy, s(6), eps, dt, d(6), rate, err, se_ref, x, h, k1, k2, k3, k4
+    integer :: k, n
+    mat = mts_copper()
+    ! 47.7 - 3/(exp(180/298) - 1) GPa
+    g = shear_modulus_at(mat, 0.0_rk, 298.0_rk, 1.0_rk)
+    call check('mts_shear_modulus_hand_value', abs(g/44.083237e9_rk - 1) < 1e-7_rk, &
+               'G(298 K) = '//r2s(g)//' Pa (hand: 44.083237 GPa)')
+    ! 40 + S_e sigma_e G/G0, S_e = (1 - 0.823e6 298/(1.6 G) ln(1e7/1e3))^1.5 = 0.952348
+    sy = yield_stress(mat, 175.374e6_rk, 1.0e3_rk, 298.0_rk)
+    call check('mts_copper_hand_value', abs(sy/194.353e6_rk - 1) < 1e-5_rk, &
+               'sigma(sigma_e 175.374 MPa, 1e3/s, 298 K) = '//r2s(sy)//' Pa (hand: 194.353 MPa)')
+    call check('mts_virgin', abs(yield_stress(mat, 0.0_rk, 1.0e3_rk, 298.0_rk) - 40e6_rk) < 1e-6_rk, &
+               'sigma(sigma_e = 0) = sigma_a = 40 MPa')
+    ! uniaxial-strain loading at 298 K: the steps' internal stress against the ODE
+    dt = 1.0e-8_rk
+    d = [-1.0e4_rk, 0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk]
+    rate = 2.0_rk/3.0_rk*1.0e4_rk
+    s = 0; eps = 0; x = 0; err = 0
+    do k = 1, 2000
+      call step_mts(mat, dt, d, 298.0_rk, s, eps, x)
+      if (eps > 0) err = max(err, abs(von_mises(s)/yield_stress(mat, x, rate, 298.0_rk) - 1))
+    end do
+    call check('mts_return_on_surface', eps > 0.1_rk .and. err < 1e-12_rk, &
+               'eps_p = '//r2s(eps)//', largest |q/sigma - 1| '//r2s(err))
+    ! d(sigma_e)/d(eps_p) = theta0 (1 - tanh(2 X)/tanh 2), X = sigma_e/sigma_es, RK4 in 10^4 steps
+    se_ref = 0
+    n = 10000
+    h = eps/n
+    do k = 1, n
+      k1 = mts_rate_ref(se_ref, g, rate)
+      k2 = mts_rate_ref(se_ref + 0.5_rk*h*k1, g, rate)
+      k3 = mts_rate_ref(se_ref + 0.5_rk*h*k2, g, rate)
+      k4 = mts_rate_ref(se_ref + h*k3, g, rate)
+      se_ref = se_ref + h/6*(k1 + 2*k2 + 2*k3 + k4)
+    end do
+    call check('mts_internal_stress_against_the_ode', abs(x/se_ref - 1) < 1e-3_rk, &
+               'sigma_e = '//r2s(x)//' Pa at eps_p '//r2s(eps)//' against '//r2s(se_ref)//' Pa (RK4)')
+  end subroutine
+
+  !> The MTS copper's hardening rate at 298 K, written out for the test.
+  real(rk) function mts_rate_ref(se, g, rate) result(theta)
+    real(rk), intent(in) :: se, g, rate
+    real(rk) :: theta0, ses
+    theta0 = 2390e6_rk + 12e6_rk*log(rate) + 1.696e6_rk*sqrt(rate)
+    ses = 770e6_rk*(rate/1e7_rk)**(0.823e6_rk*298/(0.2625_rk*g))
+    theta = theta0*(1 - tanh(2*se/ses)/tanh(2.0_rk))
+  end function
+
+  !> One MTS strength step: x is the internal stress (strength_block's hard).
+  subroutine step_mts(mat, dt, d, temp, s, eps, x)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: dt, d(6), temp
+    real(rk), intent(inout) :: s(6), eps, x
+    real(rk) :: db(1,6), wb(1,3), soft(1), hard(1), sb(1,6), eb(1), wdb(1), wpb(1)
+    db(1,:) = d; wb = 0; sb(1,:) = s; eb(1) = eps; soft = 1; hard = x
+    call strength_block(mat, 1, 1, dt, db, wb, soft, [temp], [0.0_rk], [1.0_rk], hard, sb, eb, wdb, wpb)
+    s = sb(1,:); eps = eb(1); x = hard(1)
+  end subroutine
 
   subroutine test_zerilli_armstrong()
     type(material_cfg_t) :: mat
