@@ -13,7 +13,7 @@
 #   H=0.1 TESTS="jc190 wg210 gust188" tests/validate_taylor_models.sh   (the mesh check)
 #   MODELS="jc za" ...                              (a subset of models)
 H=${H:-0.2}
-MODELS=${MODELS:-jc za scg mts}
+MODELS=${MODELS:-jc za scg mts ptw}
 source "$(dirname "$0")/validate_common.sh" taylor_models
 tests_csv=tests/taylor_tests.csv
 TESTS=${TESTS:-$(tail -n +2 $tests_csv | grep -v '^#' | cut -d, -f1 | tr '\n' ' ')}

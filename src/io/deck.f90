@@ -26,8 +26,8 @@ module udar_deck
   use udar_config, only: config_t, run_cfg_t, mesh_cfg_t, material_cfg_t, part_cfg_t, &
        boundary_cfg_t, contact_cfg_t, numerics_cfg_t, output_cfg_t, eos_linear, eos_mie_gruneisen, tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
        strength_none, strength_elastic, strength_perfectly_plastic, strength_linear_hardening, &
-       strength_johnson_cook, strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, shear_constant, &
-       shear_steinberg_guinan, shear_mts, melt_constant, melt_steinberg_guinan, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
+       strength_johnson_cook, strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw, shear_constant, &
+       shear_steinberg_guinan, shear_mts, shear_ptw, melt_constant, melt_steinberg_guinan, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
        wall_coulomb, &
        jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
        overlap_report, overlap_move, fracture_none, fracture_plastic_strain, fracture_johnson_cook, &
@@ -70,13 +70,13 @@ module udar_deck
   ! ------------------------------------------------- string forms of the codes
   character(len=20), parameter :: eos_words(2) = [character(len=20) :: 'linear', 'mie_gruneisen']
   integer, parameter :: eos_codes(2) = [eos_linear, eos_mie_gruneisen]
-  character(len=20), parameter :: strength_words(8) = [character(len=20) :: 'none', 'elastic', &
-       'perfectly_plastic', 'linear_hardening', 'johnson_cook', 'zerilli_armstrong', 'steinberg_guinan', 'mts']
-  integer, parameter :: strength_codes(8) = [strength_none, strength_elastic, &
+  character(len=20), parameter :: strength_words(9) = [character(len=20) :: 'none', 'elastic', &
+       'perfectly_plastic', 'linear_hardening', 'johnson_cook', 'zerilli_armstrong', 'steinberg_guinan', 'mts', 'ptw']
+  integer, parameter :: strength_codes(9) = [strength_none, strength_elastic, &
        strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
-       strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts]
-  character(len=20), parameter :: shear_words(3) = [character(len=20) :: 'constant', 'steinberg_guinan', 'mts']
-  integer, parameter :: shear_codes(3) = [shear_constant, shear_steinberg_guinan, shear_mts]
+       strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw]
+  character(len=20), parameter :: shear_words(4) = [character(len=20) :: 'constant', 'steinberg_guinan', 'mts', 'ptw']
+  integer, parameter :: shear_codes(4) = [shear_constant, shear_steinberg_guinan, shear_mts, shear_ptw]
   character(len=20), parameter :: melt_words(2) = [character(len=20) :: 'constant', 'steinberg_guinan']
   integer, parameter :: melt_codes(2) = [melt_constant, melt_steinberg_guinan]
   character(len=20), parameter :: kind_words(3) = [character(len=20) :: 'fixed', 'symmetry', 'rigid_wall']
@@ -189,6 +189,19 @@ module udar_deck
        var_t('material', 'mts_rate0es', 'r', 1, 0, '1/s', '> 0'), &
        var_t('material', 'mts_d', 'r', 1, 0, 'Pa', '>= 0'), &
        var_t('material', 'mts_t0', 'r', 1, 0, 'K', '> 0'), &
+       var_t('material', 'ptw_theta', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'ptw_p', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'ptw_s0', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'ptw_sinf', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'ptw_kappa', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'ptw_gamma', 'r', 1, 0, '-', '> 0'), &
+       var_t('material', 'ptw_y0', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'ptw_yinf', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'ptw_y1', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'ptw_y2', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'ptw_beta', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'ptw_molar_mass', 'r', 1, 0, 'kg/mol', '> 0'), &
+       var_t('material', 'ptw_alpha', 'r', 1, 0, '-', '>= 0'), &
        var_t('material', 'melt_model', 'c', 1, code_len, '', ''), &
        var_t('material', 'melt_a', 'r', 1, 0, '-', '>= 0'), &
        var_t('material', 't_melt', 'r', 1, 0, 'K', '> 0'), &
@@ -700,6 +713,7 @@ contains
              m%sg_y0, m%sg_ymax, m%sg_beta, m%sg_n, m%sg_eps_i, v%shear_model, m%sg_a, m%sg_b, m%sg_t0, &
              m%mts_sigma_a, m%mts_sigma_i, m%mts_g0i, m%mts_rate0i, m%mts_pi, m%mts_qi, m%mts_g0e, m%mts_rate0e, m%mts_pe, m%mts_qe, &
              m%mts_kb3, m%mts_a0, m%mts_a1, m%mts_a2, m%mts_a3, m%mts_theta_iv, m%mts_alpha, m%mts_sigma0es, m%mts_g0es, m%mts_rate0es, m%mts_d, m%mts_t0, &
+             m%ptw_theta, m%ptw_p, m%ptw_s0, m%ptw_sinf, m%ptw_kappa, m%ptw_gamma, m%ptw_y0, m%ptw_yinf, m%ptw_y1, m%ptw_y2, m%ptw_beta, m%ptw_molar_mass, m%ptw_alpha, &
              v%melt_model, m%melt_a, &
              m%t_melt, m%t_room, m%specific_heat, m%taylor_quinney, m%initial_temperature, &
              v%fracture, m%eps_f, m%jc_d1, m%jc_d2, m%jc_d3, m%jc_d4, m%jc_d5, m%p_spall, m%eps_erode, v%eroded, m%eps_convert)
@@ -751,6 +765,7 @@ contains
                             sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, shear_model, sg_a, sg_b, sg_t0, &
                             mts_sigma_a, mts_sigma_i, mts_g0i, mts_rate0i, mts_pi, mts_qi, mts_g0e, mts_rate0e, mts_pe, mts_qe, &
                             mts_kb3, mts_a0, mts_a1, mts_a2, mts_a3, mts_theta_iv, mts_alpha, mts_sigma0es, mts_g0es, mts_rate0es, mts_d, mts_t0, &
+                            ptw_theta, ptw_p, ptw_s0, ptw_sinf, ptw_kappa, ptw_gamma, ptw_y0, ptw_yinf, ptw_y1, ptw_y2, ptw_beta, ptw_molar_mass, ptw_alpha, &
                             melt_model, melt_a, t_melt, t_room, specific_heat, &
                             taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
                             jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert)
@@ -760,6 +775,8 @@ contains
            za_c0, za_c1, za_c2, za_c3, za_c4, za_c5, za_n, za_rate0, sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, &
            sg_a, sg_b, sg_t0, melt_a, mts_sigma_a, mts_sigma_i, mts_g0i, mts_rate0i, mts_pi, mts_qi, mts_g0e, mts_rate0e, mts_pe, mts_qe, &
            mts_kb3, mts_a0, mts_a1, mts_a2, mts_a3, mts_theta_iv, mts_alpha, mts_sigma0es, mts_g0es, mts_rate0es, mts_d, mts_t0, &
+           ptw_theta, ptw_p, ptw_s0, ptw_sinf, ptw_kappa, ptw_gamma, ptw_y0, ptw_yinf, ptw_y1, ptw_y2, ptw_beta, &
+           ptw_molar_mass, ptw_alpha, &
            t_melt, t_room, specific_heat, taylor_quinney, initial_temperature, eps_f, jc_d1, jc_d2, &
            jc_d3, jc_d4, jc_d5, p_spall, eps_erode, eps_convert
       namelist /material/ name, rho0, eos, bulk_modulus, c0, s, gamma0, strength, shear_modulus, &
@@ -769,6 +786,7 @@ contains
                           sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, shear_model, sg_a, sg_b, sg_t0, &
                           mts_sigma_a, mts_sigma_i, mts_g0i, mts_rate0i, mts_pi, mts_qi, mts_g0e, mts_rate0e, mts_pe, mts_qe, &
                           mts_kb3, mts_a0, mts_a1, mts_a2, mts_a3, mts_theta_iv, mts_alpha, mts_sigma0es, mts_g0es, mts_rate0es, mts_d, mts_t0, &
+                          ptw_theta, ptw_p, ptw_s0, ptw_sinf, ptw_kappa, ptw_gamma, ptw_y0, ptw_yinf, ptw_y1, ptw_y2, ptw_beta, ptw_molar_mass, ptw_alpha, &
                           melt_model, melt_a, t_melt, t_room, specific_heat, &
                           taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
                           jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert
@@ -1053,12 +1071,28 @@ contains
                         "strength = 'mts'")
         end if
       end if
+      if (str_ok) then
+        if (m%strength == strength_ptw) then
+          call ranges('ptw_theta ptw_p ptw_sinf ptw_y0 ptw_yinf ptw_y1 ptw_y2 ptw_beta')
+          call need(ctx, inst, 'ptw_s0', positive(m%ptw_s0), '> 0 for '//sname//' (the saturation stress at 0 K / G)')
+          call need(ctx, inst, 'ptw_kappa', positive(m%ptw_kappa), '> 0 for '//sname)
+          call need(ctx, inst, 'ptw_gamma', positive(m%ptw_gamma), '> 0 for '//sname)
+          call need(ctx, inst, 'ptw_molar_mass', positive(m%ptw_molar_mass), '> 0 for '//sname// &
+               ' (kg/mol: 0.06355 for copper)')
+          call need(ctx, inst, 't_melt', positive(m%t_melt), '> 0 for '//sname//' (its homologous temperature)')
+          call need(ctx, inst, 'specific_heat', positive(m%specific_heat), &
+               '> 0 for '//sname//' (the temperature)')
+        else
+          call not_used('ptw_theta ptw_p ptw_s0 ptw_sinf ptw_kappa ptw_gamma ptw_y0 ptw_yinf ptw_y1 ptw_y2 ptw_beta '// &
+                        'ptw_molar_mass', "strength = 'ptw'")
+        end if
+      end if
       modelled = str_ok .and. (m%strength == strength_zerilli_armstrong .or. m%strength == strength_steinberg_guinan &
-                               .or. m%strength == strength_mts)
+                               .or. m%strength == strength_mts .or. m%strength == strength_ptw)
       ! the shear modulus and melt models serve the models that take the state
       if (choice(ctx, inst, 'shear_model', shear_txt, shear_words, shear_codes, m%shear_model)) then
         if (m%shear_model /= shear_constant .and. str_ok .and. .not. modelled) call complain(ctx, inst, 'shear_model', &
-             "'"//trim(shear_txt)//"' serves strength = 'zerilli_armstrong', 'steinberg_guinan' or 'mts' "// &
+             "'"//trim(shear_txt)//"' serves strength = 'zerilli_armstrong', 'steinberg_guinan', 'mts' or 'ptw' "// &
              '(the other models take shear_modulus)')
         if (m%shear_model == shear_mts) then
           call need(ctx, inst, 'mts_t0', positive(m%mts_t0), "> 0 for shear_model = 'mts' (G = G0 - D/(exp(T0/T) - 1))")
@@ -1067,6 +1101,15 @@ contains
                'eps_convert: particles that keep their strength take a constant shear modulus for now')
         else
           call not_used('mts_d mts_t0', "shear_model = 'mts'")
+        end if
+        if (m%shear_model == shear_ptw) then
+          call ranges('ptw_alpha')
+          if (.not. positive(m%t_melt) .and. m%strength /= strength_ptw) &
+               call need(ctx, inst, 't_melt', .false., "> 0 for shear_model = 'ptw'")
+          if (positive(m%eps_convert)) call complain(ctx, inst, 'shear_model', "'ptw' with "// &
+               'eps_convert: particles that keep their strength take a constant shear modulus for now')
+        else
+          call not_used('ptw_alpha', "shear_model = 'ptw'")
         end if
         if (m%shear_model == shear_steinberg_guinan) then
           call ranges('sg_a sg_b sg_t0')
@@ -1081,7 +1124,7 @@ contains
       if (choice(ctx, inst, 'melt_model', melt_txt, melt_words, melt_codes, m%melt_model)) then
         if (m%melt_model == melt_steinberg_guinan) then
           if (str_ok .and. .not. modelled) call complain(ctx, inst, 'melt_model', "'steinberg_guinan' serves "// &
-               "strength = 'zerilli_armstrong', 'steinberg_guinan' or 'mts' (Johnson-Cook takes t_melt)")
+               "strength = 'zerilli_armstrong', 'steinberg_guinan', 'mts' or 'ptw' (Johnson-Cook takes t_melt)")
           call need(ctx, inst, 't_melt', positive(m%t_melt), "> 0 for melt_model = 'steinberg_guinan' "// &
                '(the melt temperature at rho0)')
           if (eos_ok .and. m%eos /= eos_mie_gruneisen) call complain(ctx, inst, 'melt_model', &
@@ -1689,6 +1732,8 @@ contains
                 val(m%mts_sigma_a), val(m%mts_sigma_i), val(m%mts_g0i), val(m%mts_rate0i), val(m%mts_pi), val(m%mts_qi), val(m%mts_g0e), &
                 val(m%mts_rate0e), val(m%mts_pe), val(m%mts_qe), val(m%mts_kb3), val(m%mts_a0), val(m%mts_a1), val(m%mts_a2), &
                 val(m%mts_a3), val(m%mts_theta_iv), val(m%mts_alpha), val(m%mts_sigma0es), val(m%mts_g0es), val(m%mts_rate0es), val(m%mts_d), val(m%mts_t0), &
+                val(m%ptw_theta), val(m%ptw_p), val(m%ptw_s0), val(m%ptw_sinf), val(m%ptw_kappa), val(m%ptw_gamma), val(m%ptw_y0), &
+                val(m%ptw_yinf), val(m%ptw_y1), val(m%ptw_y2), val(m%ptw_beta), val(m%ptw_molar_mass), val(m%ptw_alpha), &
                 choice_val(m%melt_model, melt_words, melt_codes), val(m%melt_a), val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), &
                 val(m%initial_temperature, 't_room'), choice_val(m%fracture, fracture_words, fracture_codes), &
                 val(m%eps_f), val(m%jc_d1), val(m%jc_d2), val(m%jc_d3), val(m%jc_d4), val(m%jc_d5), &

@@ -9,8 +9,8 @@ module udar_config
             numerics_cfg_t, output_cfg_t, contact_cfg_t, config_t
   public :: eos_linear, eos_mie_gruneisen, strength_none, strength_elastic, &
             strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
-            strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, shear_constant, shear_steinberg_guinan, &
-            shear_mts, &
+            strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw, shear_constant, &
+            shear_steinberg_guinan, shear_mts, shear_ptw, &
             melt_constant, melt_steinberg_guinan, &
             bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, wall_coulomb, &
             tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
@@ -22,9 +22,10 @@ module udar_config
   integer, parameter :: eos_linear = 1, eos_mie_gruneisen = 2
   integer, parameter :: strength_none = 0, strength_elastic = 1, strength_perfectly_plastic = 2, &
                         strength_linear_hardening = 3, strength_johnson_cook = 4, &
-                        strength_zerilli_armstrong = 5, strength_steinberg_guinan = 6, strength_mts = 7
+                        strength_zerilli_armstrong = 5, strength_steinberg_guinan = 6, strength_mts = 7, &
+                        strength_ptw = 8
   !> the shear modulus: the deck's constant, or Steinberg-Guinan's G(p, T)
-  integer, parameter :: shear_constant = 0, shear_steinberg_guinan = 1, shear_mts = 2
+  integer, parameter :: shear_constant = 0, shear_steinberg_guinan = 1, shear_mts = 2, shear_ptw = 3
   !> the melt temperature: the deck's t_melt, or Steinberg-Guinan's T_m(rho)
   integer, parameter :: melt_constant = 0, melt_steinberg_guinan = 1
   integer, parameter :: bc_fixed = 1, bc_symmetry = 2, bc_rigid_wall = 3
@@ -108,6 +109,13 @@ module udar_config
     real(rk) :: mts_rate0es = 1.0e7_rk                           !< 1/s
     !> the MTS (Varshni) shear modulus: G = G0 - D / (exp(T0/T) - 1), G0 at 0 K
     real(rk) :: mts_d = 0.0_rk, mts_t0 = 0.0_rk                  !< Pa, K
+    !> Preston-Tonks-Wallace (2003), dimensionless unless marked; flow stress 2 tau G
+    real(rk) :: ptw_theta = 0.0_rk, ptw_p = 0.0_rk, ptw_s0 = 0.0_rk, ptw_sinf = 0.0_rk
+    real(rk) :: ptw_kappa = 0.0_rk, ptw_gamma = 0.0_rk, ptw_y0 = 0.0_rk, ptw_yinf = 0.0_rk
+    real(rk) :: ptw_y1 = 0.0_rk, ptw_y2 = 0.0_rk, ptw_beta = 0.0_rk
+    real(rk) :: ptw_molar_mass = 0.0_rk                          !< kg/mol
+    !> the PTW shear modulus G = G0 (1 - alpha T/T_m)
+    real(rk) :: ptw_alpha = 0.0_rk                               !< -
     integer  :: melt_model = melt_constant
     !> Steinberg-Guinan melt: T_m = t_melt exp(2 a (1 - 1/eta)) eta^(2 (gamma0 - a - 1/3))
     real(rk) :: melt_a = 0.0_rk                                  !< -

@@ -5,14 +5,16 @@
 !> sources.
 module udar_flow_models
   use udar_kinds, only: rk
-  use udar_config, only: material_cfg_t, strength_zerilli_armstrong, strength_steinberg_guinan, &
-      shear_steinberg_guinan, shear_mts, melt_steinberg_guinan
+  use udar_config, only: material_cfg_t, strength_zerilli_armstrong, strength_steinberg_guinan, strength_ptw, &
+      shear_steinberg_guinan, shear_mts, shear_ptw, melt_steinberg_guinan
   implicit none
   private
   public :: melt_temperature, shear_modulus_at, model_flow_stress, model_return, bracketed_newton, &
             mts_flow_stress, mts_return
   !> strain rates below this count as it in the MTS model's logarithms (1/s)
   real(rk), parameter :: mts_rate_floor = 1.0e-6_rk
+  real(rk), parameter :: avogadro = 6.02214076e23_rk    !< 1/mol
+  real(rk), parameter :: pi = 3.14159265358979324_rk
 
 contains
 
@@ -45,6 +47,9 @@ contains
     case (shear_mts)
       ! Varshni's form, G0 at 0 K (Follansbee and Kocks 1988)
       if (temp > 0.0_rk) g = max(mat%shear_modulus - mat%mts_d/(exp(mat%mts_t0/temp) - 1.0_rk), 0.0_rk)
+    case (shear_ptw)
+      ! Preston, Tonks and Wallace (2003): linear in the homologous temperature
+      g = max(mat%shear_modulus*(1.0_rk - mat%ptw_alpha*temp/melt_temperature(mat, eta)), 0.0_rk)
     end select
   end function
 
@@ -57,11 +62,12 @@ contains
   !>     sigma = c0 + (c1 + c2 eps_p^1/2) exp(-c3 T + c4 T ln(rate*)) + c5 eps_p^n,
   !>     rate* = max(rate, rate0)/rate0;
   !>   Steinberg-Cochran-Guinan (1980, eq. 1)
-  !>     Y = min(y0 (1 + beta (eps_p + eps_i))^n, ymax) G/G0.
-  !> Above the melt temperature both are 0 (no strength).
-  pure subroutine model_flow_stress(mat, eps_p, rate, temp, t_m, g_ratio, sy, slope)
+  !>     Y = min(y0 (1 + beta (eps_p + eps_i))^n, ymax) G/G0;
+  !>   Preston-Tonks-Wallace (2003), at density rho: ptw_flow_stress.
+  !> Above the melt temperature all are 0 (no strength).
+  pure subroutine model_flow_stress(mat, eps_p, rate, temp, t_m, g_ratio, rho, sy, slope)
     type(material_cfg_t), intent(in) :: mat
-    real(rk), intent(in) :: eps_p, rate, temp, t_m, g_ratio
+    real(rk), intent(in) :: eps_p, rate, temp, t_m, g_ratio, rho
     real(rk), intent(out) :: sy, slope
     real(rk) :: th, root, y
     sy = 0.0_rk
@@ -85,7 +91,49 @@ contains
         y = mat%sg_ymax
       end if
       sy = y*g_ratio
+    case (strength_ptw)
+      call ptw_flow_stress(mat, eps_p, rate, temp/t_m, g_ratio*mat%shear_modulus, rho, sy, slope)
     end select
+  end subroutine
+
+  !> Preston, Tonks and Wallace (2003, eqs. 5-12): at plastic strain psi,
+  !> rate, homologous temperature t_hat = T/T_m, shear modulus g and density
+  !> rho, with xi = 1/2 (4 pi rho N_A/(3 M))^(1/3) (g/rho)^(1/2) and
+  !> e = rate/xi (rates below 1e-6/s count as 1e-6/s),
+  !>   tau_s = max(s0 - (s0 - sinf) erf(kappa t_hat ln(gamma/e)), s0 (e/gamma)^beta)
+  !>   tau_y = max(y0 - (y0 - yinf) erf(...), min(y1 (e/gamma)^y2, s0 (e/gamma)^beta))
+  !>   tau   = tau_s + (s0 - tau_y)/p ln(1 - [1 - exp(-p d/a)] exp(-p theta psi/(a (exp(p d/a) - 1)))),
+  !> a = s0 - tau_y, d = tau_s - tau_y (p -> 0: tau_s - d exp(-theta psi/d); tau = tau_s
+  !> when d <= 0), and the flow stress 2 tau g with its slope in psi.
+  pure subroutine ptw_flow_stress(mat, psi, rate, t_hat, g, rho, sy, slope)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: psi, rate, t_hat, g, rho
+    real(rk), intent(out) :: sy, slope
+    real(rk) :: xi, e, arg, er, ts, ty, a, d, big, u, tau, dtau
+    xi = 0.5_rk*(4.0_rk*pi*rho*avogadro/(3.0_rk*mat%ptw_molar_mass))**(1.0_rk/3.0_rk)*sqrt(g/rho)
+    e = max(rate, mts_rate_floor)/xi
+    arg = mat%ptw_kappa*t_hat*log(mat%ptw_gamma/e)
+    er = erf(arg)
+    ts = max(mat%ptw_s0 - (mat%ptw_s0 - mat%ptw_sinf)*er, mat%ptw_s0*(e/mat%ptw_gamma)**mat%ptw_beta)
+    ty = max(mat%ptw_y0 - (mat%ptw_y0 - mat%ptw_yinf)*er, &
+             min(mat%ptw_y1*(e/mat%ptw_gamma)**mat%ptw_y2, mat%ptw_s0*(e/mat%ptw_gamma)**mat%ptw_beta))
+    d = ts - ty
+    if (d <= 0.0_rk) then
+      tau = ts
+      dtau = 0.0_rk
+    else if (mat%ptw_p <= 0.0_rk) then
+      u = exp(-mat%ptw_theta*psi/d)
+      tau = ts - d*u
+      dtau = mat%ptw_theta*u
+    else
+      a = mat%ptw_s0 - ty
+      big = exp(mat%ptw_p*d/a)
+      u = exp(-mat%ptw_p*mat%ptw_theta*psi/(a*(big - 1.0_rk)))
+      tau = ts + a/mat%ptw_p*log(1.0_rk - (1.0_rk - 1.0_rk/big)*u)
+      dtau = mat%ptw_theta*u/(big*(1.0_rk - (1.0_rk - 1.0_rk/big)*u))
+    end if
+    sy = 2.0_rk*tau*g
+    slope = 2.0_rk*dtau*g
   end subroutine
 
   !> The radial return of these models: the increment de >= 0 of plastic
@@ -98,9 +146,9 @@ contains
   !> no-hardening return, kept in the bracket by bisection. With no
   !> strength left (melt) de takes the whole trial deviator, q_trial/(3G).
   !> Called only where q_trial > sigma(eps_p) and g > 0.
-  pure subroutine model_return(mat, g, q_trial, eps_p, rate, temp, t_m, g_ratio, de, sy)
+  pure subroutine model_return(mat, g, q_trial, eps_p, rate, temp, t_m, g_ratio, rho, de, sy)
     type(material_cfg_t), intent(in) :: mat
-    real(rk), intent(in) :: g, q_trial, eps_p, rate, temp, t_m, g_ratio
+    real(rk), intent(in) :: g, q_trial, eps_p, rate, temp, t_m, g_ratio, rho
     real(rk), intent(out) :: de, sy
     real(rk) :: g3, lo, hi, f, slope, de_new
     integer :: it
@@ -111,12 +159,12 @@ contains
       sy = 0.0_rk
       return
     end if
-    call model_flow_stress(mat, eps_p, rate, temp, t_m, g_ratio, sy, slope)
+    call model_flow_stress(mat, eps_p, rate, temp, t_m, g_ratio, rho, sy, slope)
     lo = 0.0_rk
     hi = q_trial/g3
     de = min((q_trial - sy)/g3, hi)
     do it = 1, 100
-      call model_flow_stress(mat, eps_p + de, rate, temp, t_m, g_ratio, sy, slope)
+      call model_flow_stress(mat, eps_p + de, rate, temp, t_m, g_ratio, rho, sy, slope)
       f = q_trial - g3*de - sy
       if (abs(f) <= 1.0e-13_rk*q_trial) exit
       call bracketed_newton(de, f, -(g3 + slope), lo, hi, de_new)

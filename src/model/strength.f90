@@ -5,7 +5,7 @@ module udar_strength
   use udar_kinds, only: rk, block_size
   use udar_config, only: material_cfg_t, strength_none, strength_elastic, &
       strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, jc_rate_plastic, &
-      strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts
+      strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw
   use udar_flow_models, only: melt_temperature, shear_modulus_at, model_flow_stress, model_return, bracketed_newton, &
       mts_flow_stress, mts_return
   implicit none
@@ -37,13 +37,13 @@ contains
       sy = mat%yield_stress + mat%hardening_modulus*eps_p
     case (strength_johnson_cook)
       sy = jc_hardening(mat, eps_p)*jc_rate_factor(mat, rate)*jc_thermal_factor(mat, temp)
-    case (strength_zerilli_armstrong, strength_steinberg_guinan)
+    case (strength_zerilli_armstrong, strength_steinberg_guinan, strength_ptw)
       pp = 0.0_rk
       et = 1.0_rk
       if (present(p)) pp = p
       if (present(eta)) et = eta
       call model_flow_stress(mat, eps_p, rate, temp, melt_temperature(mat, et), &
-                             shear_modulus_at(mat, pp, temp, et)/mat%shear_modulus, sy, slope)
+                             shear_modulus_at(mat, pp, temp, et)/mat%shear_modulus, mat%rho0*et, sy, slope)
     case (strength_mts)
       pp = 0.0_rk
       et = 1.0_rk
@@ -141,11 +141,12 @@ contains
             call jc_return(mat, dt, q_trial(i), eps_p(i), soft(i), factor, .false., d_eps(i), sy(i), hard(i))
         end if
       end do
-    case (strength_zerilli_armstrong, strength_steinberg_guinan)
+    case (strength_zerilli_armstrong, strength_steinberg_guinan, strength_ptw)
       do i = 1, nb
         d_eps(i) = 0.0_rk
         t_m = melt_temperature(mat, eta(i))
-        call model_flow_stress(mat, eps_p(i), rate(i), temp(i), t_m, g_el(i)/mat%shear_modulus, sy(i), slope)
+        call model_flow_stress(mat, eps_p(i), rate(i), temp(i), t_m, g_el(i)/mat%shear_modulus, mat%rho0*eta(i), &
+                               sy(i), slope)
         if (q_trial(i) <= sy(i)) cycle
         if (g_el(i) <= 0.0_rk) then
           ! no shear stiffness left: no deviator either
@@ -153,7 +154,7 @@ contains
           cycle
         end if
         call model_return(mat, g_el(i), q_trial(i), eps_p(i), rate(i), temp(i), t_m, g_el(i)/mat%shear_modulus, &
-                          d_eps(i), sy(i))
+                          mat%rho0*eta(i), d_eps(i), sy(i))
         hard(i) = sy(i)
       end do
     case (strength_mts)
@@ -205,8 +206,8 @@ contains
       initial_hardening = mat%jc_a
     case (strength_zerilli_armstrong)
       initial_hardening = mat%za_c0 + mat%za_c1
-    case (strength_mts)
-      initial_hardening = 0.0_rk          ! sigma_e of annealed material
+    case (strength_mts, strength_ptw)
+      initial_hardening = 0.0_rk          ! sigma_e of annealed material; PTW: unused
     case (strength_steinberg_guinan)
       initial_hardening = min(mat%sg_y0*(1.0_rk + mat%sg_beta*mat%sg_eps_i)**mat%sg_n, mat%sg_ymax)
     case default

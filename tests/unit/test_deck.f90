@@ -608,7 +608,7 @@ contains
     call check(cfg%parts(1)%initial_temperature == 720, 'part 1 at 720 K')
     call check(cfg%parts(2)%initial_temperature == 294, "part 2 at its material's (t_room)")
     call check(text_has_line(cfg%resolved_text, "  shear_model = 'steinberg_guinan'", &
-               '! constant | steinberg_guinan | mts'), 'resolved shear_model with its choices')
+               '! constant | steinberg_guinan | mts | ptw'), 'resolved shear_model with its choices')
     call check(text_has_line(cfg%resolved_text, "  sg_a = 1.03e-11", '! 1/Pa'), 'resolved sg_a')
     if (nfail == before) then
       call pass('strength_models')
@@ -650,8 +650,10 @@ contains
     call has(f//":15: &material #5 'e': mts_sigma0es is required but not set", 'saturation threshold stress')
     call has(f//":15: &material #5 'e': specific_heat is required but not set", "strength = 'mts'")
     call has(f//":15: &material #5 'e': mts_t0 is required but not set", "shear_model = 'mts'")
-    if (nfail == before .and. errs%count() /= 12) &
-         call fail('strength_model_errors', 'expected 12 messages, got '//itoa(errs%count()))
+    call has(f//":17: &material #6 'f': ptw_molar_mass is required but not set", "strength = 'ptw' (kg/mol")
+    call has(f//":17: &material #6 'f': t_melt is required but not set", "strength = 'ptw' (its homologous")
+    if (nfail == before .and. errs%count() /= 14) &
+         call fail('strength_model_errors', 'expected 14 messages, got '//itoa(errs%count()))
     if (nfail == before) then
       call pass('strength_model_errors')
     else
@@ -793,6 +795,10 @@ contains
                  n%mts_rate0e, n%mts_pe, n%mts_qe, n%mts_kb3, n%mts_a0, n%mts_a1, n%mts_a2, n%mts_a3, &
                  n%mts_theta_iv, n%mts_alpha, n%mts_sigma0es, n%mts_g0es, n%mts_rate0es, n%mts_d, n%mts_t0])) &
              why = 'material%mts_*'
+        if (any([m%ptw_theta, m%ptw_p, m%ptw_s0, m%ptw_sinf, m%ptw_kappa, m%ptw_gamma, m%ptw_y0, m%ptw_yinf, &
+                 m%ptw_y1, m%ptw_y2, m%ptw_beta, m%ptw_molar_mass, m%ptw_alpha] /= &
+                [n%ptw_theta, n%ptw_p, n%ptw_s0, n%ptw_sinf, n%ptw_kappa, n%ptw_gamma, n%ptw_y0, n%ptw_yinf, &
+                 n%ptw_y1, n%ptw_y2, n%ptw_beta, n%ptw_molar_mass, n%ptw_alpha])) why = 'material%ptw_*'
         if (m%melt_model /= n%melt_model) why = 'material%melt_model'
       end associate
     end do

@@ -8,7 +8,8 @@ program test_flow_models
   use udar_kinds, only: rk
   use udar_strings, only: r2s
   use udar_config, only: material_cfg_t, strength_zerilli_armstrong, strength_steinberg_guinan, &
-      shear_steinberg_guinan, melt_steinberg_guinan, eos_mie_gruneisen, strength_mts, shear_mts
+      shear_steinberg_guinan, melt_steinberg_guinan, eos_mie_gruneisen, strength_mts, shear_mts, &
+      strength_ptw, shear_ptw
   use udar_strength, only: strength_block, von_mises, yield_stress
   use udar_flow_models, only: melt_temperature, shear_modulus_at
   use unit_checks, only: check, check_summary
@@ -18,6 +19,7 @@ program test_flow_models
   call test_steinberg_guinan()
   call test_returns()
   call test_mts()
+  call test_ptw()
   call check_summary()
 
 contains
@@ -119,6 +121,53 @@ contains
     db(1,:) = d; wb = 0; sb(1,:) = s; eb(1) = eps; soft = 1; hard = x
     call strength_block(mat, 1, 1, dt, db, wb, soft, [temp], [0.0_rk], [1.0_rk], hard, sb, eb, wdb, wpb)
     s = sb(1,:); eps = eb(1); x = hard(1)
+  end subroutine
+
+  !> OFHC copper, Preston-Tonks-Wallace (2003; the constants as in the
+  !> Uintah documentation): theta 0.025, p 2, s0 0.0085, sinf 0.00055, kappa
+  !> 0.11, gamma 1e-5, y0 = yinf = 1e-4, y1 0.094, y2 0.575, beta 0.25, M
+  !> 63.54 g/mol, G = 51.8 GPa (1 - 0.2 T/T_m), T_m 1356 K. The values below
+  !> were computed from the paper's equations by an independent Python
+  !> evaluation (issue 16's research notes), to six digits.
+  type(material_cfg_t) function ptw_copper() result(mat)
+    mat%rho0 = 8930; mat%shear_modulus = 51.8e9_rk; mat%strength = strength_ptw
+    mat%shear_model = shear_ptw; mat%ptw_alpha = 0.2_rk; mat%t_melt = 1356
+    mat%ptw_theta = 0.025_rk; mat%ptw_p = 2; mat%ptw_s0 = 0.0085_rk; mat%ptw_sinf = 0.00055_rk
+    mat%ptw_kappa = 0.11_rk; mat%ptw_gamma = 1e-5_rk; mat%ptw_y0 = 1e-4_rk; mat%ptw_yinf = 1e-4_rk
+    mat%ptw_y1 = 0.094_rk; mat%ptw_y2 = 0.575_rk; mat%ptw_beta = 0.25_rk; mat%ptw_molar_mass = 0.06354_rk
+    mat%specific_heat = 383
+  end function
+
+  subroutine test_ptw()
+    type(material_cfg_t) :: mat
+    real(rk) :: s(6), eps, dt, d(6), err, rate
+    integer :: k
+    mat = ptw_copper()
+    call ptw_value(mat, 'ptw_copper_1_per_s_eps0', 0.0_rk, 1.0_rk, 9.905e6_rk)
+    call ptw_value(mat, 'ptw_copper_1_per_s_eps0.2', 0.2_rk, 1.0_rk, 277.637e6_rk)
+    call ptw_value(mat, 'ptw_copper_1e4_per_s_eps0', 0.0_rk, 1.0e4_rk, 51.819e6_rk)
+    call ptw_value(mat, 'ptw_copper_1e4_per_s_eps0.2', 0.2_rk, 1.0e4_rk, 336.657e6_rk)
+    dt = 1.0e-8_rk
+    d = [-1.0e4_rk, 0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk]
+    rate = 2.0_rk/3.0_rk*1.0e4_rk
+    s = 0; eps = 0; err = 0
+    do k = 1, 1000
+      call step(mat, dt, d, 298.0_rk, 0.0_rk, 1.0_rk, s, eps)
+      if (eps > 0) err = max(err, abs(von_mises(s)/yield_stress(mat, eps, rate, 298.0_rk) - 1))
+    end do
+    call check('ptw_return_on_surface', eps > 0.05_rk .and. err < 1e-12_rk, &
+               'eps_p = '//r2s(eps)//', largest |q/sigma - 1| '//r2s(err))
+  end subroutine
+
+  !> The PTW flow stress at 298 K against a value computed independently.
+  subroutine ptw_value(mat, name, e, r, expected)
+    type(material_cfg_t), intent(in) :: mat
+    character(len=*), intent(in) :: name
+    real(rk), intent(in) :: e, r, expected
+    real(rk) :: sy
+    sy = yield_stress(mat, e, r, 298.0_rk)
+    call check(name, abs(sy/expected - 1) < 1e-4_rk, 'sigma = '//r2s(sy)//' Pa (computed independently: '// &
+               r2s(expected)//')')
   end subroutine
 
   subroutine test_zerilli_armstrong()
