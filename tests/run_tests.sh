@@ -221,6 +221,8 @@ run_test "regression/taylor_ofhc_baseline" regression taylor_ofhc_baseline bin/u
 run_test "regression/taylor_models_jc" regression taylor_models bin/udar taylor_jc
 run_test "regression/taylor_models_za" regression taylor_models bin/udar taylor_za
 run_test "regression/taylor_models_scg" regression taylor_models bin/udar taylor_scg
+run_test "regression/taylor_models_mts" regression taylor_models bin/udar taylor_mts
+run_test "regression/taylor_models_ptw" regression taylor_models bin/udar taylor_ptw
 run_test "regression/taylor_half_length" regression_pair taylor_half_length bin/udar taylor_half_length taylor_half_length_plain
 
 wait; print_done

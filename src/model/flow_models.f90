@@ -109,7 +109,19 @@ contains
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: psi, rate, t_hat, g, rho
     real(rk), intent(out) :: sy, slope
-    real(rk) :: xi, e, arg, er, ts, ty, a, d, big, u, tau, dtau
+    real(rk) :: ts, ty
+    call ptw_saturation(mat, rate, t_hat, g, rho, ts, ty)
+    call ptw_hardening(mat, psi, ts, ty, g, sy, slope)
+  end subroutine
+
+  !> PTW's saturation and yield stresses tau_s, tau_y (over G) at a rate,
+  !> homologous temperature, shear modulus and density: what the return
+  !> holds fixed.
+  pure subroutine ptw_saturation(mat, rate, t_hat, g, rho, ts, ty)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: rate, t_hat, g, rho
+    real(rk), intent(out) :: ts, ty
+    real(rk) :: xi, e, arg, er
     xi = 0.5_rk*(4.0_rk*pi*rho*avogadro/(3.0_rk*mat%ptw_molar_mass))**(1.0_rk/3.0_rk)*sqrt(g/rho)
     e = max(rate, mts_rate_floor)/xi
     arg = mat%ptw_kappa*t_hat*log(mat%ptw_gamma/e)
@@ -117,6 +129,15 @@ contains
     ts = max(mat%ptw_s0 - (mat%ptw_s0 - mat%ptw_sinf)*er, mat%ptw_s0*(e/mat%ptw_gamma)**mat%ptw_beta)
     ty = max(mat%ptw_y0 - (mat%ptw_y0 - mat%ptw_yinf)*er, &
              min(mat%ptw_y1*(e/mat%ptw_gamma)**mat%ptw_y2, mat%ptw_s0*(e/mat%ptw_gamma)**mat%ptw_beta))
+  end subroutine
+
+  !> PTW's flow stress 2 tau g at plastic strain psi between ts and ty, and
+  !> its slope.
+  pure subroutine ptw_hardening(mat, psi, ts, ty, g, sy, slope)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: psi, ts, ty, g
+    real(rk), intent(out) :: sy, slope
+    real(rk) :: a, d, big, u, tau, dtau
     d = ts - ty
     if (d <= 0.0_rk) then
       tau = ts
@@ -150,7 +171,7 @@ contains
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: g, q_trial, eps_p, rate, temp, t_m, g_ratio, rho
     real(rk), intent(out) :: de, sy
-    real(rk) :: g3, lo, hi, f, slope, de_new
+    real(rk) :: g3, lo, hi, f, slope, de_new, ts, ty
     integer :: it
     g3 = 3.0_rk*g
     if (temp >= t_m) then
@@ -159,12 +180,14 @@ contains
       sy = 0.0_rk
       return
     end if
-    call model_flow_stress(mat, eps_p, rate, temp, t_m, g_ratio, rho, sy, slope)
+    ! PTW's saturation stresses do not change in the return: once
+    if (mat%strength == strength_ptw) call ptw_saturation(mat, rate, temp/t_m, g, rho, ts, ty)
+    call flow(eps_p, sy, slope)
     lo = 0.0_rk
     hi = q_trial/g3
     de = min((q_trial - sy)/g3, hi)
     do it = 1, 100
-      call model_flow_stress(mat, eps_p + de, rate, temp, t_m, g_ratio, rho, sy, slope)
+      call flow(eps_p + de, sy, slope)
       f = q_trial - g3*de - sy
       if (abs(f) <= 1.0e-13_rk*q_trial) exit
       call bracketed_newton(de, f, -(g3 + slope), lo, hi, de_new)
@@ -176,6 +199,19 @@ contains
     end do
     ! on the yield surface by construction of the return
     sy = q_trial - g3*de
+
+  contains
+
+    !> The flow stress and its slope at plastic strain e.
+    pure subroutine flow(e, sig, dsig)
+      real(rk), intent(in) :: e
+      real(rk), intent(out) :: sig, dsig
+      if (mat%strength == strength_ptw) then
+        call ptw_hardening(mat, e, ts, ty, g, sig, dsig)
+      else
+        call model_flow_stress(mat, e, rate, temp, t_m, g_ratio, rho, sig, dsig)
+      end if
+    end subroutine
   end subroutine
 
   !> The parts of the MTS flow stress that do not depend on the internal

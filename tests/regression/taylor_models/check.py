@@ -15,7 +15,8 @@ import taylor  # noqa: E402
 import udar_results  # noqa: E402
 
 # the table's errors (length, footprint) of each model, jc190 at h = 0.2 mm
-TABLE = {'jc': (0.0721, 0.0867), 'za': (0.0473, -0.0019), 'scg': (0.0582, -0.0274)}
+TABLE = {'jc': (0.0721, 0.0867), 'za': (0.0473, -0.0019), 'scg': (0.0582, -0.0274),
+         'mts': (0.0372, -0.0059), 'ptw': (0.0766, -0.0742)}
 MEASURED_LENGTH, MEASURED_FOOTPRINT = 16.21e-3, 13.56e-3
 
 run_dir, deck = sys.argv[1], sys.argv[2]
