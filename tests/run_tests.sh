@@ -127,6 +127,7 @@ run_test "cli/field_output_ranks" tests/cli/field_output_ranks.sh build/debug/te
 run_test "cli/ranks_elastic_bar" tests/cli/rank_invariance.sh bin/udar elastic_bar
 run_test "cli/ranks_elastic_bar_2d" tests/cli/rank_invariance.sh bin/udar elastic_bar_2d
 run_test "cli/ranks_taylor_wg_2d" tests/cli/rank_invariance.sh bin/udar taylor_wg_2d 10.0e-6
+run_test "cli/ranks_taylor_mts_2d" tests/cli/rank_invariance.sh bin/udar taylor_mts_2d 10.0e-6
 run_test "cli/ranks_coulomb_wall" tests/cli/rank_invariance.sh bin/udar-debug coulomb_wall
 run_test "cli/more_ranks_than_elements" tests/cli/more_ranks_than_elements.sh bin/udar-debug
 run_test "cli/ranks_plate_impact" tests/cli/rank_invariance.sh bin/udar plate_impact

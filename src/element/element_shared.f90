@@ -41,6 +41,7 @@ module udar_element_shared
     real(rk) :: s(ld,6), eps(ld), hard(ld), soft(ld), e_int(ld), p(ld), q(ld)
     real(rk) :: trd(ld), w_dev(ld), w_pl(ld), bulk(ld), visc(ld)
     real(rk) :: eta(ld)                    !< -: rho/rho0 at the step's start
+    real(rk) :: g(ld)                      !< Pa: the shear modulus of the stiffness bound
     real(rk) :: lam(ld)                    !< N/m: the stiffness bound the driver puts here, before viscosity
     real(rk) :: dt_el(ld)                  !< s: own step (eroding materials only)
     real(rk) :: p_app(ld), p_node(ld)      !< Pa: the pressure in the element's own forces and in its nodes' average

@@ -13,7 +13,7 @@ module udar_hydro
   real(rk), parameter :: compression_noise = 1.0e-12_rk
   public :: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_volume_ratios, blended_pressures, &
             blend_exponent, &
-            step_shear_modulus, block_shear_modulus, step_volumetric_share, tangent_bulk_modulus
+            step_shear_modulus, element_shear_moduli, step_volumetric_share, tangent_bulk_modulus
 
   !> The share of an element's volumetric stiffness that the nodal time step
   !> of the nodal-averaged elements counts beyond their own beta: their
@@ -221,21 +221,25 @@ contains
     if (mat%strength /= strength_none) g = mat%shear_modulus
   end function
 
-  !> The shear modulus of a block's stiffness bound: step_shear_modulus, or
-  !> where it depends on the state (shear_model) the largest of the block's
-  !> elements at pressure p (Pa), temperature temp (K) and volume ratio j.
-  pure real(rk) function block_shear_modulus(mat, nb, p, temp, j) result(g)
+  !> The shear moduli g(1:nb) of the elements' stiffness bounds:
+  !> step_shear_modulus, or where it depends on the state (shear_model) each
+  !> element's at pressure p (Pa), temperature temp (K) and volume ratio j
+  !> (each its own: a block's largest made the step depend on which elements
+  !> share a block, and so on the rank count).
+  pure subroutine element_shear_moduli(mat, nb, p, temp, j, g)
     type(material_cfg_t), intent(in) :: mat
     integer, intent(in) :: nb
     real(rk), intent(in) :: p(nb), temp(nb), j(nb)
+    real(rk), intent(out) :: g(nb)
     integer :: i
-    g = step_shear_modulus(mat)
-    if (mat%shear_model == shear_constant .or. mat%strength == strength_none) return
-    g = 0.0_rk
-    do i = 1, nb
-      g = max(g, shear_modulus_at(mat, p(i), temp(i), 1.0_rk/j(i)))
-    end do
-  end function
+    if (mat%shear_model == shear_constant .or. mat%strength == strength_none) then
+      g = step_shear_modulus(mat)
+    else
+      do i = 1, nb
+        g(i) = shear_modulus_at(mat, p(i), temp(i), 1.0_rk/j(i))
+      end do
+    end if
+  end subroutine
 
   !> The tangent bulk modulus rho c_b^2 of the stiffness bound from the
   !> squared dilatational speed c2 = c_b^2 + g43/rho (dilatational_speed2),

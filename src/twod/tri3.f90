@@ -133,7 +133,7 @@ contains
   pure subroutine tri_stiffness_bound(ld, nb, axisymmetric, vol, rbar, grad, free_r, k, g, phi, lam)
     integer, intent(in) :: ld, nb
     logical, intent(in) :: axisymmetric
-    real(rk), intent(in) :: vol(nb), rbar(nb), grad(ld,3,2), free_r(nb), k(nb), g, phi
+    real(rk), intent(in) :: vol(nb), rbar(nb), grad(ld,3,2), free_r(nb), k(nb), g(nb), phi
     real(rk), intent(inout) :: lam(nb)
     real(rk) :: srr, szz, srz, s_max, eta
     integer :: i
@@ -144,8 +144,8 @@ contains
       s_max = 0.5_rk*(srr + szz) + sqrt(0.25_rk*(srr - szz)**2 + srz**2)
       eta = 0.0_rk
       if (axisymmetric) eta = free_r(i)/(9.0_rk*rbar(i)**2)
-      lam(i) = abs(vol(i))*(phi*max(k(i) - 2.0_rk/3.0_rk*g, 0.0_rk)*(sqrt(srr + szz) + sqrt(eta))**2 &
-                            + 2.0_rk*g*(s_max + eta))
+      lam(i) = abs(vol(i))*(phi*max(k(i) - 2.0_rk/3.0_rk*g(i), 0.0_rk)*(sqrt(srr + szz) + sqrt(eta))**2 &
+                            + 2.0_rk*g(i)*(s_max + eta))
     end do
   end subroutine
 end module udar_tri3

@@ -4,7 +4,8 @@
 # bitwise the history and fields of the straight 1-rank run; and the restart
 # says it is axisymmetric (a checkpoint does not carry a geometry the deck
 # does not say). The same with contact: the axisymmetric bars head-on
-# (symmetric contact) checkpointed mid-contact at 4 us, restarted on 2 ranks.
+# (symmetric contact) checkpointed mid-contact at 4 us, restarted on 2 ranks;
+# and the copper bar with the MTS model (state in the checkpoint) on 3 ranks.
 #   restart_2d.sh EXE
 source "$(dirname "$0")/common.sh" "$1"
 # deck DECK of regression case CASE into $W, run to T_END with one checkpoint at T_CKPT
@@ -31,4 +32,9 @@ case=bars_head_on_2d_symmetric
 checkpointed bars_head_on_2d $case 10.0e-6 4.0e-6
 straight_run $case
 restart_matches_straight $case 2
+# a strength model with state (MTS: the internal stress), checkpointed in plastic flow
+case=taylor_mts_2d
+checkpointed $case $case 20.0e-6 10.0e-6
+straight_run $case
+restart_matches_straight $case 3
 [ $fails -eq 0 ]
