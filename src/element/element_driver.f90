@@ -12,6 +12,7 @@ module udar_element_driver
   use udar_tet4, only: tet_gradients, tet_velocity_gradient, tet_internal_forces, tet_pressure_forces, tet_volumes, &
       tet_stiffness_bound
   use udar_fracture, only: el_eroded, erode_reasons
+  use udar_config, only: shear_constant
   use udar_hydro, only: dilatational_speed2, step_shear_modulus, element_shear_moduli, step_volumetric_share, &
       tangent_bulk_modulus
   use udar_element_shared, only: element_block_t, pass_outcome_t, block_volume_ratios, material_update, &
@@ -117,8 +118,14 @@ contains
       call block_volume_ratios(dom, first, nb, eb)
       call material_update(dom, first, nb, dt, eb, out)
       ! the element's stiffness bound (material_finish stiffens it by its viscosity)
-      call element_shear_moduli(dom%mat(dom%el_mat(first)), nb, eb%p, dom%el_temp(first:last), eb%j_new, eb%g)
-      call tet_stiffness_bound(ld, nb, eb%vol, grad, eb%bulk, eb%g, step_volumetric_share(dom%anti_locking, dom%stab_beta_large), eb%lam)
+      if (dom%mat(dom%el_mat(first))%shear_model == shear_constant) then
+        call tet_stiffness_bound(ld, nb, eb%vol, grad, eb%bulk, step_shear_modulus(dom%mat(dom%el_mat(first))), &
+                                 step_volumetric_share(dom%anti_locking, dom%stab_beta_large), eb%lam)
+      else
+        call element_shear_moduli(dom%mat(dom%el_mat(first)), nb, eb%p, dom%el_temp(first:last), eb%j_new, eb%g)
+        call tet_stiffness_bound(ld, nb, eb%vol, grad, eb%bulk, 0.0_rk, &
+                                 step_volumetric_share(dom%anti_locking, dom%stab_beta_large), eb%lam, eb%g)
+      end if
       call material_finish(dom, first, nb, dt, eb, out)
       ! forces of the deviator, the viscosity and the pressure the element
       ! keeps for itself; the nodal pressures' part follows in
@@ -149,9 +156,14 @@ contains
         g = step_shear_modulus(mat)
         call dilatational_speed2(mat, nb, dom%el_j(first:last), dom%el_p(first:last), dom%el_mass(first:last), vol, c2)
         bulk(1:nb) = tangent_bulk_modulus(c2(1:nb), dom%el_mass(first:last)/vol(1:nb), 4.0_rk/3.0_rk*g)
-        call element_shear_moduli(mat, nb, dom%el_p(first:last), dom%el_temp(first:last), dom%el_j(first:last), g_el)
-        call tet_stiffness_bound(ld, nb, vol, grad, bulk, g_el, step_volumetric_share(dom%anti_locking, dom%stab_beta_large), &
-                                 lam)
+        if (mat%shear_model == shear_constant) then
+          call tet_stiffness_bound(ld, nb, vol, grad, bulk, g, step_volumetric_share(dom%anti_locking, dom%stab_beta_large), &
+                                   lam)
+        else
+          call element_shear_moduli(mat, nb, dom%el_p(first:last), dom%el_temp(first:last), dom%el_j(first:last), g_el)
+          call tet_stiffness_bound(ld, nb, vol, grad, bulk, 0.0_rk, &
+                                   step_volumetric_share(dom%anti_locking, dom%stab_beta_large), lam, g_el)
+        end if
       end associate
       dom%el_k(first:last) = merge(0.0_rk, lam(1:nb), dom%el_state(first:last) == el_eroded)
     end do

@@ -140,12 +140,29 @@ contains
   !> regular tetrahedron, with s_max <= tr S/3 + sqrt(2/3) |dev S|. The
   !> volumetric term is scaled by phi: 1 is the plain element's bound, the
   !> nodal-averaged elements take less (hydro step_volumetric_share).
-  pure subroutine tet_stiffness_bound(ld, nb, vol, grad, k, g, phi, lam)
+  pure subroutine tet_stiffness_bound(ld, nb, vol, grad, k, g, phi, lam, g_el)
     integer, intent(in) :: ld, nb
-    real(rk), intent(in) :: vol(nb), grad(ld,4,3), k(nb), g(nb), phi
+    real(rk), intent(in) :: vol(nb), grad(ld,4,3), k(nb), g, phi
     real(rk), intent(inout) :: lam(nb)
+    !> each element's shear modulus, where it depends on the state (then g is not used)
+    real(rk), intent(in), optional :: g_el(nb)
     real(rk) :: sxx, syy, szz, sxy, syz, szx, tr3, dev2
     integer :: i
+    if (present(g_el)) then
+      do i = 1, nb
+        sxx = grad(i,1,1)**2 + grad(i,2,1)**2 + grad(i,3,1)**2 + grad(i,4,1)**2
+        syy = grad(i,1,2)**2 + grad(i,2,2)**2 + grad(i,3,2)**2 + grad(i,4,2)**2
+        szz = grad(i,1,3)**2 + grad(i,2,3)**2 + grad(i,3,3)**2 + grad(i,4,3)**2
+        sxy = grad(i,1,1)*grad(i,1,2) + grad(i,2,1)*grad(i,2,2) + grad(i,3,1)*grad(i,3,2) + grad(i,4,1)*grad(i,4,2)
+        syz = grad(i,1,2)*grad(i,1,3) + grad(i,2,2)*grad(i,2,3) + grad(i,3,2)*grad(i,3,3) + grad(i,4,2)*grad(i,4,3)
+        szx = grad(i,1,3)*grad(i,1,1) + grad(i,2,3)*grad(i,2,1) + grad(i,3,3)*grad(i,3,1) + grad(i,4,3)*grad(i,4,1)
+        tr3 = (sxx + syy + szz)/3.0_rk
+        dev2 = (sxx - tr3)**2 + (syy - tr3)**2 + (szz - tr3)**2 + 2.0_rk*(sxy**2 + syz**2 + szx**2)
+        lam(i) = abs(vol(i))*(3.0_rk*phi*max(k(i) - 2.0_rk/3.0_rk*g_el(i), 0.0_rk)*tr3 &
+                              + 2.0_rk*g_el(i)*(tr3 + sqrt(2.0_rk/3.0_rk*dev2)))
+      end do
+      return
+    end if
     do i = 1, nb
       sxx = grad(i,1,1)**2 + grad(i,2,1)**2 + grad(i,3,1)**2 + grad(i,4,1)**2
       syy = grad(i,1,2)**2 + grad(i,2,2)**2 + grad(i,3,2)**2 + grad(i,4,2)**2
@@ -155,8 +172,8 @@ contains
       szx = grad(i,1,3)*grad(i,1,1) + grad(i,2,3)*grad(i,2,1) + grad(i,3,3)*grad(i,3,1) + grad(i,4,3)*grad(i,4,1)
       tr3 = (sxx + syy + szz)/3.0_rk
       dev2 = (sxx - tr3)**2 + (syy - tr3)**2 + (szz - tr3)**2 + 2.0_rk*(sxy**2 + syz**2 + szx**2)
-      lam(i) = abs(vol(i))*(3.0_rk*phi*max(k(i) - 2.0_rk/3.0_rk*g(i), 0.0_rk)*tr3 &
-                            + 2.0_rk*g(i)*(tr3 + sqrt(2.0_rk/3.0_rk*dev2)))
+      lam(i) = abs(vol(i))*(3.0_rk*phi*max(k(i) - 2.0_rk/3.0_rk*g, 0.0_rk)*tr3 &
+                            + 2.0_rk*g*(tr3 + sqrt(2.0_rk/3.0_rk*dev2)))
     end do
   end subroutine
 end module udar_tet4

@@ -130,13 +130,28 @@ contains
   !> tet_stiffness_bound (step_volumetric_share): with phi = 1 a bound of
   !> the plain element's stiffness; below 1 an estimate for the
   !> nodal-averaged elements, whose averaged part acts over the nodal patch.
-  pure subroutine tri_stiffness_bound(ld, nb, axisymmetric, vol, rbar, grad, free_r, k, g, phi, lam)
+  pure subroutine tri_stiffness_bound(ld, nb, axisymmetric, vol, rbar, grad, free_r, k, g, phi, lam, g_el)
     integer, intent(in) :: ld, nb
     logical, intent(in) :: axisymmetric
-    real(rk), intent(in) :: vol(nb), rbar(nb), grad(ld,3,2), free_r(nb), k(nb), g(nb), phi
+    real(rk), intent(in) :: vol(nb), rbar(nb), grad(ld,3,2), free_r(nb), k(nb), g, phi
     real(rk), intent(inout) :: lam(nb)
+    !> each element's shear modulus, where it depends on the state (then g is not used)
+    real(rk), intent(in), optional :: g_el(nb)
     real(rk) :: srr, szz, srz, s_max, eta
     integer :: i
+    if (present(g_el)) then
+      do i = 1, nb
+        srr = grad(i,1,1)**2 + grad(i,2,1)**2 + grad(i,3,1)**2
+        szz = grad(i,1,2)**2 + grad(i,2,2)**2 + grad(i,3,2)**2
+        srz = grad(i,1,1)*grad(i,1,2) + grad(i,2,1)*grad(i,2,2) + grad(i,3,1)*grad(i,3,2)
+        s_max = 0.5_rk*(srr + szz) + sqrt(0.25_rk*(srr - szz)**2 + srz**2)
+        eta = 0.0_rk
+        if (axisymmetric) eta = free_r(i)/(9.0_rk*rbar(i)**2)
+        lam(i) = abs(vol(i))*(phi*max(k(i) - 2.0_rk/3.0_rk*g_el(i), 0.0_rk)*(sqrt(srr + szz) + sqrt(eta))**2 &
+                              + 2.0_rk*g_el(i)*(s_max + eta))
+      end do
+      return
+    end if
     do i = 1, nb
       srr = grad(i,1,1)**2 + grad(i,2,1)**2 + grad(i,3,1)**2
       szz = grad(i,1,2)**2 + grad(i,2,2)**2 + grad(i,3,2)**2
@@ -144,8 +159,8 @@ contains
       s_max = 0.5_rk*(srr + szz) + sqrt(0.25_rk*(srr - szz)**2 + srz**2)
       eta = 0.0_rk
       if (axisymmetric) eta = free_r(i)/(9.0_rk*rbar(i)**2)
-      lam(i) = abs(vol(i))*(phi*max(k(i) - 2.0_rk/3.0_rk*g(i), 0.0_rk)*(sqrt(srr + szz) + sqrt(eta))**2 &
-                            + 2.0_rk*g(i)*(s_max + eta))
+      lam(i) = abs(vol(i))*(phi*max(k(i) - 2.0_rk/3.0_rk*g, 0.0_rk)*(sqrt(srr + szz) + sqrt(eta))**2 &
+                            + 2.0_rk*g*(s_max + eta))
     end do
   end subroutine
 end module udar_tri3

@@ -14,6 +14,7 @@ module udar_tri_driver
   use udar_tri3, only: tri_geometry, tri_smallest_altitude, tri_velocity_gradient, tri_internal_forces, &
       tri_stiffness_bound, tri_patch_share
   use udar_fracture, only: el_eroded, erode_reasons
+  use udar_config, only: shear_constant
   use udar_hydro, only: dilatational_speed2, step_shear_modulus, element_shear_moduli, tangent_bulk_modulus, &
       step_volumetric_share
   use udar_element_shared, only: element_block_t, pass_outcome_t, block_volume_ratios, material_update, &
@@ -81,8 +82,14 @@ contains
       call block_volume_ratios(dom, first, nb, eb)
       call material_update(dom, first, nb, dt, eb, out)
       ! its stiffness bound with the triangle's volumetric share (theory.md 14)
-      call element_shear_moduli(dom%mat(dom%el_mat(first)), nb, eb%p, dom%el_temp(first:last), eb%j_new, eb%g)
-      call tri_stiffness_bound(ld, nb, axi, eb%vol, rbar, grad, free_r, eb%bulk, eb%g, volumetric_share(dom), eb%lam)
+      if (dom%mat(dom%el_mat(first))%shear_model == shear_constant) then
+        call tri_stiffness_bound(ld, nb, axi, eb%vol, rbar, grad, free_r, eb%bulk, &
+                                 step_shear_modulus(dom%mat(dom%el_mat(first))), volumetric_share(dom), eb%lam)
+      else
+        call element_shear_moduli(dom%mat(dom%el_mat(first)), nb, eb%p, dom%el_temp(first:last), eb%j_new, eb%g)
+        call tri_stiffness_bound(ld, nb, axi, eb%vol, rbar, grad, free_r, eb%bulk, 0.0_rk, volumetric_share(dom), &
+                                 eb%lam, eb%g)
+      end if
       call material_finish(dom, first, nb, dt, eb, out)
       call tri_internal_forces(ld, nb, axi, eb%vol, area, grad, eb%s, eb%p_app, fe)
       do i = 1, nb
@@ -130,9 +137,14 @@ contains
         g = step_shear_modulus(mat)
         call dilatational_speed2(mat, nb, dom%el_j(first:last), dom%el_p(first:last), dom%el_mass(first:last), vol, c2)
         bulk(1:nb) = tangent_bulk_modulus(c2(1:nb), dom%el_mass(first:last)/vol(1:nb), 4.0_rk/3.0_rk*g)
-        call element_shear_moduli(mat, nb, dom%el_p(first:last), dom%el_temp(first:last), dom%el_j(first:last), g_el)
-        call tri_stiffness_bound(ld, nb, dom%geometry == geometry_axisymmetric, vol, rbar, grad, free_r, bulk, g_el, &
-                                 volumetric_share(dom), lam)
+        if (mat%shear_model == shear_constant) then
+          call tri_stiffness_bound(ld, nb, dom%geometry == geometry_axisymmetric, vol, rbar, grad, free_r, bulk, g, &
+                                   volumetric_share(dom), lam)
+        else
+          call element_shear_moduli(mat, nb, dom%el_p(first:last), dom%el_temp(first:last), dom%el_j(first:last), g_el)
+          call tri_stiffness_bound(ld, nb, dom%geometry == geometry_axisymmetric, vol, rbar, grad, free_r, bulk, 0.0_rk, &
+                                   volumetric_share(dom), lam, g_el)
+        end if
       end associate
       dom%el_k(first:last) = merge(0.0_rk, lam(1:nb), dom%el_state(first:last) == el_eroded)
     end do

@@ -79,7 +79,7 @@ contains
     g = grad
     do form = 1, 3
       dt_crit = 2.0_rk/sqrt(largest_eigenvalue(form, bulk, shear))
-      call tet_stiffness_bound(ne, ne, vol, g, bulk_e, spread(shear, 1, ne), &
+      call tet_stiffness_bound(ne, ne, vol, g, bulk_e, shear, &
                                step_volumetric_share(form /= 1, merge(beta, 0.0_rk, form == 3)), lam)
       k_n = 0
       do e = 1, ne

@@ -121,7 +121,7 @@ contains
     real(rk), intent(in) :: mass(n), bulk_e(ne), shear, phi
     real(rk) :: lam(ne), k_n(n)
     integer :: e
-    call tri_stiffness_bound(ne, ne, axi, vol, rbar, grad, free_r, bulk_e, spread(shear, 1, ne), phi, lam)
+    call tri_stiffness_bound(ne, ne, axi, vol, rbar, grad, free_r, bulk_e, shear, phi, lam)
     k_n = 0
     do e = 1, ne
       k_n(tri(e,:)) = k_n(tri(e,:)) + lam(e)

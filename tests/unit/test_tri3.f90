@@ -165,7 +165,7 @@ contains
       u = ku/norm2(ku)
     end do
     lam_max = dot_product(u, matmul(kmat, u))
-    call tri_stiffness_bound(1, 1, axisymmetric, ve, re, ge, [real(count(r > 0.0_rk), rk)], [bulk], [shear], 1.0_rk, &
+    call tri_stiffness_bound(1, 1, axisymmetric, ve, re, ge, [real(count(r > 0.0_rk), rk)], [bulk], shear, 1.0_rk, &
                              bound)
     call check('tri_stiffness_bound_'//name, asym < 1e-12_rk .and. bound(1) >= lam_max*(1.0_rk - 1e-12_rk) .and. &
                bound(1) <= 3.0_rk*lam_max, 'bound '//r2s(bound(1))//' N/m against the largest eigenvalue '// &
