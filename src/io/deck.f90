@@ -26,7 +26,8 @@ module udar_deck
   use udar_config, only: config_t, run_cfg_t, mesh_cfg_t, material_cfg_t, part_cfg_t, &
        boundary_cfg_t, contact_cfg_t, numerics_cfg_t, output_cfg_t, eos_linear, eos_mie_gruneisen, tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
        strength_none, strength_elastic, strength_perfectly_plastic, strength_linear_hardening, &
-       strength_johnson_cook, strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw, shear_constant, &
+       strength_johnson_cook, strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw, &
+       strength_steinberg_lund, shear_constant, &
        shear_steinberg_guinan, shear_mts, shear_ptw, melt_constant, melt_steinberg_guinan, bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, &
        wall_coulomb, &
        jc_rate_total, jc_rate_plastic, contact_weights_distance, contact_weights_area, &
@@ -70,11 +71,12 @@ module udar_deck
   ! ------------------------------------------------- string forms of the codes
   character(len=20), parameter :: eos_words(2) = [character(len=20) :: 'linear', 'mie_gruneisen']
   integer, parameter :: eos_codes(2) = [eos_linear, eos_mie_gruneisen]
-  character(len=20), parameter :: strength_words(9) = [character(len=20) :: 'none', 'elastic', &
-       'perfectly_plastic', 'linear_hardening', 'johnson_cook', 'zerilli_armstrong', 'steinberg_guinan', 'mts', 'ptw']
-  integer, parameter :: strength_codes(9) = [strength_none, strength_elastic, &
+  character(len=20), parameter :: strength_words(10) = [character(len=20) :: 'none', 'elastic', &
+       'perfectly_plastic', 'linear_hardening', 'johnson_cook', 'zerilli_armstrong', 'steinberg_guinan', 'mts', 'ptw', &
+       'steinberg_lund']
+  integer, parameter :: strength_codes(10) = [strength_none, strength_elastic, &
        strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
-       strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw]
+       strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw, strength_steinberg_lund]
   character(len=20), parameter :: shear_words(4) = [character(len=20) :: 'constant', 'steinberg_guinan', 'mts', 'ptw']
   integer, parameter :: shear_codes(4) = [shear_constant, shear_steinberg_guinan, shear_mts, shear_ptw]
   character(len=20), parameter :: melt_words(2) = [character(len=20) :: 'constant', 'steinberg_guinan']
@@ -163,6 +165,10 @@ module udar_deck
        var_t('material', 'sg_beta', 'r', 1, 0, '-', '>= 0'), &
        var_t('material', 'sg_n', 'r', 1, 0, '-', '>= 0'), &
        var_t('material', 'sg_eps_i', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'sl_yp', 'r', 1, 0, 'Pa', '> 0'), &
+       var_t('material', 'sl_uk', 'r', 1, 0, 'J', '> 0'), &
+       var_t('material', 'sl_c1', 'r', 1, 0, '1/s', '> 0'), &
+       var_t('material', 'sl_c2', 'r', 1, 0, 'Pa s', '>= 0'), &
        var_t('material', 'shear_model', 'c', 1, code_len, '', ''), &
        var_t('material', 'sg_a', 'r', 1, 0, '1/Pa', '>= 0'), &
        var_t('material', 'sg_b', 'r', 1, 0, '1/K', '>= 0'), &
@@ -710,7 +716,7 @@ contains
              v%strength, m%shear_modulus, m%youngs_modulus, m%poisson_ratio, m%yield_stress, &
              m%hardening_modulus, m%jc_a, m%jc_b, m%jc_n, m%jc_c, m%jc_m, m%jc_rate0, v%jc_rate_form, &
              m%za_c0, m%za_c1, m%za_c2, m%za_c3, m%za_c4, m%za_c5, m%za_n, m%za_rate0, &
-             m%sg_y0, m%sg_ymax, m%sg_beta, m%sg_n, m%sg_eps_i, v%shear_model, m%sg_a, m%sg_b, m%sg_t0, &
+             m%sg_y0, m%sg_ymax, m%sg_beta, m%sg_n, m%sg_eps_i, m%sl_yp, m%sl_uk, m%sl_c1, m%sl_c2, v%shear_model, m%sg_a, m%sg_b, m%sg_t0, &
              m%mts_sigma_a, m%mts_sigma_i, m%mts_g0i, m%mts_rate0i, m%mts_pi, m%mts_qi, m%mts_g0e, m%mts_rate0e, m%mts_pe, m%mts_qe, &
              m%mts_kb3, m%mts_a0, m%mts_a1, m%mts_a2, m%mts_a3, m%mts_theta_iv, m%mts_alpha, m%mts_sigma0es, m%mts_g0es, m%mts_rate0es, m%mts_d, m%mts_t0, &
              m%ptw_theta, m%ptw_p, m%ptw_s0, m%ptw_sinf, m%ptw_kappa, m%ptw_gamma, m%ptw_y0, m%ptw_yinf, m%ptw_y1, m%ptw_y2, m%ptw_beta, m%ptw_molar_mass, m%ptw_alpha, &
@@ -762,7 +768,7 @@ contains
                             youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
                             jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, &
                             za_c0, za_c1, za_c2, za_c3, za_c4, za_c5, za_n, za_rate0, &
-                            sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, shear_model, sg_a, sg_b, sg_t0, &
+                            sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, sl_yp, sl_uk, sl_c1, sl_c2, shear_model, sg_a, sg_b, sg_t0, &
                             mts_sigma_a, mts_sigma_i, mts_g0i, mts_rate0i, mts_pi, mts_qi, mts_g0e, mts_rate0e, mts_pe, mts_qe, &
                             mts_kb3, mts_a0, mts_a1, mts_a2, mts_a3, mts_theta_iv, mts_alpha, mts_sigma0es, mts_g0es, mts_rate0es, mts_d, mts_t0, &
                             ptw_theta, ptw_p, ptw_s0, ptw_sinf, ptw_kappa, ptw_gamma, ptw_y0, ptw_yinf, ptw_y1, ptw_y2, ptw_beta, ptw_molar_mass, ptw_alpha, &
@@ -773,7 +779,7 @@ contains
       real(rk), intent(inout) :: rho0, bulk_modulus, c0, s, gamma0, shear_modulus, youngs_modulus, &
            poisson_ratio, yield_stress, hardening_modulus, jc_a, jc_b, jc_n, jc_c, jc_m, jc_rate0, &
            za_c0, za_c1, za_c2, za_c3, za_c4, za_c5, za_n, za_rate0, sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, &
-           sg_a, sg_b, sg_t0, melt_a, mts_sigma_a, mts_sigma_i, mts_g0i, mts_rate0i, mts_pi, mts_qi, mts_g0e, mts_rate0e, mts_pe, mts_qe, &
+           sl_yp, sl_uk, sl_c1, sl_c2, sg_a, sg_b, sg_t0, melt_a, mts_sigma_a, mts_sigma_i, mts_g0i, mts_rate0i, mts_pi, mts_qi, mts_g0e, mts_rate0e, mts_pe, mts_qe, &
            mts_kb3, mts_a0, mts_a1, mts_a2, mts_a3, mts_theta_iv, mts_alpha, mts_sigma0es, mts_g0es, mts_rate0es, mts_d, mts_t0, &
            ptw_theta, ptw_p, ptw_s0, ptw_sinf, ptw_kappa, ptw_gamma, ptw_y0, ptw_yinf, ptw_y1, ptw_y2, ptw_beta, &
            ptw_molar_mass, ptw_alpha, &
@@ -783,7 +789,7 @@ contains
                           youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
                           jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, &
                           za_c0, za_c1, za_c2, za_c3, za_c4, za_c5, za_n, za_rate0, &
-                          sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, shear_model, sg_a, sg_b, sg_t0, &
+                          sg_y0, sg_ymax, sg_beta, sg_n, sg_eps_i, sl_yp, sl_uk, sl_c1, sl_c2, shear_model, sg_a, sg_b, sg_t0, &
                           mts_sigma_a, mts_sigma_i, mts_g0i, mts_rate0i, mts_pi, mts_qi, mts_g0e, mts_rate0e, mts_pe, mts_qe, &
                           mts_kb3, mts_a0, mts_a1, mts_a2, mts_a3, mts_theta_iv, mts_alpha, mts_sigma0es, mts_g0es, mts_rate0es, mts_d, mts_t0, &
                           ptw_theta, ptw_p, ptw_s0, ptw_sinf, ptw_kappa, ptw_gamma, ptw_y0, ptw_yinf, ptw_y1, ptw_y2, ptw_beta, ptw_molar_mass, ptw_alpha, &
@@ -1048,13 +1054,24 @@ contains
         else
           call not_used('za_c0 za_c1 za_c2 za_c3 za_c4 za_c5 za_n za_rate0', "strength = 'zerilli_armstrong'")
         end if
-        if (m%strength == strength_steinberg_guinan) then
+        if (m%strength == strength_steinberg_guinan .or. m%strength == strength_steinberg_lund) then
           call need(ctx, inst, 'sg_y0', positive(m%sg_y0), '> 0 for '//sname)
           if (.not. is_bad(inst, 'sg_y0')) call need(ctx, inst, 'sg_ymax', positive(m%sg_ymax) .and. &
                m%sg_ymax >= m%sg_y0, '>= sg_y0 = '//r2s(m%sg_y0)//' Pa for '//sname)
           call ranges('sg_beta sg_n sg_eps_i')
         else
-          call not_used('sg_y0 sg_ymax sg_beta sg_n sg_eps_i', "strength = 'steinberg_guinan'")
+          call not_used('sg_y0 sg_ymax sg_beta sg_n sg_eps_i', "strength = 'steinberg_guinan' or 'steinberg_lund'")
+        end if
+        if (m%strength == strength_steinberg_lund) then
+          call need(ctx, inst, 'sl_yp', positive(m%sl_yp), '> 0 for '//sname//' (the Peierls stress)')
+          call need(ctx, inst, 'sl_uk', positive(m%sl_uk), '> 0 for '//sname// &
+               ' (the kink-pair energy in J: 0.31 eV = 4.967e-20 J)')
+          call need(ctx, inst, 'sl_c1', positive(m%sl_c1), '> 0 for '//sname)
+          call ranges('sl_c2')
+          call need(ctx, inst, 'specific_heat', positive(m%specific_heat), &
+               '> 0 for '//sname//' (the temperature of its activation term)')
+        else
+          call not_used('sl_yp sl_uk sl_c1 sl_c2', "strength = 'steinberg_lund'")
         end if
         if (m%strength == strength_mts) then
           call ranges('mts_sigma_a mts_sigma_i mts_g0i mts_rate0i mts_pi mts_qi mts_g0e mts_rate0e mts_pe mts_qe '// &
@@ -1088,11 +1105,13 @@ contains
         end if
       end if
       modelled = str_ok .and. (m%strength == strength_zerilli_armstrong .or. m%strength == strength_steinberg_guinan &
-                               .or. m%strength == strength_mts .or. m%strength == strength_ptw)
+                               .or. m%strength == strength_mts .or. m%strength == strength_ptw &
+                               .or. m%strength == strength_steinberg_lund)
       ! the shear modulus and melt models serve the models that take the state
       if (choice(ctx, inst, 'shear_model', shear_txt, shear_words, shear_codes, m%shear_model)) then
         if (m%shear_model /= shear_constant .and. str_ok .and. .not. modelled) call complain(ctx, inst, 'shear_model', &
-             "'"//trim(shear_txt)//"' serves strength = 'zerilli_armstrong', 'steinberg_guinan', 'mts' or 'ptw' "// &
+             "'"//trim(shear_txt)//"' serves strength = 'zerilli_armstrong', 'steinberg_guinan', 'steinberg_lund', "// &
+             "'mts' or 'ptw' "// &
              '(the other models take shear_modulus)')
         if (m%shear_model == shear_mts) then
           call need(ctx, inst, 'mts_t0', positive(m%mts_t0), "> 0 for shear_model = 'mts' (G = G0 - D/(exp(T0/T) - 1))")
@@ -1124,7 +1143,8 @@ contains
       if (choice(ctx, inst, 'melt_model', melt_txt, melt_words, melt_codes, m%melt_model)) then
         if (m%melt_model == melt_steinberg_guinan) then
           if (str_ok .and. .not. modelled) call complain(ctx, inst, 'melt_model', "'steinberg_guinan' serves "// &
-               "strength = 'zerilli_armstrong', 'steinberg_guinan', 'mts' or 'ptw' (Johnson-Cook takes t_melt)")
+               "strength = 'zerilli_armstrong', 'steinberg_guinan', 'steinberg_lund', 'mts' or 'ptw' "// &
+               '(Johnson-Cook takes t_melt)')
           call need(ctx, inst, 't_melt', positive(m%t_melt), "> 0 for melt_model = 'steinberg_guinan' "// &
                '(the melt temperature at rho0)')
           if (eos_ok .and. m%eos /= eos_mie_gruneisen) call complain(ctx, inst, 'melt_model', &
@@ -1728,7 +1748,7 @@ contains
                 choice_val(m%jc_rate_form, rate_words, rate_codes), &
                 val(m%za_c0), val(m%za_c1), val(m%za_c2), val(m%za_c3), val(m%za_c4), val(m%za_c5), val(m%za_n), &
                 val(m%za_rate0), val(m%sg_y0), val(m%sg_ymax), val(m%sg_beta), val(m%sg_n), val(m%sg_eps_i), &
-                choice_val(m%shear_model, shear_words, shear_codes), val(m%sg_a), val(m%sg_b), val(m%sg_t0), &
+                val(m%sl_yp), val(m%sl_uk), val(m%sl_c1), val(m%sl_c2), choice_val(m%shear_model, shear_words, shear_codes), val(m%sg_a), val(m%sg_b), val(m%sg_t0), &
                 val(m%mts_sigma_a), val(m%mts_sigma_i), val(m%mts_g0i), val(m%mts_rate0i), val(m%mts_pi), val(m%mts_qi), val(m%mts_g0e), &
                 val(m%mts_rate0e), val(m%mts_pe), val(m%mts_qe), val(m%mts_kb3), val(m%mts_a0), val(m%mts_a1), val(m%mts_a2), &
                 val(m%mts_a3), val(m%mts_theta_iv), val(m%mts_alpha), val(m%mts_sigma0es), val(m%mts_g0es), val(m%mts_rate0es), val(m%mts_d), val(m%mts_t0), &

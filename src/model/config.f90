@@ -9,8 +9,8 @@ module udar_config
             numerics_cfg_t, output_cfg_t, contact_cfg_t, config_t
   public :: eos_linear, eos_mie_gruneisen, strength_none, strength_elastic, &
             strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
-            strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw, shear_constant, &
-            shear_steinberg_guinan, shear_mts, shear_ptw, &
+            strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw, strength_steinberg_lund, &
+            shear_constant, shear_steinberg_guinan, shear_mts, shear_ptw, &
             melt_constant, melt_steinberg_guinan, &
             bc_fixed, bc_symmetry, bc_rigid_wall, wall_frictionless, wall_sticking, wall_coulomb, &
             tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
@@ -23,7 +23,7 @@ module udar_config
   integer, parameter :: strength_none = 0, strength_elastic = 1, strength_perfectly_plastic = 2, &
                         strength_linear_hardening = 3, strength_johnson_cook = 4, &
                         strength_zerilli_armstrong = 5, strength_steinberg_guinan = 6, strength_mts = 7, &
-                        strength_ptw = 8
+                        strength_ptw = 8, strength_steinberg_lund = 9
   !> the shear modulus: the deck's constant, or Steinberg-Guinan's G(p, T)
   integer, parameter :: shear_constant = 0, shear_steinberg_guinan = 1, shear_mts = 2, shear_ptw = 3
   !> the melt temperature: the deck's t_melt, or Steinberg-Guinan's T_m(rho)
@@ -91,6 +91,10 @@ module udar_config
     !> Steinberg-Cochran-Guinan (1980): Y = min(y0 (1 + beta (eps_p + eps_i))^n, ymax) G/G0
     real(rk) :: sg_y0 = -1.0_rk, sg_ymax = -1.0_rk               !< Pa, Pa
     real(rk) :: sg_beta = 0.0_rk, sg_n = 0.0_rk, sg_eps_i = 0.0_rk   !< -, -, -
+    !> Steinberg-Lund (1989): Y = (Y_T(rate, T) + min(sg_y0 (1 + beta (eps_p + eps_i))^n, ymax)) G/G0,
+    !> rate = [exp(2 U_k/(k T) (1 - Y_T/Y_P)^2)/C1 + C2/Y_T]^-1, Y_T <= Y_P
+    real(rk) :: sl_yp = -1.0_rk, sl_uk = -1.0_rk                 !< Pa, J
+    real(rk) :: sl_c1 = -1.0_rk, sl_c2 = 0.0_rk                  !< 1/s, Pa s
     integer  :: shear_model = shear_constant
     !> Steinberg-Guinan shear modulus: G = G0 (1 + A p eta^(-1/3) - B (T - t0)), eta = rho/rho0
     real(rk) :: sg_a = 0.0_rk, sg_b = 0.0_rk, sg_t0 = 300.0_rk    !< 1/Pa, 1/K, K

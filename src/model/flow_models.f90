@@ -1,20 +1,22 @@
 !> Flow stress models beyond Johnson-Cook (issue 16): Zerilli-Armstrong,
-!> Steinberg-Cochran-Guinan and the Mechanical Threshold Stress, the shear
+!> Steinberg-Cochran-Guinan (with Lund's rate term), the Mechanical
+!> Threshold Stress and Preston-Tonks-Wallace, the shear
 !> modulus and melt temperature models that go with them, and their radial
 !> returns. Pure kernels; doc/theory.md section 16 states the equations and
 !> sources.
 module udar_flow_models
   use udar_kinds, only: rk
   use udar_config, only: material_cfg_t, strength_zerilli_armstrong, strength_steinberg_guinan, strength_ptw, &
-      shear_steinberg_guinan, shear_mts, shear_ptw, melt_steinberg_guinan
+      strength_steinberg_lund, shear_steinberg_guinan, shear_mts, shear_ptw, melt_steinberg_guinan
   implicit none
   private
   public :: melt_temperature, shear_modulus_at, model_flow_stress, model_return, bracketed_newton, &
-            mts_flow_stress, mts_return
+            mts_flow_stress, mts_return, steinberg_lund_thermal
   !> strain rates below this count as it in the MTS model's logarithms (1/s)
   real(rk), parameter :: mts_rate_floor = 1.0e-6_rk
   real(rk), parameter :: avogadro = 6.02214076e23_rk    !< 1/mol
   real(rk), parameter :: pi = 3.14159265358979324_rk
+  real(rk), parameter :: boltzmann = 1.380649e-23_rk    !< J/K
 
 contains
 
@@ -63,13 +65,16 @@ contains
   !>     rate* = max(rate, rate0)/rate0;
   !>   Steinberg-Cochran-Guinan (1980, eq. 1)
   !>     Y = min(y0 (1 + beta (eps_p + eps_i))^n, ymax) G/G0;
+  !>   Steinberg-Lund (1989, eq. 6) adds the thermally activated part
+  !>     Y = (Y_T(rate, T) + min(y0 (1 + beta (eps_p + eps_i))^n, ymax)) G/G0
+  !>   with Y_T from steinberg_lund_thermal;
   !>   Preston-Tonks-Wallace (2003), at density rho: ptw_flow_stress.
   !> Above the melt temperature all are 0 (no strength).
   pure subroutine model_flow_stress(mat, eps_p, rate, temp, t_m, g_ratio, rho, sy, slope)
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: eps_p, rate, temp, t_m, g_ratio, rho
     real(rk), intent(out) :: sy, slope
-    real(rk) :: th, root, y
+    real(rk) :: th, root
     sy = 0.0_rk
     slope = 0.0_rk
     if (temp >= t_m) return
@@ -84,17 +89,93 @@ contains
         slope = slope + mat%za_c5*mat%za_n*eps_p**(mat%za_n - 1.0_rk)
       end if
     case (strength_steinberg_guinan)
-      y = mat%sg_y0*(1.0_rk + mat%sg_beta*(eps_p + mat%sg_eps_i))**mat%sg_n
-      if (y < mat%sg_ymax) then
-        slope = g_ratio*mat%sg_n*mat%sg_beta*y/(1.0_rk + mat%sg_beta*(eps_p + mat%sg_eps_i))
-      else
-        y = mat%sg_ymax
-      end if
-      sy = y*g_ratio
+      call sg_hardening(mat, eps_p, 0.0_rk, g_ratio, sy, slope)
+    case (strength_steinberg_lund)
+      call sg_hardening(mat, eps_p, steinberg_lund_thermal(mat, rate, temp), g_ratio, sy, slope)
     case (strength_ptw)
       call ptw_flow_stress(mat, eps_p, rate, temp/t_m, g_ratio*mat%shear_modulus, rho, sy, slope)
     end select
   end subroutine
+
+  !> Steinberg-Guinan's flow stress (y_t + min(y0 (1 + beta (eps_p +
+  !> eps_i))^n, ymax)) g_ratio and its slope in eps_p; y_t is Lund's
+  !> thermally activated part (0 without it).
+  pure subroutine sg_hardening(mat, eps_p, y_t, g_ratio, sy, slope)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: eps_p, y_t, g_ratio
+    real(rk), intent(out) :: sy, slope
+    real(rk) :: y
+    slope = 0.0_rk
+    y = mat%sg_y0*(1.0_rk + mat%sg_beta*(eps_p + mat%sg_eps_i))**mat%sg_n
+    if (y < mat%sg_ymax) then
+      slope = g_ratio*mat%sg_n*mat%sg_beta*y/(1.0_rk + mat%sg_beta*(eps_p + mat%sg_eps_i))
+    else
+      y = mat%sg_ymax
+    end if
+    sy = (y_t + y)*g_ratio
+  end subroutine
+
+  !> Lund's thermally activated stress Y_T (Pa) at strain rate rate (1/s)
+  !> and temperature temp (K): the root in (0, Y_P] of
+  !>   1/rate = exp(2 U_k/(k T) (1 - Y_T/Y_P)^2)/C1 + C2/Y_T
+  !> (Steinberg and Lund 1989, eq. 5; rates below 1e-6/s count as
+  !> 1e-6/s, temperatures below 1 K as 1 K). Both times on the right fall
+  !> as Y_T grows, so the root is unique; rates at or above
+  !> 1/(1/C1 + C2/Y_P), which the Peierls barrier cannot hold back, give
+  !> Y_P. Solved for the logarithm of the right side (it stays finite
+  !> where the exponential would overflow) by Newton's iteration kept in
+  !> its bracket.
+  pure real(rk) function steinberg_lund_thermal(mat, rate, temp) result(y_t)
+    type(material_cfg_t), intent(in) :: mat
+    real(rk), intent(in) :: rate, temp
+    real(rk) :: a, log_rate, lo, hi, f, fp, y_new
+    integer :: it
+    a = 2.0_rk*mat%sl_uk/(boltzmann*max(temp, 1.0_rk))
+    log_rate = log(max(rate, mts_rate_floor))
+    y_t = mat%sl_yp
+    call log_time(y_t, f, fp)
+    if (f >= 0.0_rk) return
+    lo = 0.0_rk
+    hi = mat%sl_yp
+    if (mat%sl_c2 <= 0.0_rk) then
+      ! no drag: a rate that thermal activation alone reaches needs no stress
+      call log_time(tiny(1.0_rk)*mat%sl_yp, f, fp)
+      if (f <= 0.0_rk) then
+        y_t = 0.0_rk
+        return
+      end if
+    end if
+    y_t = 0.5_rk*mat%sl_yp
+    do it = 1, 200
+      call log_time(y_t, f, fp)
+      if (abs(f) <= 1.0e-13_rk) exit
+      call bracketed_newton(y_t, f, fp, lo, hi, y_new)
+      if (abs(y_new - y_t) <= 1.0e-14_rk*y_new) then
+        y_t = y_new
+        exit
+      end if
+      y_t = y_new
+    end do
+
+  contains
+
+    !> f = ln(rate) + ln(t_a + t_d) at Y_T = y, t_a and t_d the two times
+    !> of the rate law (f falls in y and is 0 at the root), and its slope
+    !> fp in y.
+    pure subroutine log_time(y, f, fp)
+      real(rk), intent(in) :: y
+      real(rk), intent(out) :: f, fp
+      real(rk) :: la, ld, top, wa, wd
+      la = a*(1.0_rk - y/mat%sl_yp)**2 - log(mat%sl_c1)
+      ld = -huge(1.0_rk)
+      if (mat%sl_c2 > 0.0_rk) ld = log(mat%sl_c2/y)
+      top = max(la, ld)
+      wa = exp(la - top)
+      wd = exp(ld - top)
+      f = log_rate + top + log(wa + wd)
+      fp = (-wa*2.0_rk*a*(1.0_rk - y/mat%sl_yp)/mat%sl_yp - wd/y)/(wa + wd)
+    end subroutine
+  end function
 
   !> Preston, Tonks and Wallace (2003, eqs. 5-12): at plastic strain psi,
   !> rate, homologous temperature t_hat = T/T_m, shear modulus g and density
@@ -171,7 +252,7 @@ contains
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: g, q_trial, eps_p, rate, temp, t_m, g_ratio, rho
     real(rk), intent(out) :: de, sy
-    real(rk) :: g3, lo, hi, f, slope, de_new, ts, ty
+    real(rk) :: g3, lo, hi, f, slope, de_new, ts, ty, y_t
     integer :: it
     g3 = 3.0_rk*g
     if (temp >= t_m) then
@@ -182,6 +263,8 @@ contains
     end if
     ! PTW's saturation stresses do not change in the return: once
     if (mat%strength == strength_ptw) call ptw_saturation(mat, rate, temp/t_m, g, rho, ts, ty)
+    ! nor does Lund's thermally activated stress
+    if (mat%strength == strength_steinberg_lund) y_t = steinberg_lund_thermal(mat, rate, temp)
     call flow(eps_p, sy, slope)
     lo = 0.0_rk
     hi = q_trial/g3
@@ -208,6 +291,8 @@ contains
       real(rk), intent(out) :: sig, dsig
       if (mat%strength == strength_ptw) then
         call ptw_hardening(mat, e, ts, ty, g, sig, dsig)
+      else if (mat%strength == strength_steinberg_lund) then
+        call sg_hardening(mat, e, y_t, g_ratio, sig, dsig)
       else
         call model_flow_stress(mat, e, rate, temp, t_m, g_ratio, rho, sig, dsig)
       end if

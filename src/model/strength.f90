@@ -5,7 +5,7 @@ module udar_strength
   use udar_kinds, only: rk, block_size
   use udar_config, only: material_cfg_t, strength_none, strength_elastic, &
       strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, jc_rate_plastic, &
-      strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw
+      strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw, strength_steinberg_lund, shear_constant
   use udar_flow_models, only: melt_temperature, shear_modulus_at, model_flow_stress, model_return, bracketed_newton, &
       mts_flow_stress, mts_return
   implicit none
@@ -37,7 +37,7 @@ contains
       sy = mat%yield_stress + mat%hardening_modulus*eps_p
     case (strength_johnson_cook)
       sy = jc_hardening(mat, eps_p)*jc_rate_factor(mat, rate)*jc_thermal_factor(mat, temp)
-    case (strength_zerilli_armstrong, strength_steinberg_guinan, strength_ptw)
+    case (strength_zerilli_armstrong, strength_steinberg_guinan, strength_steinberg_lund, strength_ptw)
       pp = 0.0_rk
       et = 1.0_rk
       if (present(p)) pp = p
@@ -83,7 +83,12 @@ contains
       s(1:nb,:) = 0.0_rk; w_dev(1:nb) = 0.0_rk; w_plastic(1:nb) = 0.0_rk
       return
     end if
-    g_el(1:nb) = shear_modulus_at(mat, p, temp, eta)
+    if (mat%shear_model == shear_constant) then
+      ! the common case: no per-element modulus to evaluate
+      g_el(1:nb) = mat%shear_modulus
+    else
+      g_el(1:nb) = shear_modulus_at(mat, p, temp, eta)
+    end if
     g2dt(1:nb) = 2.0_rk*g_el(1:nb)*dt
     do i = 1, nb
       a = 0.5_rk*dt*w(i,1); b = 0.5_rk*dt*w(i,2); cc = 0.5_rk*dt*w(i,3)
@@ -141,7 +146,7 @@ contains
             call jc_return(mat, dt, q_trial(i), eps_p(i), soft(i), factor, .false., d_eps(i), sy(i), hard(i))
         end if
       end do
-    case (strength_zerilli_armstrong, strength_steinberg_guinan, strength_ptw)
+    case (strength_zerilli_armstrong, strength_steinberg_guinan, strength_steinberg_lund, strength_ptw)
       do i = 1, nb
         d_eps(i) = 0.0_rk
         t_m = melt_temperature(mat, eta(i))
@@ -208,7 +213,8 @@ contains
       initial_hardening = mat%za_c0 + mat%za_c1
     case (strength_mts, strength_ptw)
       initial_hardening = 0.0_rk          ! sigma_e of annealed material; PTW: unused
-    case (strength_steinberg_guinan)
+    case (strength_steinberg_guinan, strength_steinberg_lund)
+      ! Lund's rate term adds to it at the step's rate
       initial_hardening = min(mat%sg_y0*(1.0_rk + mat%sg_beta*mat%sg_eps_i)**mat%sg_n, mat%sg_ymax)
     case default
       initial_hardening = huge(1.0_rk)

@@ -652,8 +652,12 @@ contains
     call has(f//":15: &material #5 'e': mts_t0 is required but not set", "shear_model = 'mts'")
     call has(f//":17: &material #6 'f': ptw_molar_mass is required but not set", "strength = 'ptw' (kg/mol")
     call has(f//":17: &material #6 'f': t_melt is required but not set", "strength = 'ptw' (its homologous")
-    if (nfail == before .and. errs%count() /= 14) &
-         call fail('strength_model_errors', 'expected 14 messages, got '//itoa(errs%count()))
+    call has(f//":7: &material #2 'b': sl_c1 = 1e6 : set, but only used with", "strength = 'steinberg_lund'")
+    call has(f//":19: &material #7 'g': sl_uk is required but not set", "(the kink-pair energy in J")
+    call has(f//":19: &material #7 'g': sl_c1 is required but not set", "strength = 'steinberg_lund'")
+    call has(f//":20: &material #7 'g': sl_c2 = -1 : must be >= 0", '')
+    if (nfail == before .and. errs%count() /= 18) &
+         call fail('strength_model_errors', 'expected 18 messages, got '//itoa(errs%count()))
     if (nfail == before) then
       call pass('strength_model_errors')
     else

@@ -9,9 +9,9 @@ program test_flow_models
   use udar_strings, only: r2s
   use udar_config, only: material_cfg_t, strength_zerilli_armstrong, strength_steinberg_guinan, &
       shear_steinberg_guinan, melt_steinberg_guinan, eos_mie_gruneisen, strength_mts, shear_mts, &
-      strength_ptw, shear_ptw
+      strength_ptw, shear_ptw, strength_steinberg_lund
   use udar_strength, only: strength_block, von_mises, yield_stress
-  use udar_flow_models, only: melt_temperature, shear_modulus_at
+  use udar_flow_models, only: melt_temperature, shear_modulus_at, steinberg_lund_thermal
   use unit_checks, only: check, check_summary
   implicit none
 
@@ -20,6 +20,7 @@ program test_flow_models
   call test_returns()
   call test_mts()
   call test_ptw()
+  call test_steinberg_lund()
   call check_summary()
 
 contains
@@ -217,6 +218,75 @@ contains
     call check('scg_no_strength_above_melt', yield_stress(mat, 0.1_rk, 1.0e3_rk, 1800.0_rk) == 0 .and. &
                yield_stress(mat, 0.1_rk, 1.0e3_rk, 1800.0_rk, 0.0_rk, 1.1_rk) > 0, &
                '1800 K: melted at eta 1 (1790 K), solid at eta 1.1 (2436 K)')
+  end subroutine
+
+  !> A tantalum-like Steinberg-Lund material: U_k = 0.31 eV and C1 =
+  !> 0.71e6/s as NairnMPM's defaults attributed to Steinberg and Lund (1989)
+  !> and Spheral's tantalum test (2 U_k/k = 7195 K); Y_P, C2 and the
+  !> athermal part (Steinberg-Guinan's tantalum beta, n, Ymax with Y_A =
+  !> 0.375 GPa) are of the right size but not checked against the paper's
+  !> table: the checks below are exact for whatever constants are given.
+  type(material_cfg_t) function sl_tantalum() result(mat)
+    mat%rho0 = 16690; mat%shear_modulus = 69e9_rk; mat%strength = strength_steinberg_lund
+    mat%sg_y0 = 0.375e9_rk; mat%sg_ymax = 1.1e9_rk; mat%sg_beta = 10; mat%sg_n = 0.1_rk
+    mat%sl_yp = 0.82e9_rk; mat%sl_uk = 0.31_rk*1.602176634e-19_rk; mat%sl_c1 = 0.71e6_rk; mat%sl_c2 = 1.2e3_rk
+    mat%specific_heat = 140; mat%t_melt = 4340
+  end function
+
+  !> Lund's rate law: the thermally activated stress against the rate law
+  !> evaluated forwards here (a rate from a chosen Y_T), its cap at the
+  !> Peierls stress, its fall with temperature, finite where the
+  !> exponential overflows, and the flow stress and the return through the
+  !> element's strength kernel.
+  subroutine test_steinberg_lund()
+    type(material_cfg_t) :: mat
+    real(rk), parameter :: k_b = 1.380649e-23_rk
+    real(rk) :: y_star, rate, y_t, a, sy, s(6), eps, dt, d(6), err, rate_max
+    integer :: k
+    mat = sl_tantalum()
+    y_star = 0.4_rk*mat%sl_yp
+    a = 2*mat%sl_uk/(k_b*300)
+    rate = 1/(exp(a*(1 - y_star/mat%sl_yp)**2)/mat%sl_c1 + mat%sl_c2/y_star)
+    y_t = steinberg_lund_thermal(mat, rate, 300.0_rk)
+    call check('sl_inverts_the_rate_law', abs(y_t/y_star - 1) < 1e-10_rk, &
+               'Y_T = '//r2s(y_t)//' Pa at rate '//r2s(rate)//' /s, 300 K (chosen: '//r2s(y_star)//')')
+    y_star = 0.97_rk*mat%sl_yp
+    rate = 1/(exp(a*(1 - y_star/mat%sl_yp)**2)/mat%sl_c1 + mat%sl_c2/y_star)
+    y_t = steinberg_lund_thermal(mat, rate, 300.0_rk)
+    call check('sl_inverts_near_the_peierls_stress', abs(y_t/y_star - 1) < 1e-10_rk, &
+               'Y_T = '//r2s(y_t)//' Pa at rate '//r2s(rate)//' /s (chosen: '//r2s(y_star)//')')
+    rate_max = 1/(1/mat%sl_c1 + mat%sl_c2/mat%sl_yp)
+    call check('sl_capped_at_the_peierls_stress', steinberg_lund_thermal(mat, 2*rate_max, 300.0_rk) == mat%sl_yp, &
+               'rates above 1/(1/C1 + C2/Y_P) = '//r2s(rate_max)//' /s give Y_P')
+    call check('sl_hotter_is_softer', steinberg_lund_thermal(mat, 1.0e3_rk, 600.0_rk) < &
+               0.9_rk*steinberg_lund_thermal(mat, 1.0e3_rk, 300.0_rk), &
+               'Y_T(1e3/s, 600 K) = '//r2s(steinberg_lund_thermal(mat, 1.0e3_rk, 600.0_rk))//', 300 K: '// &
+               r2s(steinberg_lund_thermal(mat, 1.0e3_rk, 300.0_rk)))
+    ! at 2 K the exponential of the rate law overflows; its logarithm does not
+    y_t = steinberg_lund_thermal(mat, 1.0e3_rk, 2.0_rk)
+    call check('sl_cold_finite', y_t > 0.9_rk*mat%sl_yp .and. y_t <= mat%sl_yp, 'Y_T(1e3/s, 2 K) = '//r2s(y_t))
+    ! without drag a slow enough rate is reached by thermal activation alone
+    mat%sl_c2 = 0
+    call check('sl_no_drag_slow_rate', steinberg_lund_thermal(mat, 1.0e-5_rk, 1000.0_rk) == 0, &
+               'C2 = 0, 1e-5/s at 1000 K: Y_T = '//r2s(steinberg_lund_thermal(mat, 1.0e-5_rk, 1000.0_rk)))
+    mat = sl_tantalum()
+    ! flow stress: (Y_T + 375 (1 + 10 0.2)^0.1 MPa) G/G0 with G constant
+    y_star = 0.4_rk*mat%sl_yp
+    rate = 1/(exp(a*(1 - y_star/mat%sl_yp)**2)/mat%sl_c1 + mat%sl_c2/y_star)
+    sy = yield_stress(mat, 0.2_rk, rate, 300.0_rk)
+    call check('sl_flow_stress_hand_value', abs(sy/(y_star + 418.546190e6_rk) - 1) < 1e-8_rk, &
+               'Y(0.2) = '//r2s(sy)//' Pa (hand: 0.4 Y_P + 418.546190 MPa)')
+    ! return through the element's kernel: on the surface at the step's rate
+    dt = 1.0e-8_rk
+    d = [-1.0e4_rk, 0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 0.0_rk]
+    rate = 2.0_rk/3.0_rk*1.0e4_rk
+    s = 0; eps = 0; err = 0
+    do k = 1, 200
+      call step(mat, dt, d, 300.0_rk, 0.0_rk, 1.0_rk, s, eps)
+      if (eps > 0) err = max(err, abs(von_mises(s)/yield_stress(mat, eps, rate, 300.0_rk) - 1))
+    end do
+    call check('sl_return_on_surface', eps > 0.005_rk .and. err < 1e-12_rk, &
+               'eps_p = '//r2s(eps)//', largest |q/Y - 1| '//r2s(err))
   end subroutine
 
   !> Uniaxial-strain loading of one element through strength_block: after
