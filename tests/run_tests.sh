@@ -173,6 +173,7 @@ run_test "regression/elastic_bar" regression elastic_bar bin/udar-debug
 run_test "regression/elastic_bar_2d" regression elastic_bar_2d bin/udar-debug
 run_test "regression/plate_impact" regression plate_impact bin/udar-debug
 run_test "regression/plate_impact_2d" regression plate_impact_2d bin/udar-debug
+run_test "regression/plate_impact_heating_2d" regression plate_impact_heating_2d bin/udar-debug
 run_test "regression/coulomb_wall" regression coulomb_wall bin/udar-debug
 run_test "regression/blocks_head_on" regression blocks_head_on bin/udar-debug
 run_test "regression/blocks_head_on_symmetric" regression blocks_head_on bin/udar-debug blocks_head_on_symmetric

@@ -22,7 +22,7 @@ module udar_element_shared
   use udar_fracture, only: el_fractured, el_eroded, el_intact, erode_strain, erode_time_step, erode_inverted, &
                            erode_converted, erode_reasons, &
       fracture_update, fracture_enabled, erosion_enabled, deviatoric_rate
-  use udar_hydro, only: volumetric_update, blended_volume_ratios, blended_pressures
+  use udar_hydro, only: volumetric_update, blended_volume_ratios, blended_pressures, shock_heated_temperature
   use udar_config, only: tet_stabilised
   implicit none
   private
@@ -228,6 +228,17 @@ contains
         eb%soft(i) = thermal_softening_update(mat, eb%soft(i), t_old, dom%el_temp(e))
       end if
     end do
+    ! and, if asked, the viscosity's work and adiabatic compression heat it
+    if (mat%shock_heating) then
+      do i = 1, nb
+        if (eb%gone(i)) cycle
+        e = first + i - 1
+        t_old = dom%el_temp(e)
+        dom%el_temp(e) = shock_heated_temperature(mat%gamma0, mat%specific_heat, t_old, dom%el_j(e), eb%j_new(i), &
+                                                  -eb%q(i)*eb%trd(i)*dt*eb%vol(i)/dom%el_mass(e))
+        eb%soft(i) = thermal_softening_update(mat, eb%soft(i), t_old, dom%el_temp(e))
+      end do
+    end if
     if (eb%fracturing .or. eb%erodible) then
       do i = 1, nb
         e = first + i - 1

@@ -13,7 +13,8 @@ module udar_hydro
   real(rk), parameter :: compression_noise = 1.0e-12_rk
   public :: volumetric_update, dilatational_speed2, blended_volume_ratio, blended_volume_ratios, blended_pressures, &
             blend_exponent, &
-            step_shear_modulus, element_shear_moduli, step_volumetric_share, tangent_bulk_modulus
+            step_shear_modulus, element_shear_moduli, step_volumetric_share, tangent_bulk_modulus, &
+            shock_heated_temperature
 
   !> The share of an element's volumetric stiffness that the nodal time step
   !> of the nodal-averaged elements counts beyond their own beta: their
@@ -85,6 +86,18 @@ contains
       visc(i) = ((eq + sqrt(eq*eq + c2(i)))/c)**2
     end do
   end subroutine
+
+  !> The temperature after a step of volume change from j_old to j_new
+  !> (V/V0) with viscous work q_work (J/kg, >= 0 in compression) at specific
+  !> heat c_v, Grueneisen gamma0 (Gamma rho = gamma0 rho0, as the
+  !> Mie-Grueneisen EOS): c_v dT = dq - Gamma c_v T dv/v integrates, over
+  !> the volume change, to T exp(-gamma0 (j_new - j_old)), exact on an
+  !> isentrope; the viscosity's work is the shock's entropy
+  !> (doc/theory.md section 16).
+  pure elemental real(rk) function shock_heated_temperature(gamma0, c_v, t, j_old, j_new, q_work) result(t_new)
+    real(rk), intent(in) :: gamma0, c_v, t, j_old, j_new, q_work
+    t_new = t*exp(-gamma0*(j_new - j_old)) + q_work/c_v
+  end function
 
   !> Stabilised nodal-averaged tetrahedron (doc/theory.md section 8.1): the
   !> volume ratio j the EOS sees blends the nodal average jbar with the

@@ -214,6 +214,7 @@ module udar_deck
        var_t('material', 't_room', 'r', 1, 0, 'K', '> 0'), &
        var_t('material', 'specific_heat', 'r', 1, 0, 'J/(kg K)', '> 0'), &
        var_t('material', 'taylor_quinney', 'r', 1, 0, '-', 'in [0, 1]'), &
+       var_t('material', 'shock_heating', 'l', 1, 0, '', ''), &
        var_t('material', 'initial_temperature', 'r', 1, 0, 'K', '> 0'), &
        var_t('material', 'fracture', 'c', 1, code_len, '', ''), &
        var_t('material', 'eps_f', 'r', 1, 0, '-', '> 0'), &
@@ -721,7 +722,7 @@ contains
              m%mts_kb3, m%mts_a0, m%mts_a1, m%mts_a2, m%mts_a3, m%mts_theta_iv, m%mts_alpha, m%mts_sigma0es, m%mts_g0es, m%mts_rate0es, m%mts_d, m%mts_t0, &
              m%ptw_theta, m%ptw_p, m%ptw_s0, m%ptw_sinf, m%ptw_kappa, m%ptw_gamma, m%ptw_y0, m%ptw_yinf, m%ptw_y1, m%ptw_y2, m%ptw_beta, m%ptw_molar_mass, m%ptw_alpha, &
              v%melt_model, m%melt_a, &
-             m%t_melt, m%t_room, m%specific_heat, m%taylor_quinney, m%initial_temperature, &
+             m%t_melt, m%t_room, m%specific_heat, m%taylor_quinney, m%shock_heating, m%initial_temperature, &
              v%fracture, m%eps_f, m%jc_d1, m%jc_d2, m%jc_d3, m%jc_d4, m%jc_d5, m%p_spall, m%eps_erode, v%eroded, m%eps_convert)
       end associate
     case ('part')
@@ -773,7 +774,7 @@ contains
                             mts_kb3, mts_a0, mts_a1, mts_a2, mts_a3, mts_theta_iv, mts_alpha, mts_sigma0es, mts_g0es, mts_rate0es, mts_d, mts_t0, &
                             ptw_theta, ptw_p, ptw_s0, ptw_sinf, ptw_kappa, ptw_gamma, ptw_y0, ptw_yinf, ptw_y1, ptw_y2, ptw_beta, ptw_molar_mass, ptw_alpha, &
                             melt_model, melt_a, t_melt, t_room, specific_heat, &
-                            taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
+                            taylor_quinney, shock_heating, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
                             jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert)
       character(len=*), intent(inout) :: name, eos, strength, jc_rate_form, fracture, eroded, shear_model, melt_model
       real(rk), intent(inout) :: rho0, bulk_modulus, c0, s, gamma0, shear_modulus, youngs_modulus, &
@@ -785,6 +786,7 @@ contains
            ptw_molar_mass, ptw_alpha, &
            t_melt, t_room, specific_heat, taylor_quinney, initial_temperature, eps_f, jc_d1, jc_d2, &
            jc_d3, jc_d4, jc_d5, p_spall, eps_erode, eps_convert
+      logical, intent(inout) :: shock_heating
       namelist /material/ name, rho0, eos, bulk_modulus, c0, s, gamma0, strength, shear_modulus, &
                           youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
                           jc_b, jc_n, jc_c, jc_m, jc_rate0, jc_rate_form, &
@@ -794,7 +796,7 @@ contains
                           mts_kb3, mts_a0, mts_a1, mts_a2, mts_a3, mts_theta_iv, mts_alpha, mts_sigma0es, mts_g0es, mts_rate0es, mts_d, mts_t0, &
                           ptw_theta, ptw_p, ptw_s0, ptw_sinf, ptw_kappa, ptw_gamma, ptw_y0, ptw_yinf, ptw_y1, ptw_y2, ptw_beta, ptw_molar_mass, ptw_alpha, &
                           melt_model, melt_a, t_melt, t_room, specific_heat, &
-                          taylor_quinney, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
+                          taylor_quinney, shock_heating, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
                           jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert
       read(text, nml=material, iostat=ios, iomsg=msg)
     end subroutine material_nml
@@ -1159,6 +1161,8 @@ contains
       if (m%specific_heat /= mat_dflt%specific_heat) call ranges('specific_heat')
       if (m%t_melt /= mat_dflt%t_melt) call ranges('t_melt')
       call ranges('t_room taylor_quinney initial_temperature')
+      if (m%shock_heating) call need(ctx, inst, 'specific_heat', positive(m%specific_heat), &
+           '> 0 for shock_heating (the temperature it heats)')
       ! the body starts at room temperature unless the deck says otherwise
       if (.not. is_set(inst, 'initial_temperature') .and. positive(m%t_room)) &
            m%initial_temperature = m%t_room
@@ -1754,7 +1758,7 @@ contains
                 val(m%mts_a3), val(m%mts_theta_iv), val(m%mts_alpha), val(m%mts_sigma0es), val(m%mts_g0es), val(m%mts_rate0es), val(m%mts_d), val(m%mts_t0), &
                 val(m%ptw_theta), val(m%ptw_p), val(m%ptw_s0), val(m%ptw_sinf), val(m%ptw_kappa), val(m%ptw_gamma), val(m%ptw_y0), &
                 val(m%ptw_yinf), val(m%ptw_y1), val(m%ptw_y2), val(m%ptw_beta), val(m%ptw_molar_mass), val(m%ptw_alpha), &
-                choice_val(m%melt_model, melt_words, melt_codes), val(m%melt_a), val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), &
+                choice_val(m%melt_model, melt_words, melt_codes), val(m%melt_a), val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), val_t(l=m%shock_heating), &
                 val(m%initial_temperature, 't_room'), choice_val(m%fracture, fracture_words, fracture_codes), &
                 val(m%eps_f), val(m%jc_d1), val(m%jc_d2), val(m%jc_d3), val(m%jc_d4), val(m%jc_d5), &
                 val(m%p_spall), val(m%eps_erode), choice_val(m%eroded, eroded_words, eroded_codes), val(m%eps_convert)]

@@ -127,6 +127,9 @@ module udar_config
     real(rk) :: t_room = 294.0_rk              !< K
     real(rk) :: specific_heat = -1.0_rk        !< J/(kg K)
     real(rk) :: taylor_quinney = 0.9_rk        !< -, share of plastic work turned to heat
+    !> heat also from the volumetric part: the artificial viscosity's work
+    !> (the shock's entropy) and the Grueneisen term of adiabatic compression
+    logical  :: shock_heating = .false.
     real(rk) :: initial_temperature = 294.0_rk !< K
     integer  :: fracture = fracture_none       !< how the material fractures
     real(rk) :: eps_f = -1.0_rk                !< -, critical equivalent plastic strain (fracture = 'plastic_strain')

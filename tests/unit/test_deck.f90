@@ -656,8 +656,9 @@ contains
     call has(f//":19: &material #7 'g': sl_uk is required but not set", "(the kink-pair energy in J")
     call has(f//":19: &material #7 'g': sl_c1 is required but not set", "strength = 'steinberg_lund'")
     call has(f//":20: &material #7 'g': sl_c2 = -1 : must be >= 0", '')
-    if (nfail == before .and. errs%count() /= 18) &
-         call fail('strength_model_errors', 'expected 18 messages, got '//itoa(errs%count()))
+    call has(f//":21: &material #8 'h': specific_heat is required but not set", "for shock_heating (the temperature")
+    if (nfail == before .and. errs%count() /= 19) &
+         call fail('strength_model_errors', 'expected 19 messages, got '//itoa(errs%count()))
     if (nfail == before) then
       call pass('strength_model_errors')
     else
