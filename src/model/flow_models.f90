@@ -10,7 +10,7 @@ module udar_flow_models
       strength_steinberg_lund, shear_steinberg_guinan, shear_mts, shear_ptw, melt_steinberg_guinan
   implicit none
   private
-  public :: melt_temperature, shear_modulus_at, model_flow_stress, model_return, bracketed_newton, &
+  public :: melt_temperature, shear_modulus_at, model_flow_stress, model_return, newton_step, &
             mts_flow_stress, mts_return, steinberg_lund_thermal
   !> strain rates below this count as it in the MTS model's logarithms (1/s)
   real(rk), parameter :: mts_rate_floor = 1.0e-6_rk
@@ -128,8 +128,9 @@ contains
   pure real(rk) function steinberg_lund_thermal(mat, rate, temp) result(y_t)
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: rate, temp
-    real(rk) :: a, log_rate, lo, hi, f, fp, y_new
+    real(rk) :: a, log_rate, lo, hi, f, fp
     integer :: it
+    logical :: done
     a = 2.0_rk*mat%sl_uk/(boltzmann*max(temp, 1.0_rk))
     log_rate = log(max(rate, mts_rate_floor))
     y_t = mat%sl_yp
@@ -149,12 +150,8 @@ contains
     do it = 1, 200
       call log_time(y_t, f, fp)
       if (abs(f) <= 1.0e-13_rk) exit
-      call bracketed_newton(y_t, f, fp, lo, hi, y_new)
-      if (abs(y_new - y_t) <= 1.0e-14_rk*y_new) then
-        y_t = y_new
-        exit
-      end if
-      y_t = y_new
+      call newton_step(y_t, f, fp, lo, hi, 1.0e-14_rk, done)
+      if (done) exit
     end do
 
   contains
@@ -252,8 +249,9 @@ contains
     type(material_cfg_t), intent(in) :: mat
     real(rk), intent(in) :: g, q_trial, eps_p, rate, temp, t_m, g_ratio, rho
     real(rk), intent(out) :: de, sy
-    real(rk) :: g3, lo, hi, f, slope, de_new, ts, ty, y_t
+    real(rk) :: g3, lo, hi, f, slope, ts, ty, y_t
     integer :: it
+    logical :: done
     g3 = 3.0_rk*g
     if (temp >= t_m) then
       ! melted: all of the trial deviator flows
@@ -273,12 +271,8 @@ contains
       call flow(eps_p + de, sy, slope)
       f = q_trial - g3*de - sy
       if (abs(f) <= 1.0e-13_rk*q_trial) exit
-      call bracketed_newton(de, f, -(g3 + slope), lo, hi, de_new)
-      if (abs(de_new - de) <= 1.0e-14_rk*de_new) then
-        de = de_new
-        exit
-      end if
-      de = de_new
+      call newton_step(de, f, -(g3 + slope), lo, hi, 1.0e-14_rk, done)
+      if (done) exit
     end do
     ! on the yield surface by construction of the return
     sy = q_trial - g3*de
@@ -397,5 +391,17 @@ contains
     end if
     x_new = x - f/fp
     if (x_new <= lo .or. x_new >= hi) x_new = 0.5_rk*(lo + hi)
+  end subroutine
+
+  !> bracketed_newton's step taken: x moves to the new iterate, done when
+  !> the step was at most rel_tol of it.
+  pure subroutine newton_step(x, f, fp, lo, hi, rel_tol, done)
+    real(rk), intent(inout) :: x, lo, hi
+    real(rk), intent(in) :: f, fp, rel_tol
+    logical, intent(out) :: done
+    real(rk) :: x_new
+    call bracketed_newton(x, f, fp, lo, hi, x_new)
+    done = abs(x_new - x) <= rel_tol*x_new
+    x = x_new
   end subroutine
 end module udar_flow_models

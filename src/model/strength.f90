@@ -6,7 +6,7 @@ module udar_strength
   use udar_config, only: material_cfg_t, strength_none, strength_elastic, &
       strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, jc_rate_plastic, &
       strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw, strength_steinberg_lund, shear_constant
-  use udar_flow_models, only: melt_temperature, shear_modulus_at, model_flow_stress, model_return, bracketed_newton, &
+  use udar_flow_models, only: melt_temperature, shear_modulus_at, model_flow_stress, model_return, newton_step, &
       mts_flow_stress, mts_return
   implicit none
   private
@@ -268,8 +268,9 @@ contains
     real(rk), intent(in) :: dt, q_trial, eps_p, soft, rate_factor
     logical, intent(in) :: plastic_rate
     real(rk), intent(inout) :: de, sy, hard
-    real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, h, r, de_new, slope, de_rate1, de_pw, inv_e, inv_e_pw
+    real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, h, r, slope, de_rate1, de_pw, inv_e, inv_e_pw
     integer :: it
+    logical :: done
     g3 = 3.0_rk*mat%shear_modulus
     r = rate_factor
     if (soft <= 0.0_rk .or. (mat%jc_b <= 0.0_rk .and. .not. plastic_rate)) then
@@ -317,12 +318,8 @@ contains
       if (abs(f) <= 1.0e-13_rk*q_trial) exit
       fp = -g3 - soft*r*mat%jc_b*mat%jc_n*pw*inv_e
       if (plastic_rate .and. de > de_rate1) fp = fp - soft*h*mat%jc_c/de
-      call bracketed_newton(de, f, fp, lo, hi, de_new)
-      if (abs(de_new - de) <= 1.0e-12_rk*de_new) then
-        de = de_new
-        exit
-      end if
-      de = de_new
+      call newton_step(de, f, fp, lo, hi, 1.0e-12_rk, done)
+      if (done) exit
     end do
     ! on the yield surface by construction of the return
     sy = q_trial - g3*de
