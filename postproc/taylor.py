@@ -295,6 +295,16 @@ models give the same result when the axis lies in the symmetry planes.""")
     return ur.add_self_test(p, "run the built-in checks on synthetic cylinders, print PASS/FAIL")
 
 
+def materials_line(path):
+    """'material: NAME (strength = 'MODEL'), ...' from the deck the field file keeps, so the
+    result says which model made it; '' when the file keeps no deck."""
+    with ur.open_fields(path) as f:
+        text = f.deck
+    mats = [ur.deck_values(body) for group, body in ur.deck_groups(text) if group == "material"]
+    return ("material: " + ", ".join("%s (strength = '%s')" % (m.get("name", "?"), m.get("strength", "elastic"))
+                                     for m in mats)) if mats else ""
+
+
 def main(argv=None):
     return ur.cli_main(build_parser(), argv, _self_test, _run, errors=(TaylorError, IndexError),
                        require=ur.FIELDS_REQUIRED)
@@ -317,9 +327,12 @@ def _run(args, p):
         payload = [clean(m) for m in res] if args.all else clean(res[0])
         print(json.dumps(payload, indent=2))
         return 0
+    materials = materials_line(args.fields)
     for m in res:
         print(machine_line(m))
         print(human_line(m))
+        if materials:
+            print(materials)
         for key, ref, what in (("length_m", args.reference_length, "final length"),
                                ("footprint_diameter_m", args.reference_diameter, "footprint diameter")):
             if ref:

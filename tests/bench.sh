@@ -29,7 +29,7 @@ for spec in "20k 0.42 300" "200k 0.19 60"; do
         -e "s|directory = 'out'|directory = '$W/out'|" \
         -e "s|cycle_print = 500|cycle_print = 100000, max_cycles = $ncyc|" \
         -e "s|dt_field = 10.0e-6|dt_field = 0.0|" -e "s|dt_history = 0.2e-6|dt_history = 1.0|" \
-        input/taylor_ofhc/taylor_ofhc.nml > "$deck"
+        input/taylor_ofhc/taylor_ofhc_jc.nml > "$deck"
     printf "&numerics tet_formulation = '%s' /\n" "$al" >> "$deck"
     /usr/bin/time -f '%M' -o "$W/rss" bin/udar "$deck" > "$W/log" 2>&1
     tets=$(grep -o '[0-9]* tetrahedra' "$W/log" | cut -d' ' -f1)
@@ -64,7 +64,7 @@ for name in 3k 200k 1m; do
       -e "s|directory = 'out'|directory = '$W/out'|" \
       -e "s|cycle_print = 500|cycle_print = 100000, max_cycles = 5|" \
       -e "s|dt_field = 10.0e-6|dt_field = 0.0|" -e "s|dt_history = 0.2e-6|dt_history = 1.0|" \
-      input/taylor_ofhc/taylor_ofhc.nml > "$deck"
+      input/taylor_ofhc/taylor_ofhc_jc.nml > "$deck"
   for n in 1 2; do
     mpirun -np $n bin/udar "$deck" > "$W/log" 2>&1
     nodes=$(grep -o '[0-9]* nodes, [0-9]* tetrahedra' "$W/log" | awk '{print $1}')
@@ -108,7 +108,7 @@ echo "$best1 $best2" | awk '{printf "speedup on 2 ranks %.2f, parallel efficienc
 
 # ---- projected scaling from the partition alone: a 1M-tet bar split into
 # 2..64 parts; ghost-element work and halo sizes (udar --check --ranks N)
-sed -e "s|file = 'taylor_ofhc.msh'|file = '$W/bar_1m.msh'|" input/taylor_ofhc/taylor_ofhc.nml > "$W/bar_1m.nml"
+sed -e "s|file = 'taylor_ofhc.msh'|file = '$W/bar_1m.msh'|" input/taylor_ofhc/taylor_ofhc_jc.nml > "$W/bar_1m.nml"
 scaling=doc/scaling.md
 {
   echo "# Projected scaling (written by \`make bench\`)"
@@ -190,7 +190,7 @@ for spec in "coarse 0.62" "fine 0.31"; do
     sed -e "s|file = 'taylor_ofhc.msh'|file = '$W/full_$1.msh'|" -e "/surface = 'sym_/d" \
         -e "s|directory = 'out'|directory = '$W/peer', case_name = '$1_$form'|" \
         -e "s|cycle_print = 500|cycle_print = 1000000|" -e "s|dt_field = 10.0e-6|dt_field = 80.0e-6|" \
-        input/taylor_ofhc/taylor_ofhc.nml > "$W/peer.nml"
+        input/taylor_ofhc/taylor_ofhc_jc.nml > "$W/peer.nml"
     printf "&numerics tet_formulation = '%s' /\n" "$form" >> "$W/peer.nml"
     bin/udar "$W/peer.nml" > "$W/log" 2>&1
     tets=$(grep -o '[0-9]* tetrahedra' "$W/log" | head -1 | cut -d' ' -f1)

@@ -15,7 +15,8 @@
 # strength (EPS_CONVERT=1.0) the long rod, Fig. 4, the normal cylinder
 # and Fig. 3's spread; and the copper Taylor record with every strength
 # model of the material library (tests/validate_taylor_models.sh, with its
-# 0.1 mm check). Every mesh
+# 0.1 mm check, and the default deck's test in 3D:
+# tests/validate_taylor_models_3d.sh). Every mesh
 # of every script is compared with doc/validation/meshes.csv first, so a
 # wrong one stops make validate before the first run. The long-rod
 # refinements (0.7 and 0.5 mm, hours) are run by hand: see
@@ -31,6 +32,7 @@ MESHES_ONLY=1 tests/validate_particles.sh
 MESHES_ONLY=1 tests/validate_fig3_spread.sh
 MESHES_ONLY=1 tests/validate_taylor_particles.sh
 MESHES_ONLY=1 tests/validate_taylor_models.sh
+MESHES_ONLY=1 tests/validate_taylor_models_3d.sh
 tests/validate_taylor.sh
 tests/validate_taylor.sh 2d
 tests/validate_long_rod.sh
@@ -49,3 +51,4 @@ EPS_CONVERT=1.0 tests/validate_fig3_spread.sh
 # the strength models on the copper Taylor record (issue 16), and its mesh check
 tests/validate_taylor_models.sh
 H=0.1 TESTS="jc190 wg183" tests/validate_taylor_models.sh
+tests/validate_taylor_models_3d.sh

@@ -14,7 +14,7 @@ cases="wg2d tests/regression/taylor_wg_2d/taylor_wg_2d.geo tests/regression/tayl
 ofhc2d input/taylor_ofhc_2d/taylor_ofhc_2d.geo input/taylor_ofhc_2d/taylor_ofhc_2d.nml 0.6,0.45,0.3,0.2,0.1"
 else
 cases="wg tests/regression/taylor_wg/taylor_wg.geo tests/regression/taylor_wg/taylor_wg.nml 0.6,0.4,0.3
-ofhc input/taylor_ofhc/taylor_ofhc.geo input/taylor_ofhc/taylor_ofhc.nml 0.6,0.45,0.3"
+ofhc input/taylor_ofhc/taylor_ofhc.geo input/taylor_ofhc/taylor_ofhc_jc.nml 0.6,0.45,0.3"
 fi
 jobs=()
 while read -r name geo deck sizes; do

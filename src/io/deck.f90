@@ -1118,8 +1118,6 @@ contains
         if (m%shear_model == shear_mts) then
           call need(ctx, inst, 'mts_t0', positive(m%mts_t0), "> 0 for shear_model = 'mts' (G = G0 - D/(exp(T0/T) - 1))")
           call ranges('mts_d')
-          if (positive(m%eps_convert)) call complain(ctx, inst, 'shear_model', "'mts' with "// &
-               'eps_convert: particles that keep their strength take a constant shear modulus for now')
         else
           call not_used('mts_d mts_t0', "shear_model = 'mts'")
         end if
@@ -1127,8 +1125,6 @@ contains
           call ranges('ptw_alpha')
           if (.not. positive(m%t_melt) .and. m%strength /= strength_ptw) &
                call need(ctx, inst, 't_melt', .false., "> 0 for shear_model = 'ptw'")
-          if (positive(m%eps_convert)) call complain(ctx, inst, 'shear_model', "'ptw' with "// &
-               'eps_convert: particles that keep their strength take a constant shear modulus for now')
         else
           call not_used('ptw_alpha', "shear_model = 'ptw'")
         end if
@@ -1136,8 +1132,6 @@ contains
           call ranges('sg_a sg_b sg_t0')
           if (positive(m%sg_b)) call need(ctx, inst, 'specific_heat', positive(m%specific_heat), &
                "> 0 for shear_model = 'steinberg_guinan' with sg_b > 0 (the temperature)")
-          if (positive(m%eps_convert)) call complain(ctx, inst, 'shear_model', "'steinberg_guinan' with "// &
-               'eps_convert: particles that keep their strength take a constant shear modulus for now')
         else
           call not_used('sg_a sg_b sg_t0', "shear_model = 'steinberg_guinan'")
         end if

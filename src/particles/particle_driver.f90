@@ -158,7 +158,7 @@ contains
       pt%strong(q) = dom%mat(pt%mat(q))%strength /= strength_none .and. any(pt%s(:,q) /= 0.0_rk)
       pt%h(q) = smoothing_length(pt%m(q), pt%rho(q), smoothing_factor, 3)
       call particle_pressure(dom%mat(pt%mat(q)), pt%rho(q), pt%e(q), pt%strong(q), pt%p(q), pt%c(q))
-      pt%c(q) = wave_speed(dom%mat(pt%mat(q)), pt%strong(q), pt%rho(q), pt%c(q))
+      pt%c(q) = wave_speed(dom%mat(pt%mat(q)), pt%strong(q), pt%rho(q), pt%c(q), pt%p(q), pt%temp(q))
       pt%vsig(q) = 2.0_rk*pt%c(q)
       ! the element, wherever this rank holds it, keeps none of it
       e = find_sorted(dom%el_gidx, pt%elem(q))
@@ -395,7 +395,7 @@ contains
                              pt%s(:,i:j), pt%eps_p(i:j), pt%hard(i:j), pt%soft(i:j), pt%temp(i:j), pt%damage(i:j), &
                              pt%dheat(i:j))
       call particle_update(dom%mat(mt), j - i + 1, dt, pt%m(i:j), pt%drho(i:j), pt%dheat(i:j), pt%strong(i:j), &
-                           pt%rho(i:j), pt%e(i:j), pt%p(i:j), pt%c(i:j))
+                           pt%temp(i:j), pt%rho(i:j), pt%e(i:j), pt%p(i:j), pt%c(i:j))
       i = j + 1
     end do
     pt%dt_stable = huge(1.0_rk)

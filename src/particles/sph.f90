@@ -10,7 +10,8 @@
 module udar_sph
   use udar_kinds, only: rk, pi, block_size
   use udar_ordering, only: sort_ints
-  use udar_config, only: material_cfg_t, eos_mie_gruneisen
+  use udar_config, only: material_cfg_t, eos_mie_gruneisen, shear_constant
+  use udar_flow_models, only: shear_modulus_at
   use udar_hydro, only: volumetric_update
   use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
   use udar_strength, only: strength_block, thermal_softening_update, von_mises
@@ -205,16 +206,17 @@ contains
   !> energy equation with the EOS solved exactly as the elements do
   !> (volumetric_update: de = heat dt - (p(n) + p(n+1))/2 d(1/rho), no
   !> element viscosity; tension only where strong), and the sound speed.
-  !> p, c in: of step n; out: of step n+1. A strengthless particle without
+  !> p, c in: of step n; out: of step n+1; temp: the temperature of the
+  !> particles' shear modulus (the wave speed). A strengthless particle without
   !> pressure at both ends of the step keeps its density if it would fall:
   !> failed material does not expand in tension, it parts (no pressure: the
   !> volume change would do no work either way); without this, particles
   !> that fly apart thin out and must then be squeezed back to their
   !> density before they push.
-  pure subroutine particle_update(mat, n, dt, m, drho, heat, strong, rho, e, p, c)
+  pure subroutine particle_update(mat, n, dt, m, drho, heat, strong, temp, rho, e, p, c)
     type(material_cfg_t), intent(in) :: mat
     integer, intent(in) :: n
-    real(rk), intent(in) :: dt, m(:), drho(:), heat(:)
+    real(rk), intent(in) :: dt, m(:), drho(:), heat(:), temp(:)
     logical, intent(in) :: strong(:)
     real(rk), intent(inout) :: rho(:), e(:), p(:), c(:)
     real(rk), dimension(block_size) :: vol, zero, j_old, j_new, w_visc, q, bulk_tan, stiff, pp, rho_old
@@ -242,7 +244,7 @@ contains
         k = first + i - 1
         if (no_tension(i) .and. p(k) == 0.0_rk .and. pp(i) == 0.0_rk) rho(k) = max(rho(k), rho_old(i))
         call particle_pressure(mat, rho(k), e(k), strong(k), p(k), c(k))
-        c(k) = wave_speed(mat, strong(k), rho(k), c(k))
+        c(k) = wave_speed(mat, strong(k), rho(k), c(k), p(k), temp(k))
       end do
     end do
   end subroutine
@@ -250,13 +252,19 @@ contains
   !> The speed of the fastest wave in a particle of density rho whose
   !> bulk sound speed is c_bulk: c_bulk, or with its strength the
   !> longitudinal wave's sqrt(c_bulk^2 + 4 G / (3 rho)), which the step
-  !> must follow.
-  pure elemental real(rk) function wave_speed(mat, strong, rho, c_bulk) result(c)
+  !> must follow; G at its pressure p and temperature temp where the
+  !> material's shear modulus depends on them.
+  pure elemental real(rk) function wave_speed(mat, strong, rho, c_bulk, p, temp) result(c)
     type(material_cfg_t), intent(in) :: mat
     logical, intent(in) :: strong
-    real(rk), intent(in) :: rho, c_bulk
+    real(rk), intent(in) :: rho, c_bulk, p, temp
+    real(rk) :: g
     c = c_bulk
-    if (strong) c = sqrt(c_bulk**2 + 4.0_rk*mat%shear_modulus/(3.0_rk*rho))
+    if (.not. strong) return
+    g = mat%shear_modulus
+    ! the modulus of the particle's state, as its strength takes it
+    if (mat%shear_model /= shear_constant) g = shear_modulus_at(mat, p, temp, rho/mat%rho0)
+    c = sqrt(c_bulk**2 + 4.0_rk*g/(3.0_rk*rho))
   end function
 
   !> The deviatoric stress s(6,:) of particles 1..n of material mat over

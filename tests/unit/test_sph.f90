@@ -17,7 +17,7 @@ program test_sph
   use udar_config, only: material_cfg_t, eos_linear, eos_mie_gruneisen
   use udar_sph, only: spline_w, spline_dw, sph_forces, sph_rates, particle_update, particle_pressure, element_to_particle, sph_pairs, &
                       smoothing_length, sph_stable_dt, particle_strength, wave_speed
-  use udar_config, only: strength_perfectly_plastic, fracture_plastic_strain
+  use udar_config, only: strength_perfectly_plastic, fracture_plastic_strain, shear_constant, shear_steinberg_guinan
   use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
   use unit_checks, only: check, check_summary
   implicit none
@@ -253,7 +253,7 @@ contains
     type(material_cfg_t) :: mat
     integer, parameter :: n_steps = 4000
     real(rk) :: rho(2), grad(9,2), p(2), s(6,2), eps_p(2), hard(2), soft(2), temp(2), damage(2), heat(2), &
-                dt, gam, tau_y, work, t, worst, want
+                dt, gam, tau_y, work, t, worst, want, c_l
     logical :: strong(2)
     integer :: k
     mat = plastic_steel()
@@ -291,10 +291,16 @@ contains
                'step '//itoa(k)//', eps_p '//r2s(eps_p(1)))
     call check('strengthless_particle_keeps_no_stress', all(s(:,2) == 0.0_rk) .and. heat(2) == 0.0_rk .and. &
                eps_p(2) == 0.0_rk, 's_xy '//r2s(s(4,2)))
-    call check('wave_speed_with_strength', abs(wave_speed(mat, .true., mat%rho0, 4500.0_rk) - &
+    call check('wave_speed_with_strength', abs(wave_speed(mat, .true., mat%rho0, 4500.0_rk, 0.0_rk, 300.0_rk) - &
                sqrt(4500.0_rk**2 + 4.0_rk/3.0_rk*80e9_rk/7850.0_rk)) < 1e-9_rk .and. &
-               wave_speed(mat, .false., mat%rho0, 4500.0_rk) == 4500.0_rk, 'c_L '// &
-               r2s(wave_speed(mat, .true., mat%rho0, 4500.0_rk))//' m/s')
+               wave_speed(mat, .false., mat%rho0, 4500.0_rk, 0.0_rk, 300.0_rk) == 4500.0_rk, 'c_L '// &
+               r2s(wave_speed(mat, .true., mat%rho0, 4500.0_rk, 0.0_rk, 300.0_rk))//' m/s')
+    ! Steinberg-Guinan's G(p, T): G0 (1 + 2e-11 1e10 / 1.05^(1/3) - 3e-4 200) = 90.9418903 GPa by hand
+    mat%shear_model = shear_steinberg_guinan; mat%sg_a = 2.0e-11_rk; mat%sg_b = 3.0e-4_rk; mat%sg_t0 = 300
+    c_l = wave_speed(mat, .true., 1.05_rk*mat%rho0, 4500.0_rk, 10.0e9_rk, 500.0_rk)
+    call check('wave_speed_with_state_shear_modulus', abs(c_l/5912.78723892_rk - 1) < 1e-10_rk, &
+               'c_L '//r2s(c_l)//' m/s at 10 GPa, 500 K, rho/rho0 1.05 (hand: 5912.78723892 m/s)')
+    mat%shear_model = shear_constant
   end subroutine
 
   !> The EOS without tension, and with it.
@@ -354,7 +360,7 @@ contains
     dt = 1e-8_rk
     drho = -rho*1e5_rk          ! dilatation 1e5 1/s: 1e-3 in the step
     strong = [.true., .false.]
-    call particle_update(mat, 2, dt, m, drho, heat, strong, rho, e, p, c)
+    call particle_update(mat, 2, dt, m, drho, heat, strong, [300.0_rk, 300.0_rk], rho, e, p, c)
     call check('strong_particle_carries_tension', rho(1) < mat%rho0 .and. abs(p(1) + 160e9_rk*1e-3_rk) < 1e-3_rk*160e6_rk, &
                'p '//r2s(p(1))//' Pa against -K 1e-3 = '//r2s(-160e6_rk))
     call check('strengthless_particle_parts', rho(2) == mat%rho0 .and. p(2) == 0.0_rk, &
@@ -473,7 +479,7 @@ contains
       grad = 0
       call sph_rates(3, dt, np, pairs, x, v, m, hh, coef, drho, dedt, grad)
       x = x + dt*v
-      call particle_update(steel, 2, dt, m, drho, dedt, strong, rho, e, p, c)
+      call particle_update(steel, 2, dt, m, drho, dedt, strong, [300.0_rk, 300.0_rk], rho, e, p, c)
       closest = min(closest, norm2(x(:,1) - x(:,2)))
       en = sum(0.5_rk*m*sum(v**2, dim=1)) + sum(m*e)
       e_low = min(e_low, en)
