@@ -398,37 +398,41 @@ contains
     call attr_num(w, w%step_gid, 'time', time, ok, errmsg); if (.not. ok) return
     call attr_num(w, w%step_gid, 'cycle', cycle, ok, errmsg); if (.not. ok) return
     call write_vector(w, w%step_gid, 'coordinates', x, ok, errmsg)
+    if (ok) call dataset_attrs(w, w%step_gid, 'coordinates', 'm', 'Node', ok, errmsg)
   end subroutine fw_begin_step_i8
 
   !> Nodal vector field a(size(node_gidx),3), stored C-order (n_nodes,3).
-  subroutine fw_node_vector(w, name, a, ok, errmsg)
+  subroutine fw_node_vector(w, name, a, ok, errmsg, units)
     type(field_writer_t), intent(inout) :: w
     character(len=*), intent(in) :: name
     real(rk), intent(in) :: a(:,:)
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
+    character(len=*), intent(in), optional :: units
     call write_field(w, name, fk_node_vector, size(a, 1) == w%node_rows%n .and. size(a, 2) == 3, &
-                     ok, errmsg, vector=a)
+                     ok, errmsg, units, vector=a)
   end subroutine fw_node_vector
 
   !> Nodal scalar field a(size(node_gidx)), stored (n_nodes,).
-  subroutine fw_node_scalar(w, name, a, ok, errmsg)
+  subroutine fw_node_scalar(w, name, a, ok, errmsg, units)
     type(field_writer_t), intent(inout) :: w
     character(len=*), intent(in) :: name
     real(rk), intent(in) :: a(:)
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
-    call write_field(w, name, fk_node_scalar, size(a) == w%node_rows%n, ok, errmsg, scalar=a)
+    character(len=*), intent(in), optional :: units
+    call write_field(w, name, fk_node_scalar, size(a) == w%node_rows%n, ok, errmsg, units, scalar=a)
   end subroutine fw_node_scalar
 
   !> Element (cell) scalar field a(size(elem_gidx)), stored (n_elems,).
-  subroutine fw_elem_scalar(w, name, a, ok, errmsg)
+  subroutine fw_elem_scalar(w, name, a, ok, errmsg, units)
     type(field_writer_t), intent(inout) :: w
     character(len=*), intent(in) :: name
     real(rk), intent(in) :: a(:)
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
-    call write_field(w, name, fk_elem_scalar, size(a) == w%elem_rows%n, ok, errmsg, scalar=a)
+    character(len=*), intent(in), optional :: units
+    call write_field(w, name, fk_elem_scalar, size(a) == w%elem_rows%n, ok, errmsg, units, scalar=a)
   end subroutine fw_elem_scalar
 
   !> The particles of the step (collective; every rank passes them all, the
@@ -1005,14 +1009,17 @@ contains
   end subroutine check_field
 
   !> What the three field writers share: checks of the step, name and shape
-  !> (fits: the array has the local shape of its kind), the dataset, the record.
-  subroutine write_field(w, name, kind, fits, ok, errmsg, vector, scalar)
+  !> (fits: the array has the local shape of its kind), the dataset with its
+  !> units (when given) and centering ('Node' or 'Cell') as attributes, the
+  !> record.
+  subroutine write_field(w, name, kind, fits, ok, errmsg, units, vector, scalar)
     type(field_writer_t), intent(inout) :: w
     character(len=*), intent(in) :: name
     integer, intent(in) :: kind
     logical, intent(in) :: fits
     logical, intent(out) :: ok
     character(len=:), allocatable, intent(out) :: errmsg
+    character(len=*), intent(in), optional :: units
     real(rk), intent(in), optional :: vector(:,:), scalar(:)
 
     call check_field(w, name, ok, errmsg); if (.not. ok) return
@@ -1035,8 +1042,42 @@ contains
     else
       call write_data(w, w%step_gid, trim(name), on_elems, 0, ok, errmsg, reals=scalar)
     end if
+    if (ok) then
+      if (kind == fk_elem_scalar) then
+        call dataset_attrs(w, w%step_gid, trim(name), units, 'Cell', ok, errmsg)
+      else
+        call dataset_attrs(w, w%step_gid, trim(name), units, 'Node', ok, errmsg)
+      end if
+    end if
     if (ok) call add_field(w, trim(name), kind)
   end subroutine write_field
+
+  !> The string attributes 'units' (when given) and 'center' of dataset
+  !> name in loc (collective: every rank passes the same values).
+  subroutine dataset_attrs(w, loc, name, units, center, ok, errmsg)
+    type(field_writer_t), intent(in) :: w
+    integer(hid_t), intent(in) :: loc
+    character(len=*), intent(in) :: name, center
+    character(len=*), intent(in), optional :: units
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: errmsg
+    integer(hid_t) :: did
+    integer :: err, e2
+    ok = .false.
+    call h5dopen_f(loc, name, did, err)
+    if (err < 0) then
+      errmsg = op_err(w, 'open dataset '//name//' for its attributes')
+      return
+    end if
+    ok = .true.
+    if (present(units)) call attr_str(w, did, 'units', units, ok, errmsg)
+    if (ok) call attr_str(w, did, 'center', center, ok, errmsg)
+    call h5dclose_f(did, e2)
+    if (ok .and. e2 < 0) then
+      ok = .false.
+      errmsg = op_err(w, 'close dataset '//name)
+    end if
+  end subroutine dataset_attrs
 
   !> Names become HDF5 link names and XML attribute values: keep them plain.
   pure logical function valid_name(name)

@@ -879,23 +879,26 @@ contains
       work_node = transpose(dom%nd_x(:,1:dom%n_owned_nodes))
       call fw_begin_step(fw, t, cycle, work_node, ok, msg)
       work_node = transpose(dom%nd_v(:,1:dom%n_owned_nodes))
-      if (ok) call fw_node_vector(fw, 'velocity', work_node, ok, msg)
+      if (ok) call fw_node_vector(fw, 'velocity', work_node, ok, msg, 'm/s')
+      ! for Warp By Vector and readers that take the first step's geometry
+      work_node = transpose(dom%nd_x(:,1:dom%n_owned_nodes) - dom%nd_x0(:,1:dom%n_owned_nodes))
+      if (ok) call fw_node_vector(fw, 'displacement', work_node, ok, msg, 'm')
       work_elem = dom%el_p(dom%el_owned_list)
-      if (ok) call fw_elem_scalar(fw, 'pressure', work_elem, ok, msg)
-      if (ok) call fw_elem_scalar(fw, 'von_mises', svm, ok, msg)
+      if (ok) call fw_elem_scalar(fw, 'pressure', work_elem, ok, msg, 'Pa')
+      if (ok) call fw_elem_scalar(fw, 'von_mises', svm, ok, msg, 'Pa')
       work_elem = dom%el_eps_p(dom%el_owned_list)
-      if (ok) call fw_elem_scalar(fw, 'plastic_strain', work_elem, ok, msg)
+      if (ok) call fw_elem_scalar(fw, 'plastic_strain', work_elem, ok, msg, '-')
       work_elem = dom%el_temp(dom%el_owned_list)
-      if (ok) call fw_elem_scalar(fw, 'temperature', work_elem, ok, msg)
-      if (ok) call fw_elem_scalar(fw, 'density', rho, ok, msg)
+      if (ok) call fw_elem_scalar(fw, 'temperature', work_elem, ok, msg, 'K')
+      if (ok) call fw_elem_scalar(fw, 'density', rho, ok, msg, 'kg/m3')
       call element_time_steps(dom, work_step)
       work_elem = work_step(dom%el_owned_list)
-      if (ok) call fw_elem_scalar(fw, 'time_step', work_elem, ok, msg)
+      if (ok) call fw_elem_scalar(fw, 'time_step', work_elem, ok, msg, 's')
       if (ok .and. fracture_on) then
         work_elem = dom%el_damage(dom%el_owned_list)
-        call fw_elem_scalar(fw, 'damage', work_elem, ok, msg)
+        call fw_elem_scalar(fw, 'damage', work_elem, ok, msg, '-')
         work_elem = real(dom%el_state(dom%el_owned_list), rk)
-        if (ok) call fw_elem_scalar(fw, 'fracture_state', work_elem, ok, msg)
+        if (ok) call fw_elem_scalar(fw, 'fracture_state', work_elem, ok, msg, '-')
       end if
       if (ok .and. ct%n_interfaces > 0) then
         call contact_pressure(ct, dom)
@@ -903,7 +906,7 @@ contains
         do i = 1, ct%n_nodes
           if (ct%local(i) > 0 .and. ct%local(i) <= dom%n_owned_nodes) work_node(ct%local(i),1) = ct%pressure(i)
         end do
-        call fw_node_scalar(fw, 'contact_pressure', work_node(:,1), ok, msg)
+        call fw_node_scalar(fw, 'contact_pressure', work_node(:,1), ok, msg, 'Pa')
       end if
       if (ok .and. pt%enabled) call write_particles(fw, ok, msg)
       if (ok) call fw_end_step(fw, ok, msg)

@@ -1,5 +1,7 @@
 """Elastic bar (nu = 0) on a rigid wall against 1D elastic wave theory:
-contact stress rho c v, contact duration 2L/c, rebound speed v, energy."""
+contact stress rho c v, contact duration 2L/c, rebound speed v, energy.
+And the field file's node displacement: exactly the coordinates less the
+initial ones at every step; every field with its units and centering."""
 import math
 import os
 import sys
@@ -23,4 +25,21 @@ mass = RHO * L * A
 after = t > duration + 5e-6
 checks.compare('rebound_velocity', h['momentum_z'][after].mean() / mass, V, 0.02, 'm/s')
 checks.below('energy_error_max', abs(h['energy_error']).max(), 0.01)
+
+import h5py  # noqa: E402
+import numpy as np  # noqa: E402
+
+UNITS = {'coordinates': ('m', 'Node'), 'velocity': ('m/s', 'Node'), 'displacement': ('m', 'Node'),
+         'pressure': ('Pa', 'Cell'), 'von_mises': ('Pa', 'Cell'), 'plastic_strain': ('-', 'Cell'),
+         'temperature': ('K', 'Cell'), 'density': ('kg/m3', 'Cell'), 'time_step': ('s', 'Cell')}
+with h5py.File(os.path.join(sys.argv[1], 'out', 'elastic_bar.h5'), 'r') as f:
+    x0 = f['mesh/x0'][()]
+    steps = [f['steps'][k] for k in sorted(f['steps'])]
+    exact = all(np.array_equal(g['displacement'][()], g['coordinates'][()] - x0) for g in steps)
+    moved = max(float(np.abs(g['displacement'][()]).max()) for g in steps)
+    attrs = {n: (udar_results._decode(steps[-1][n].attrs.get('units', b'')),
+                 udar_results._decode(steps[-1][n].attrs.get('center', b''))) for n in UNITS}
+print(f"MEASURED {len(steps)} steps, largest displacement {moved:.4g} m; attributes {attrs}")
+checks.above('displacement_is_coordinates_less_x0_bitwise', float(exact and moved > 0), 1.0)
+checks.above('field_units_and_centering', float(attrs == UNITS), 1.0)
 checks.finish()
