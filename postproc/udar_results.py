@@ -788,10 +788,34 @@ def history_note(path):
     return ""
 
 
+#: A history column's unit after its name (0.9.0 on): 'kinetic [J]'.
+_HEADER_UNIT = re.compile(r"\s*\[[^\]]*\]$")
+
+
+def history_units(path):
+    """{column name: unit} from a udar history CSV's header ('kinetic [J]' -> 'J'; '' for a
+    column without one, as in files before 0.9.0)."""
+    with open(str(path), "r", newline="") as fh:
+        for line in fh:
+            if line.strip() and not _is_note(line):
+                break
+        else:
+            return {}
+    units = {}
+    for h in next(csv.reader([line.lstrip("#")])):
+        h = h.strip()
+        m = _HEADER_UNIT.search(h)
+        if h:
+            units[_HEADER_UNIT.sub("", h)] = m.group(0).strip()[1:-1] if m else ""
+    return units
+
+
 def read_history(path):
     """Read a udar history CSV -> dict {column name: 1-D float64 numpy array} (file order).
 
-    The first line holds the column names (a leading '#' is ignored), after an optional
+    The first line holds the column names, each with its unit in brackets since 0.9.0
+    ('kinetic [J]': the key is 'kinetic'; ``history_units`` gives the units; a leading '#'
+    is ignored), after an optional
     comment line ('# ' and no comma: a 2D run says there that its integrated columns are
     per revolution or per metre; ``history_note`` returns it). An incomplete *last* line
     (a run still writing) is dropped with a warning. Raises ``UdarFileError``.
@@ -814,7 +838,7 @@ def read_history(path):
     if not lines:
         raise UdarFileError("%s: empty file (expected a header line with column names)" % path)
     header = next(csv.reader([lines[0].lstrip("#")]))
-    names = [h.strip() for h in header]
+    names = [_HEADER_UNIT.sub("", h.strip()) for h in header]
     if names and names[-1] == "":
         names.pop()  # trailing comma
     if not names or any(n == "" for n in names):

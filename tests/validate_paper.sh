@@ -77,8 +77,10 @@ for form in stabilised plain; do
   $PYTHON - "$W/ricochet/out_$form/${form}_history.csv" "$form" \
     "$(log_value "$log" cycles)" "$(log_value "$log" energy_error)" "$(log_value "$log" wall_s)" <<'PY' | tee -a $csv
 import sys, numpy as np
+sys.path.insert(0, 'postproc')
+import udar_results
 path, form, cycles, err, wall = sys.argv[1:]
-h = np.genfromtxt(path, delimiter=',', names=True)
+h = udar_results.read_history(path)
 t = h['time']
 touching = np.nonzero(h['contact_normal_rod_on_plate'] > 0)[0]
 late = t >= t[-1] - 1e-6

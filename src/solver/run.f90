@@ -822,7 +822,7 @@ contains
                    dom%el_part(dom%el_owned_list), work_node, &
                    cfg%resolved_text, program_version, trim(cfg%run%title), comms_size(), ok, errmsg)
       call output_check(ok, errmsg)
-      if (comms_is_root()) call history_open(hist, base//'_history.csv', history_columns(dom, ct), &
+      if (comms_is_root()) call history_open(hist, base//'_history.csv', history_header(dom, ct), &
                                              history_preamble(dom%geometry), ok, errmsg)
       call output_check(ok, errmsg)
     end subroutine
@@ -843,7 +843,7 @@ contains
       bad_out = 0
       errmsg = ''
       if (comms_is_root()) then
-        call history_reopen(hist, base//'_history.csv', history_columns(dom, ct), history_preamble(dom%geometry), &
+        call history_reopen(hist, base//'_history.csv', history_header(dom, ct), history_preamble(dom%geometry), &
                             st%history_rows, st%cycle, ok, errmsg)
         if (.not. ok) bad_out = 1
         if (ok .and. hist%rows < st%history_rows) call log_warn('restart: the history '//base// &
@@ -1102,6 +1102,77 @@ contains
     end do
     cols(ip + per_interface*ct%n_interfaces + 1) = 'contact_work'
   end function
+
+  !> The history's header: each column's name and its SI unit in brackets,
+  !> 'kinetic [J]'; a plane-strain run's integrated columns (energies,
+  !> momenta, forces, masses) are per metre of depth, 'kinetic [J/m]',
+  !> 'momentum_x [(kg m/s)/m]'.
+  function history_header(dom, ct) result(cols)
+    type(domain_t), intent(in) :: dom
+    type(contact_t), intent(in) :: ct
+    character(len=96), allocatable :: cols(:)
+    character(len=80), allocatable :: names(:)
+    character(len=:), allocatable :: unit
+    logical :: integrated
+    integer :: k
+    names = history_columns(dom, ct)
+    allocate(cols(size(names)))
+    do k = 1, size(names)
+      call column_unit(names(k), unit, integrated)
+      if (integrated .and. dom%geometry == geometry_plane_strain) then
+        if (scan(unit, ' /') > 0) unit = '('//unit//')'
+        unit = unit//'/m'
+      end if
+      cols(k) = trim(names(k))//' ['//unit//']'
+    end do
+  end function
+
+  !> The unit of history column name, and whether it is integrated over the
+  !> body (per metre in plane strain).
+  subroutine column_unit(name, unit, integrated)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable, intent(out) :: unit
+    logical, intent(out) :: integrated
+    integrated = .true.
+    select case (trim(name))
+    case ('time', 'dt')
+      unit = 's'
+      integrated = .false.
+    case ('cycle', 'energy_error', 'fractured', 'eroded', 'particles')
+      unit = '-'
+      integrated = .false.
+    case ('momentum_x', 'momentum_y', 'momentum_z')
+      unit = 'kg m/s'
+    case ('wall_force')
+      unit = 'N'
+    case ('angular_momentum_x', 'angular_momentum_y', 'angular_momentum_z')
+      unit = 'kg m2/s'
+    case ('mass', 'particle_mass')
+      unit = 'kg'
+    case default
+      ! the energies, and the per-part and per-interface families
+      unit = 'J'
+      if (starts(name, 'com_')) then
+        unit = 'm'
+        integrated = .false.
+      else if (starts(name, 'contact_normal_') .or. starts(name, 'contact_friction_') .or. &
+               starts(name, 'contact_force_')) then
+        unit = 'N'
+      else if (starts(name, 'contact_slip_')) then
+        unit = 'm/s'
+        integrated = .false.
+      else if (starts(name, 'contact_deep_')) then
+        unit = '-'
+        integrated = .false.
+      end if
+    end select
+  contains
+    logical function starts(text, head)
+      character(len=*), intent(in) :: text, head
+      starts = len(text) >= len(head)
+      if (starts) starts = text(1:len(head)) == head
+    end function
+  end subroutine
 
   subroutine write_history_row(hist, t, cycle, dt, bal, row, ok, errmsg)
     type(history_t), intent(inout) :: hist

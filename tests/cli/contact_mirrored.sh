@@ -30,7 +30,7 @@ import numpy as np
 w, case = sys.argv[1], sys.argv[2]
 def history(side):
     rows = [l for l in open(f'{w}/{side}/out/{case}_history.csv') if not l.startswith('#')]
-    head = rows[0].strip().split(',')
+    head = [c.split(' [')[0] for c in rows[0].strip().split(',')]   # names less units
     return head, np.array([[float(v) for v in r.split(',')] for r in rows[1:]])
 h, a = history('plain')
 _, b = history('mirrored')

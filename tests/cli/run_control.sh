@@ -38,7 +38,8 @@ grep 'event is over' "$W/ke.log"
 $PYTHON - "$W/out" <<'PY' && ok "ended_when_kinetic_energy_below_5_percent_of_peak" || bad "end criterion"
 import sys, csv, h5py
 out = sys.argv[1]
-rows = list(csv.DictReader(open(f'{out}/ke_history.csv')))
+# the header's names less their units ('kinetic [J]')
+rows = [{k.split(' [')[0]: v for k, v in r.items()} for r in csv.DictReader(open(f'{out}/ke_history.csv'))]
 ke = [float(r['kinetic']) for r in rows]
 cyc = [int(r['cycle']) for r in rows]
 t = float(rows[-1]['time'])

@@ -1,7 +1,8 @@
 """Elastic bar (nu = 0) on a rigid wall against 1D elastic wave theory:
 contact stress rho c v, contact duration 2L/c, rebound speed v, energy.
 And the field file's node displacement: exactly the coordinates less the
-initial ones at every step; every field with its units and centering."""
+initial ones at every step; every field with its units and centering;
+every history column with its unit."""
 import math
 import os
 import sys
@@ -25,6 +26,16 @@ mass = RHO * L * A
 after = t > duration + 5e-6
 checks.compare('rebound_velocity', h['momentum_z'][after].mean() / mass, V, 0.02, 'm/s')
 checks.below('energy_error_max', abs(h['energy_error']).max(), 0.01)
+
+# every history column says its unit
+HISTORY_UNITS = {'time': 's', 'cycle': '-', 'dt': 's', 'kinetic': 'J', 'internal': 'J', 'plastic_work': 'J',
+                 'wall_work': 'J', 'total': 'J', 'energy_error': '-', 'momentum_x': 'kg m/s', 'momentum_y': 'kg m/s',
+                 'momentum_z': 'kg m/s', 'wall_force': 'N', 'angular_momentum_x': 'kg m2/s',
+                 'angular_momentum_y': 'kg m2/s', 'angular_momentum_z': 'kg m2/s', 'ke_bar': 'J', 'com_x_bar': 'm',
+                 'com_y_bar': 'm', 'com_z_bar': 'm'}
+units = udar_results.history_units(os.path.join(sys.argv[1], 'out', 'elastic_bar_history.csv'))
+print(f"MEASURED history units {units}")
+checks.above('history_header_units', float(units == HISTORY_UNITS), 1.0)
 
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402

@@ -17,4 +17,11 @@ oblique = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(oblique)
 
 deck = sys.argv[2] if len(sys.argv) > 2 else 'oblique_friction_2d'
+# the header says so too: integrated columns per metre, the others as in 3D
+units = oblique.udar_results.history_units(os.path.join(sys.argv[1], 'out', deck + '_history.csv'))
+want = {'time': 's', 'kinetic': 'J/m', 'momentum_x': '(kg m/s)/m', 'wall_force': 'N/m', 'energy_error': '-',
+        'com_x_block': 'm', 'contact_slip_block_on_plate': 'm/s', 'contact_normal_block_on_plate': 'N/m'}
+got = {k: units.get(k) for k in want}
+print(f"MEASURED plane-strain history units {got}")
+oblique.checks.above('history_units_per_metre', float(got == want), 1.0)
 oblique.check(sys.argv[1], deck, deck == 'oblique_friction_2d', normal='y', body='block')

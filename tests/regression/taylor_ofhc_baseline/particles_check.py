@@ -70,7 +70,7 @@ def main(run_dir, deck):
     n, r95, length, footprint = m['n'], m['r95'], m['length'], m['footprint']
     checks.above('particles_made', n, 500)
     checks.compare('particle_mass_is_converted_element_mass', m['particle_mass'], m['converted_mass'], 1e-12, 'kg')
-    h = np.genfromtxt(os.path.join(out, deck + '_history.csv'), delimiter=',', names=True, comments='#')
+    h = udar_results.read_history(os.path.join(out, deck + '_history.csv'))
     checks.below('mass_change', np.abs(h['mass'] - h['mass'][0]).max(), 0.0, 'kg')
     checks.below('energy_error_max', np.abs(h['energy_error']).max(), 0.02)
     checks.below('particle_mass_radius_95', r95, 1.25 * FOOTPRINT_M / 2, 'm')
