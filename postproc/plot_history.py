@@ -13,6 +13,7 @@ import math
 import os
 import sys
 import tempfile
+import textwrap
 import warnings
 
 if __package__:
@@ -43,16 +44,37 @@ def decimate(x, y, max_points=20000):
     return x[idx], y[idx]
 
 
+#: scalar history columns summed over the body (scaled by --whole); momenta are not: the
+#: components across a symmetry plane cancel in the whole body
+INTEGRATED = {"kinetic", "internal", "plastic_work", "wall_work", "external_work", "total", "wall_force",
+              "eroded_energy", "mass", "contact_work", "particle_mass", "particle_kinetic", "particle_internal",
+              "conversion_heat"}
+INTEGRATED_PREFIXES = ("ke_", "internal_", "plastic_work_", "eroded_energy_", "mass_", "contact_normal_",
+                       "contact_friction_")
+
+
 def case_name(path):
     """'out/taylor_history.csv' -> 'taylor'."""
     stem = os.path.splitext(os.path.basename(path))[0]
     return stem[:-len("_history")] if stem.endswith("_history") and len(stem) > 8 else stem
 
 
-def plot_history(path, out, title=None, error_limit=None, size=None, dpi=150, verbose=True):
-    """Read the history CSV ``path`` and write the figure ``out``. Returns a summary dict."""
+def plot_history(path, out, title=None, error_limit=None, size=None, dpi=150, verbose=True, whole=None):
+    """Read the history CSV ``path`` and write the figure ``out``. Returns a summary dict.
+
+    The integrated quantities (energies, momenta, the wall force) are those of the model, as
+    the history's note says (a quarter model holds a quarter of the rod); ``whole`` multiplies
+    the energies, masses and forces by that factor (4 for a quarter model; not the momenta,
+    whose components across a symmetry plane cancel in the whole body) and the title says so."""
     plt = ur.agg_pyplot()
     h = ur.read_history(path)
+    note = ur.history_note(path)
+    if whole is not None:
+        if not (whole > 0 and math.isfinite(whole)):
+            raise HistoryError("--whole must be a positive factor, got %r" % whole)
+        for c in list(h):
+            if c in INTEGRATED or c.startswith(INTEGRATED_PREFIXES):
+                h[c] = h[c] * whole
     if "time" not in h:
         raise HistoryError("%s: no 'time' column (columns: %s)" % (path, ", ".join(h)))
     n = len(h["time"])
@@ -178,10 +200,19 @@ def plot_history(path, out, title=None, error_limit=None, size=None, dpi=150, ve
         if col:
             col[-1].set_xlabel("time (µs)")
             col[-1].xaxis.set_tick_params(labelbottom=True)
-    fig.suptitle(title or "%s — history" % case_name(path))
+    head = title or "%s — history" % case_name(path)
+    if whole is not None:
+        head += "\nenergies, masses and forces x %g: the whole body (momenta: the model's)" % whole
+    elif note:
+        # what the integrated curves stand for (the modelled part, per revolution, per metre)
+        head += "\n" + "\n".join(textwrap.wrap(note.replace("udar history: ", ""), 110))
+    fig.suptitle(head, fontsize="medium")
     ur.save_figure(fig, out, dpi, HistoryError)
 
-    summary = {"rows": n, "t_end_s": float(h["time"][-1]), "parts": parts, "panels": len(panels)}
+    summary = {"rows": n, "t_end_s": float(h["time"][-1]), "parts": parts, "panels": len(panels),
+               "title": head}
+    if "kinetic" in h:
+        summary["kinetic_0"] = float(h["kinetic"][0])
     if "energy_error" in h and np.any(np.isfinite(h["energy_error"])):
         k = int(np.nanargmax(np.abs(h["energy_error"])))
         summary["max_abs_energy_error"] = float(abs(h["energy_error"][k]))
@@ -239,6 +270,9 @@ def _self_test(verbose=True):
         check(os.path.getsize(out) > 5000 and s["panels"] == 6, "full figure with 6 panels")
         check(abs(s["max_abs_energy_error"] - 1e-3) < 1e-5, "energy error summary")
         check(case_name(csvp) == "impact", "title from the file name")
+        s4 = plot_history(csvp, out, verbose=False, whole=4.0)
+        check(s4["kinetic_0"] == 4.0 * s["kinetic_0"] and "x 4" in s4["title"],
+              "--whole 4: energies four times the model's, and the title says so")
         xx = np.arange(100001, dtype=float)
         yy = np.zeros_like(xx)
         yy[54321], yy[77] = 5.0, -3.0
@@ -284,6 +318,10 @@ The energy_error column is taken as relative (dimensionless) and drawn in percen
     p.add_argument("--title", help="figure title (default: case name from the file name)")
     p.add_argument("--error-limit", type=float, metavar="FRAC",
                    help="draw +-FRAC lines on the energy error panel (e.g. 0.2, the run's limit)")
+    p.add_argument("--whole", type=float, metavar="F",
+                   help="multiply the energies, masses and forces by F: the whole body of a model cut "
+                        "by symmetry planes (4 for a quarter model; the history's note gives the factor; "
+                        "momenta stay the model's)")
     ur.add_figure_arguments(p)
     return ur.add_self_test(p)
 
@@ -298,7 +336,7 @@ def _run(args, p):
     if os.path.abspath(out) == os.path.abspath(args.history):
         p.error("the output file would overwrite the input")
     plot_history(args.history, out, title=args.title, error_limit=args.error_limit,
-                 size=tuple(args.size) if args.size else None, dpi=args.dpi)
+                 size=tuple(args.size) if args.size else None, dpi=args.dpi, whole=args.whole)
 
 
 if __name__ == "__main__":

@@ -8,7 +8,7 @@
 module udar_run
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use udar_kinds, only: rk, max_path_len
-  use udar_config, only: config_t, geometry_axisymmetric, geometry_plane_strain
+  use udar_config, only: config_t, geometry_axisymmetric, geometry_plane_strain, geometry_solid
   use udar_domain, only: domain_t, wall_t
   use udar_kinds, only: i8
   use udar_vectors, only: cross
@@ -52,6 +52,13 @@ module udar_run
   !> largest slip, deep slave nodes found, the force on the master side
   integer, parameter :: per_interface = 7
   integer, parameter :: n_base = 16          !< history columns before the parts'
+  !> history columns of each part (LS-DYNA's matsum): kinetic energy, centre
+  !> of mass, internal energy, plastic work, eroded energy, mass, momentum,
+  !> mean velocity
+  integer, parameter :: per_part = 14
+  !> exact accumulators of each part: kinetic energy, mass moments (3), mass,
+  !> internal energy, plastic work, eroded energy, momentum (3)
+  integer, parameter :: part_sums = 11
 
   !> What a finished run reports back (for the summary and the caller).
   type :: run_result_t
@@ -85,6 +92,7 @@ module udar_run
     real(rk), allocatable :: contact_deep(:)                          !< slave nodes found inside a master element, per interface
     real(rk), allocatable :: contact_force(:,:)                       !< N, (3, interfaces) on the master side
     real(rk), allocatable :: part_ke(:), part_com(:,:), part_mass(:)
+    real(rk), allocatable :: part_internal(:), part_plastic(:), part_eroded(:), part_momentum(:,:)
     integer(i8), allocatable :: acc(:,:)   !< exact accumulators, one column per summed quantity
   end type
 
@@ -823,7 +831,7 @@ contains
                    cfg%resolved_text, program_version, trim(cfg%run%title), comms_size(), ok, errmsg)
       call output_check(ok, errmsg)
       if (comms_is_root()) call history_open(hist, base//'_history.csv', history_header(dom, ct), &
-                                             history_preamble(dom%geometry), ok, errmsg)
+                                             history_preamble(dom), ok, errmsg)
       call output_check(ok, errmsg)
     end subroutine
 
@@ -843,7 +851,7 @@ contains
       bad_out = 0
       errmsg = ''
       if (comms_is_root()) then
-        call history_reopen(hist, base//'_history.csv', history_header(dom, ct), history_preamble(dom%geometry), &
+        call history_reopen(hist, base//'_history.csv', history_header(dom, ct), history_preamble(dom), &
                             st%history_rows, st%cycle, ok, errmsg)
         if (.not. ok) bad_out = 1
         if (ok .and. hist%rows < st%history_rows) call log_warn('restart: the history '//base// &
@@ -1045,13 +1053,16 @@ contains
     end do
   end function
 
-  !> The history's comment line before its header: what a 2D run's
-  !> integrated columns stand for ('' in 3D: no such line). No comma, so
-  !> that no reader takes it for the header.
-  function history_preamble(geometry) result(text)
-    integer, intent(in) :: geometry
+  !> The history's comment line before its header: what its integrated
+  !> columns stand for: a 2D run's (per revolution, per metre) and a model
+  !> cut by symmetry planes (the modelled part; for n perpendicular planes
+  !> through the body the whole has 2^n times it). '' when neither: no such
+  !> line. No comma, so that no reader takes it for the header.
+  function history_preamble(dom) result(text)
+    type(domain_t), intent(in) :: dom
     character(len=:), allocatable :: text
-    select case (geometry)
+    integer :: n_sym
+    select case (dom%geometry)
     case (geometry_axisymmetric)
       text = 'udar history: axisymmetric (x = r; y the axis): masses; energies; momenta and forces are '// &
              'those of the full revolution (2 pi rad); momentum_x and angular_momentum_* are sums over the '// &
@@ -1061,6 +1072,17 @@ contains
     case default
       text = ''
     end select
+    n_sym = size(dom%sym_walls)
+    if (n_sym == 0) return
+    if (len(text) == 0) then
+      text = 'udar history:'
+    else
+      text = text//';'
+    end if
+    text = text//' '//trim(itoa(n_sym))//' symmetry '//trim(merge('plane', 'line ', dom%geometry == geometry_solid))// &
+           trim(merge('s', ' ', n_sym > 1))// &
+           ': the integrated columns are those of the modelled part (whole body = '// &
+           trim(itoa(2**n_sym))//' x model where they are perpendicular and through its middle)'
   end function
 
   !> Decks with contact get, after the parts, each interface's normal and
@@ -1079,20 +1101,25 @@ contains
       'plastic_work', 'wall_work', 'total', 'energy_error', 'momentum_x', 'momentum_y', 'momentum_z', 'wall_force', &
       'angular_momentum_x', 'angular_momentum_y', 'angular_momentum_z']
     nc = per_interface*ct%n_interfaces + merge(1, 0, ct%n_interfaces > 0)
-    allocate(cols(n_base + 4*dom%n_parts + nc + merge(4, 0, any_fracture(dom)) + merge(5, 0, particles_converting(dom))))
-    if (any_fracture(dom)) cols(n_base + 4*dom%n_parts + nc + 1:n_base + 4*dom%n_parts + nc + 4) = &
+    allocate(cols(n_base + per_part*dom%n_parts + nc + merge(4, 0, any_fracture(dom)) + &
+                  merge(5, 0, particles_converting(dom))))
+    if (any_fracture(dom)) cols(n_base + per_part*dom%n_parts + nc + 1:n_base + per_part*dom%n_parts + nc + 4) = &
       [character(len=80) :: 'fractured', 'eroded', 'eroded_energy', 'mass']
     if (particles_converting(dom)) cols(size(cols)-4:) = [character(len=80) :: 'particles', 'particle_mass', &
       'particle_kinetic', 'particle_internal', 'conversion_heat']
     cols(1:n_base) = base
     do ip = 1, dom%n_parts
-      cols(n_base + 4*ip - 3) = 'ke_'//trim(dom%part_name(ip))
-      cols(n_base + 4*ip - 2) = 'com_x_'//trim(dom%part_name(ip))
-      cols(n_base + 4*ip - 1) = 'com_y_'//trim(dom%part_name(ip))
-      cols(n_base + 4*ip) = 'com_z_'//trim(dom%part_name(ip))
+      cols(n_base + per_part*(ip-1) + 1:n_base + per_part*ip) = [character(len=80) :: &
+        'ke_'//trim(dom%part_name(ip)), 'com_x_'//trim(dom%part_name(ip)), 'com_y_'//trim(dom%part_name(ip)), &
+        'com_z_'//trim(dom%part_name(ip)), 'internal_'//trim(dom%part_name(ip)), &
+        'plastic_work_'//trim(dom%part_name(ip)), 'eroded_energy_'//trim(dom%part_name(ip)), &
+        'mass_'//trim(dom%part_name(ip)), 'momentum_x_'//trim(dom%part_name(ip)), &
+        'momentum_y_'//trim(dom%part_name(ip)), 'momentum_z_'//trim(dom%part_name(ip)), &
+        'velocity_x_'//trim(dom%part_name(ip)), 'velocity_y_'//trim(dom%part_name(ip)), &
+        'velocity_z_'//trim(dom%part_name(ip))]
     end do
     if (nc == 0) return
-    ip = n_base + 4*dom%n_parts
+    ip = n_base + per_part*dom%n_parts
     do nc = 1, ct%n_interfaces
       cols(ip + per_interface*(nc-1) + 1:ip + per_interface*nc) = [character(len=80) :: &
         'contact_normal_'//trim(ct%ifc(nc)%name), 'contact_friction_'//trim(ct%ifc(nc)%name), &
@@ -1155,6 +1182,13 @@ contains
       if (starts(name, 'com_')) then
         unit = 'm'
         integrated = .false.
+      else if (starts(name, 'mass_')) then
+        unit = 'kg'
+      else if (starts(name, 'momentum_')) then
+        unit = 'kg m/s'
+      else if (starts(name, 'velocity_')) then
+        unit = 'm/s'
+        integrated = .false.
       else if (starts(name, 'contact_normal_') .or. starts(name, 'contact_friction_') .or. &
                starts(name, 'contact_force_')) then
         unit = 'N'
@@ -1187,21 +1221,33 @@ contains
     row(1:n_base) = [t, real(cycle, rk), dt, bal%kinetic, bal%internal, bal%plastic, bal%wall_work, bal%total, &
                      bal%error, bal%momentum, bal%wall_force, bal%angular_momentum]
     do ip = 1, np
-      row(n_base + 4*ip - 3) = bal%part_ke(ip)
-      row(n_base + 4*ip - 2:n_base + 4*ip) = bal%part_com(ip,:)
+      row(n_base + per_part*(ip-1) + 1:n_base + per_part*ip) = [bal%part_ke(ip), bal%part_com(ip,:), &
+        bal%part_internal(ip), bal%part_plastic(ip), bal%part_eroded(ip), bal%part_mass(ip), bal%part_momentum(ip,:), &
+        mean_velocity(bal%part_momentum(ip,:), bal%part_mass(ip))]
     end do
-    ip = n_base + 4*np + per_interface*size(bal%contact_normal) + merge(1, 0, size(bal%contact_normal) > 0)
+    ip = n_base + per_part*np + per_interface*size(bal%contact_normal) + merge(1, 0, size(bal%contact_normal) > 0)
     if (size(row) > ip) row(ip+1:ip+4) = [real(bal%n_fractured, rk), real(bal%n_eroded, rk), bal%eroded_energy, &
                                           sum(bal%part_mass)]
     if (size(row) > ip + 4) row(ip+5:ip+9) = [real(bal%n_particles, rk), bal%particle_mass, bal%particle_kinetic, &
                                               bal%particle_internal, bal%conversion_heat]
     do ip = 1, size(bal%contact_normal)
-      row(n_base + 4*np + per_interface*(ip-1) + 1:n_base + 4*np + per_interface*ip) = &
+      row(n_base + per_part*np + per_interface*(ip-1) + 1:n_base + per_part*np + per_interface*ip) = &
         [bal%contact_normal(ip), bal%contact_friction(ip), bal%contact_slip(ip), bal%contact_deep(ip), &
          bal%contact_force(:,ip)]
     end do
-    if (size(bal%contact_normal) > 0) row(n_base + 1 + 4*np + per_interface*size(bal%contact_normal)) = bal%contact_work
+    if (size(bal%contact_normal) > 0) row(n_base + 1 + per_part*np + per_interface*size(bal%contact_normal)) = &
+      bal%contact_work
     call history_write(hist, row, ok, errmsg)
+
+  contains
+
+    !> A part's mean velocity: its momentum over its mass (0 without mass).
+    pure function mean_velocity(p, m) result(v)
+      real(rk), intent(in) :: p(3), m
+      real(rk) :: v(3)
+      v = 0.0_rk
+      if (m > 0.0_rk) v = p/m
+    end function
   end subroutine
 
   !> The energy the balance weighs against the start: the kinetic energy of
@@ -1274,13 +1320,14 @@ contains
     type(balance_t), intent(inout) :: bal
     integer, parameter :: c_kin = 1, c_int = 2, c_pla = 3, c_mom = 4, c_work = 7, c_ero = 8, c_cwork = 9, &
                           c_ang = 10, c_mx = 13, c_m = 16, c_pm = 17, c_pk = 18, c_pi = 19, c_wall = 20
-    integer :: n, ip, i, np, nw, c_part, n_frac, n_ero
+    integer :: n, ip, i, np, nw, c_part, n_frac, n_ero, e
     real(rk) :: ke, mx(3), p(3), lo(3)
     np = dom%n_parts
     nw = size(dom%walls)
-    c_part = c_wall + nw            ! per part: ke, com x/y/z (mass moments), mass
+    c_part = c_wall + nw            ! per part: part_sums accumulators
     if (.not. allocated(bal%part_ke)) allocate(bal%part_ke(np), bal%part_com(np,3), bal%part_mass(np), &
-                                               bal%acc(0:exact_limbs, c_part + 5*np - 1))
+                                               bal%part_internal(np), bal%part_plastic(np), bal%part_eroded(np), &
+                                               bal%part_momentum(np,3), bal%acc(0:exact_limbs, c_part + part_sums*np - 1))
     bal%acc = 0
     do n = 1, dom%n_owned_nodes
       call add_point(dom%nd_mass(n), dom%nd_x(:,n), dom%nd_v(:,n), dom%nd_part(n), ke)
@@ -1291,11 +1338,23 @@ contains
         call add_point(pt%m(n), pt%x(:,n), pt%v(:,n), pt%part(n), ke)
         call exact_add(bal%acc(:,c_pk), ke)
         call exact_add(bal%acc(:,c_int), pt%m(n)*pt%e(n))
+        call exact_add(bal%acc(:,c_part + part_sums*(pt%part(n) - 1) + 5), pt%m(n)*pt%e(n))
         call exact_add(bal%acc(:,c_pi), pt%m(n)*pt%e(n))
         call exact_add(bal%acc(:,c_pm), pt%m(n))
       end do
     end if
     call add_element_energies(dom, bal%acc(:,c_int), bal%acc(:,c_ero), n_ero, n_frac, bal%acc(:,c_pla))
+    ! and each part's: internal (elements left), eroded, plastic work
+    do i = 1, size(dom%el_owned_list)
+      e = dom%el_owned_list(i)
+      n = c_part + part_sums*(dom%el_part(e) - 1)
+      if (dom%el_state(e) == el_eroded) then
+        call exact_add(bal%acc(:,n+7), dom%el_mass(e)*dom%el_e(e))
+      else
+        call exact_add(bal%acc(:,n+5), dom%el_mass(e)*dom%el_e(e))
+      end if
+      call exact_add(bal%acc(:,n+6), dom%el_mass(e)*dom%el_wp(e))
+    end do
     bal%n_fractured = int(comms_sum_int(int(n_frac, i8)))
     bal%n_eroded = int(comms_sum_int(int(n_ero, i8)))
     bal%acc(:,c_work) = walls%work
@@ -1330,9 +1389,13 @@ contains
       bal%wall_force = bal%wall_force + exact_value(bal%acc(:,c_wall+i-1))/walls%dt_v
     end do
     do ip = 1, np
-      n = c_part + 5*(ip - 1)
+      n = c_part + part_sums*(ip - 1)
       bal%part_ke(ip) = exact_value(bal%acc(:,n))
       bal%part_mass(ip) = exact_value(bal%acc(:,n+4))
+      bal%part_internal(ip) = exact_value(bal%acc(:,n+5))
+      bal%part_plastic(ip) = exact_value(bal%acc(:,n+6))
+      bal%part_eroded(ip) = exact_value(bal%acc(:,n+7))
+      bal%part_momentum(ip,:) = [exact_value(bal%acc(:,n+8)), exact_value(bal%acc(:,n+9)), exact_value(bal%acc(:,n+10))]
       do i = 1, 3
         bal%part_com(ip,i) = exact_value(bal%acc(:,n+i))
         if (bal%part_mass(ip) > 0.0_rk) bal%part_com(ip,i) = bal%part_com(ip,i)/bal%part_mass(ip)
@@ -1360,12 +1423,13 @@ contains
       real(rk), intent(out) :: ke
       integer :: c, k
       ke = 0.5_rk*m*(v(1)**2 + v(2)**2 + v(3)**2)
-      c = c_part + 5*(part - 1)
+      c = c_part + part_sums*(part - 1)
       call exact_add(bal%acc(:,c_kin), ke)
       call exact_add(bal%acc(:,c), ke)
       lo = m*cross(x, v)
       do k = 1, 3
         call exact_add(bal%acc(:,c_mom+k-1), m*v(k))
+        call exact_add(bal%acc(:,c+7+k), m*v(k))
         call exact_add(bal%acc(:,c+k), m*x(k))
         call exact_add(bal%acc(:,c_mx+k-1), m*x(k))
         call exact_add(bal%acc(:,c_ang+k-1), lo(k))

@@ -38,8 +38,9 @@ grep 'event is over' "$W/ke.log"
 $PYTHON - "$W/out" <<'PY' && ok "ended_when_kinetic_energy_below_5_percent_of_peak" || bad "end criterion"
 import sys, csv, h5py
 out = sys.argv[1]
-# the header's names less their units ('kinetic [J]')
-rows = [{k.split(' [')[0]: v for k, v in r.items()} for r in csv.DictReader(open(f'{out}/ke_history.csv'))]
+# the header's names less their units ('kinetic [J]'), after the comment line
+rows = [{k.split(' [')[0]: v for k, v in r.items()}
+        for r in csv.DictReader(l for l in open(f'{out}/ke_history.csv') if not l.startswith('#'))]
 ke = [float(r['kinetic']) for r in rows]
 cyc = [int(r['cycle']) for r in rows]
 t = float(rows[-1]['time'])

@@ -32,7 +32,9 @@ HISTORY_UNITS = {'time': 's', 'cycle': '-', 'dt': 's', 'kinetic': 'J', 'internal
                  'wall_work': 'J', 'total': 'J', 'energy_error': '-', 'momentum_x': 'kg m/s', 'momentum_y': 'kg m/s',
                  'momentum_z': 'kg m/s', 'wall_force': 'N', 'angular_momentum_x': 'kg m2/s',
                  'angular_momentum_y': 'kg m2/s', 'angular_momentum_z': 'kg m2/s', 'ke_bar': 'J', 'com_x_bar': 'm',
-                 'com_y_bar': 'm', 'com_z_bar': 'm'}
+                 'com_y_bar': 'm', 'com_z_bar': 'm', 'internal_bar': 'J', 'plastic_work_bar': 'J',
+                 'eroded_energy_bar': 'J', 'mass_bar': 'kg', 'momentum_x_bar': 'kg m/s', 'momentum_y_bar': 'kg m/s',
+                 'momentum_z_bar': 'kg m/s', 'velocity_x_bar': 'm/s', 'velocity_y_bar': 'm/s', 'velocity_z_bar': 'm/s'}
 units = udar_results.history_units(os.path.join(sys.argv[1], 'out', 'elastic_bar_history.csv'))
 print(f"MEASURED history units {units}")
 checks.above('history_header_units', float(units == HISTORY_UNITS), 1.0)

@@ -97,6 +97,32 @@ checks.below('mass_change', np.abs(h['mass'] - h['mass'][0]).max(), 0.0, 'kg')
 p0 = h['momentum_' + 'xyz'[axis]][0]
 checks.below('momentum_conserved_relative', np.abs(h['momentum_' + 'xyz'[axis]] - p0).max() / abs(p0), 1e-13)
 checks.below('energy_error_max', np.abs(h['energy_error']).max(), 0.02)
+
+# per-part sums (LS-DYNA's matsum): the parts' columns add up to the
+# totals. Every column is rounded once from its exact sum, so the parts'
+# rounded values add up (exactly, in rationals) to the total's within half
+# an ulp of each: that is the tolerance (the mass column is the parts' own
+# sum, bitwise)
+import math  # noqa: E402
+from fractions import Fraction  # noqa: E402
+parts = ('rod', 'plate')
+worst = 0.0
+for total, each in (('kinetic', 'ke_{}'), ('internal', 'internal_{}'), ('plastic_work', 'plastic_work_{}'),
+                    ('eroded_energy', 'eroded_energy_{}'), ('momentum_x', 'momentum_x_{}'),
+                    ('momentum_y', 'momentum_y_{}'), ('momentum_z', 'momentum_z_{}')):
+    for r in range(len(h['time'])):
+        vals = [h[each.format(q)][r] for q in parts]
+        allowed = Fraction(sum(0.5 * math.ulp(v) for v in vals) + 0.5 * math.ulp(h[total][r]))
+        miss = abs(sum(Fraction(v) for v in vals) - Fraction(h[total][r]))
+        worst = max(worst, float(miss / allowed) if allowed > 0 else 0.0)
+print(f"MEASURED per-part sums against the totals: largest difference {worst:.3f} of the rounding allowance")
+checks.below('part_sums_add_up_to_totals', worst, 1.0)
+checks.above('part_masses_sum_to_mass_bitwise',
+             float(all(h['mass_rod'][r] + h['mass_plate'][r] == h['mass'][r] for r in range(len(h['time'])))), 1.0)
+with np.errstate(invalid='ignore'):
+    v_ok = all(np.array_equal(h[f'velocity_{c}_{q}'], h[f'momentum_{c}_{q}'] / h[f'mass_{q}']) for c in 'xyz' for q in parts)
+checks.above('part_mean_velocity_is_momentum_over_mass', float(v_ok), 1.0)
+checks.above('plate_gains_plastic_work', h['plastic_work_plate'][-1], 1e-3 * h['plastic_work'][-1], 'J')
 # the contact's impulses on the plate, row by row (dt_history = 0: every cycle;
 # a cycle's impulse spans its velocity interval (dt of the last cycle + dt) / 2)
 force = np.array([h[f'contact_force_{c}_rod_on_plate'] for c in 'xyz'])
