@@ -23,7 +23,7 @@ module udar_deck
        ieee_set_halting_mode, ieee_usual
   use, intrinsic :: iso_c_binding, only: c_char, c_ptr, c_null_char, c_associated
   use udar_kinds, only: rk, max_name_len, max_path_len
-  use udar_config, only: config_t, run_cfg_t, mesh_cfg_t, material_cfg_t, part_cfg_t, &
+  use udar_config, only: config_t, gauge_cfg_t, run_cfg_t, mesh_cfg_t, material_cfg_t, part_cfg_t, &
        boundary_cfg_t, contact_cfg_t, numerics_cfg_t, output_cfg_t, eos_linear, eos_mie_gruneisen, tet_plain, tet_nodal, tet_stabilised, tet_stabilised_linear, &
        strength_none, strength_elastic, strength_perfectly_plastic, strength_linear_hardening, &
        strength_johnson_cook, strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw, &
@@ -53,20 +53,20 @@ module udar_deck
   integer, parameter :: title_len = len(run_dflt%title)
 
   ! ------------------------------------------------------------ the groups
-  integer, parameter :: n_group_kinds = 8
+  integer, parameter :: n_group_kinds = 9
   integer, parameter :: g_run = 1, g_mesh = 2, g_material = 3, g_part = 4, g_boundary = 5, &
-                        g_contact = 6, g_numerics = 7, g_output = 8    !< indices into the tables below
+                        g_contact = 6, g_numerics = 7, g_output = 8, g_gauge = 9    !< indices into the tables below
   character(len=8), parameter :: group_names(n_group_kinds) = [character(len=8) :: &
-       'run', 'mesh', 'material', 'part', 'boundary', 'contact', 'numerics', 'output']
+       'run', 'mesh', 'material', 'part', 'boundary', 'contact', 'numerics', 'output', 'gauge']
   logical, parameter :: group_once(n_group_kinds) = &
-       [.true., .true., .false., .false., .false., .false., .true., .true.]
+       [.true., .true., .false., .false., .false., .false., .true., .true., .false.]
   logical, parameter :: group_required(n_group_kinds) = &
-       [.true., .true., .true., .true., .false., .false., .false., .false.]
+       [.true., .true., .true., .true., .false., .false., .false., .false., .false.]
   character(len=80), parameter :: group_purpose(n_group_kinds) = [character(len=80) :: &
        'end time and time step control', 'the mesh file', 'material models', &
        'bodies: mesh volume, material, velocity', 'boundary conditions', &
        'contact interfaces: slave nodes kept out of master triangles (Yugov et al. 1998)', &
-       'solver options', 'output files']
+       'solver options', 'output files', 'histories at a node, an element or a material point']
 
   ! ------------------------------------------------- string forms of the codes
   character(len=20), parameter :: eos_words(2) = [character(len=20) :: 'linear', 'mie_gruneisen']
@@ -263,7 +263,11 @@ module udar_deck
        var_t('output', 'dt_field', 'r', 1, 0, 's', '>= 0'), &
        var_t('output', 'dt_history', 'r', 1, 0, 's', '>= 0'), &
        var_t('output', 'dt_checkpoint', 'r', 1, 0, 's', '>= 0'), &
-       var_t('output', 'checkpoint_keep', 'i', 1, 0, '-', '>= 1') ]
+       var_t('output', 'checkpoint_keep', 'i', 1, 0, '-', '>= 1'), &
+       var_t('gauge', 'name', 'c', 1, max_name_len, '', ''), &
+       var_t('gauge', 'node', 'i', 1, 0, '-', '>= 1'), &
+       var_t('gauge', 'element', 'i', 1, 0, '-', '>= 1'), &
+       var_t('gauge', 'point', 'r', 3, 0, 'm', 'finite numbers') ]
 
   !> The value of one variable, whatever its type: what lets one piece of code
   !> write, compare and check the variables of every group. Reals are made by
@@ -294,6 +298,7 @@ module udar_deck
     type(contact_cfg_t) :: con
     type(numerics_cfg_t) :: num
     type(output_cfg_t) :: out
+    type(gauge_cfg_t) :: gauge
     character(len=code_len) :: eos = 'linear'
     character(len=code_len) :: strength = 'elastic'
     character(len=code_len) :: kind = ''
@@ -460,7 +465,7 @@ contains
     end do
 
     allocate(cfg%materials(cnt(g_material)), cfg%parts(cnt(g_part)), &
-             cfg%boundaries(cnt(g_boundary)), cfg%contacts(cnt(g_contact)))
+             cfg%boundaries(cnt(g_boundary)), cfg%contacts(cnt(g_contact)), cfg%gauges(cnt(g_gauge)))
     allocate(eos_txt(cnt(g_material)), str_txt(cnt(g_material)), rate_txt(cnt(g_material)), &
              frac_txt(cnt(g_material)), eroded_txt(cnt(g_material)), shear_txt(cnt(g_material)), &
              melt_txt(cnt(g_material)), kind_txt(cnt(g_boundary)), &
@@ -515,6 +520,8 @@ contains
         tet_txt = v%tet_formulation
       case (g_output)
         cfg%output = v%out
+      case (g_gauge)
+        cfg%gauges(k) = v%gauge
       end select
       call check_finite(ctx, tr%g(gk)%i(k), cfg_vals(cfg, gk, k))
     end do
@@ -541,6 +548,9 @@ contains
     end associate
     call check_numerics(ctx, tr%g(g_numerics)%i(1), cfg, tet_txt)
     call check_output(ctx, tr%g(g_output)%i(1), cfg, trim(path))
+    do k = 1, size(tr%g(g_gauge)%i)
+      call check_gauge(ctx, tr%g(g_gauge)%i(k), cfg, k, tr%g(g_gauge)%i(1:k-1))
+    end do
 
     ! hand the messages out in line order
     call sort_diags(ctx)
@@ -740,6 +750,8 @@ contains
     case ('output')
       call output_nml(v%out%directory, v%out%case_name, v%out%dt_field, v%out%dt_history, v%out%dt_checkpoint, &
                       v%out%checkpoint_keep)
+    case ('gauge')
+      call gauge_nml(v%gauge%name, v%gauge%node, v%gauge%element, v%gauge%point)
     end select
 
   contains
@@ -846,11 +858,52 @@ contains
       read(text, nml=output, iostat=ios, iomsg=msg)
     end subroutine output_nml
 
+    subroutine gauge_nml(name, node, element, point)
+      character(len=*), intent(inout) :: name
+      integer, intent(inout) :: node, element
+      real(rk), intent(inout) :: point(3)
+      namelist /gauge/ name, node, element, point
+      read(text, nml=gauge, iostat=ios, iomsg=msg)
+    end subroutine gauge_nml
+
   end subroutine read_nml
 
   ! ======================================================================
   !  checks (of the k-th instance of a group in cfg, where there are several)
   ! ======================================================================
+
+  !> A gauge: a name (letters, digits, '_'; unique), and exactly one of a
+  !> node tag, an element tag or a point. The tags and the point are
+  !> checked against the mesh when it is read (udar_setup).
+  subroutine check_gauge(ctx, inst, cfg, k, earlier_inst)
+    type(ctx_t), intent(inout) :: ctx
+    type(inst_t), intent(in) :: inst
+    type(config_t), intent(inout) :: cfg
+    integer, intent(in) :: k
+    type(inst_t), intent(in) :: earlier_inst(:)    !< of gauges 1 .. k-1
+    integer :: j, n_kinds
+    associate(g => cfg%gauges(k))
+      if (is_set(inst, 'node')) call check_ranges(ctx, inst, cfg_vals(cfg, g_gauge, k), 'node')
+      if (is_set(inst, 'element')) call check_ranges(ctx, inst, cfg_vals(cfg, g_gauge, k), 'element')
+      if (.not. is_bad(inst, 'name')) then
+        if (len_trim(g%name) == 0) then
+          call need(ctx, inst, 'name', .false., "the gauge's name, used in its history columns (gauge_<name>_vx)")
+        else if (verify(trim(g%name), 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_') > 0) then
+          call complain(ctx, inst, 'name', 'letters, digits and _ only (it names history columns)')
+        else
+          j = findloc(cfg%gauges(1:k-1)%name == g%name, .true., 1)
+          if (j > 0) call complain(ctx, inst, 'name', 'already the name of '//instance_ref(earlier_inst(j)))
+        end if
+      end if
+      ! the kind by the values (a resolved deck lists them all: point 0, 0, 0
+      ! beside a node is the default, not a second kind)
+      g%at_point = g%node == 0 .and. g%element == 0
+      n_kinds = count([g%node /= 0, g%element /= 0, is_set(inst, 'point') .and. any(g%point /= 0.0_rk)])
+      if (n_kinds > 1 .or. (g%at_point .and. .not. is_set(inst, 'point'))) &
+           call report(ctx, inst%line, prefix(inst)//'give exactly one of node (a mesh node tag), '// &
+           'element (a mesh element tag) or point (x, y, z in m: a material point)')
+    end associate
+  end subroutine check_gauge
 
   subroutine check_run(ctx, inst, cfg)
     type(ctx_t), intent(inout) :: ctx
@@ -1704,6 +1757,8 @@ contains
       if (allocated(cfg%boundaries)) n = size(cfg%boundaries)
     case (g_contact)
       if (allocated(cfg%contacts)) n = size(cfg%contacts)
+    case (g_gauge)
+      if (allocated(cfg%gauges)) n = size(cfg%gauges)
     end select
   end function n_instances
 
@@ -1780,6 +1835,10 @@ contains
               choice_val(cfg%numerics%tet_formulation, tet_words, tet_codes), val(cfg%numerics%stabilisation), &
               val(cfg%numerics%stabilisation_large), val(cfg%numerics%stabilisation_onset), val(cfg%numerics%q_linear), &
               val(cfg%numerics%q_quadratic), val(cfg%numerics%erode_dt_ratio)]
+    case (g_gauge)
+      associate(g => cfg%gauges(k))
+        vals = [val_t(c=g%name), val_t(i=g%node), val_t(i=g%element), val(g%point)]
+      end associate
     case default
       associate(o => cfg%output)
         vals = [val_t(c=o%directory), val_t(c=o%case_name, from='the deck file name'), &
@@ -1794,7 +1853,7 @@ contains
     integer, intent(in) :: gk
     type(val_t), allocatable :: vals(:)
     type(config_t) :: dflt
-    allocate(dflt%materials(1), dflt%parts(1), dflt%boundaries(1), dflt%contacts(1))
+    allocate(dflt%materials(1), dflt%parts(1), dflt%boundaries(1), dflt%contacts(1), dflt%gauges(1))
     vals = cfg_vals(dflt, gk, 1)
   end function default_vals
 
@@ -1997,6 +2056,8 @@ contains
       keys = [character(len=16) :: 'surface', 'kind']
     case ('contact')
       keys = [character(len=16) :: 'master', 'slave']
+    case ('gauge')
+      keys = [character(len=16) :: 'name', '']
     case default
       keys = ''
     end select

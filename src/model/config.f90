@@ -6,7 +6,7 @@ module udar_config
   implicit none
   private
   public :: run_cfg_t, mesh_cfg_t, material_cfg_t, part_cfg_t, boundary_cfg_t, &
-            numerics_cfg_t, output_cfg_t, contact_cfg_t, config_t
+            numerics_cfg_t, output_cfg_t, contact_cfg_t, gauge_cfg_t, config_t
   public :: eos_linear, eos_mie_gruneisen, strength_none, strength_elastic, &
             strength_perfectly_plastic, strength_linear_hardening, strength_johnson_cook, &
             strength_zerilli_armstrong, strength_steinberg_guinan, strength_mts, strength_ptw, strength_steinberg_lund, &
@@ -200,6 +200,17 @@ module udar_config
     integer  :: initial_overlap = overlap_report     !< slave nodes behind the master at t = 0: report | move
   end type
 
+  !> A gauge: the history of one mesh node (displacement, velocity), one
+  !> element (pressure, stress, plastic strain, temperature, density) or a
+  !> material point (both: it moves with the element it starts in).
+  type :: gauge_cfg_t
+    character(len=max_name_len) :: name = ''
+    integer  :: node = 0                       !< mesh-file node tag (0: not this kind)
+    integer  :: element = 0                    !< mesh-file element tag (0: not this kind)
+    real(rk) :: point(3) = 0.0_rk              !< m, a point of the undeformed body
+    logical  :: at_point = .false.             !< point was given
+  end type
+
   type :: config_t
     character(len=max_path_len) :: deck_file = ''
     character(len=:), allocatable :: resolved_text   !< the fully resolved deck, for output attributes
@@ -211,5 +222,6 @@ module udar_config
     type(part_cfg_t), allocatable :: parts(:)
     type(boundary_cfg_t), allocatable :: boundaries(:)
     type(contact_cfg_t), allocatable :: contacts(:)
+    type(gauge_cfg_t), allocatable :: gauges(:)
   end type
 end module udar_config

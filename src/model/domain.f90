@@ -9,7 +9,10 @@ module udar_domain
   use udar_config, only: material_cfg_t, geometry_solid
   implicit none
   private
-  public :: domain_t, wall_t, block_size, domain_bytes
+  public :: domain_t, wall_t, block_size, domain_bytes, gauge_node, gauge_element, gauge_point
+
+  !> what a gauge follows (domain_t%gauge_kind)
+  integer, parameter :: gauge_node = 1, gauge_element = 2, gauge_point = 3
 
   type :: wall_t
     real(rk) :: point(3) = 0.0_rk, normal(3) = 0.0_rk
@@ -89,6 +92,16 @@ module udar_domain
     !> normals into it): what keeps particles, which are no mesh nodes, on
     !> the body's side, and across which they meet their mirror images
     type(wall_t), allocatable :: sym_walls(:)
+    ! ---- gauges (&gauge): a node, an element or a material point (the
+    ! element it starts in and its barycentric weights); global indices,
+    ! and on each rank the local indices of what it owns (0: not here)
+    character(len=max_name_len), allocatable :: gauge_name(:)
+    integer, allocatable :: gauge_kind(:)
+    integer, allocatable :: gauge_nodes(:,:)      !< (4,g) global node indices (a node gauge: the first)
+    real(rk), allocatable :: gauge_w(:,:)         !< (4,g) the nodes' weights
+    integer, allocatable :: gauge_elem(:)         !< global element index (0 for a node gauge)
+    integer, allocatable :: gauge_nodes_loc(:,:)  !< (4,g) local index of each owned node, 0 elsewhere
+    integer, allocatable :: gauge_elem_loc(:)     !< local index of the owned element, 0 elsewhere
     logical :: anti_locking = .true.             !< any nodal-averaged formulation (not the plain tet)
     integer :: tet_formulation = 2               !< udar_config tet_*: plain, nodal, stabilised, stabilised_linear
     real(rk) :: stab_beta = 0.0_rk        !< -, weight of the element's own volume ratio near its nodes' (stabilised only)

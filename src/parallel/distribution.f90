@@ -135,6 +135,27 @@ contains
     end do
     loc%walls = glob%walls
     loc%sym_walls = glob%sym_walls
+    ! gauges: the global description, and the local index of what this rank owns
+    loc%gauge_name = glob%gauge_name
+    loc%gauge_kind = glob%gauge_kind
+    loc%gauge_nodes = glob%gauge_nodes
+    loc%gauge_w = glob%gauge_w
+    loc%gauge_elem = glob%gauge_elem
+    allocate(loc%gauge_nodes_loc(4, size(glob%gauge_kind)), loc%gauge_elem_loc(size(glob%gauge_kind)))
+    loc%gauge_nodes_loc = 0
+    loc%gauge_elem_loc = 0
+    do e = 1, size(glob%gauge_kind)
+      do a = 1, 4
+        n = glob%gauge_nodes(a,e)
+        if (n > 0) then
+          if (node_l(n) > 0 .and. node_l(n) <= loc%n_owned_nodes) loc%gauge_nodes_loc(a,e) = node_l(n)
+        end if
+      end do
+      n = glob%gauge_elem(e)
+      if (n > 0) then
+        if (elem_l(n) > 0 .and. part(n) == me) loc%gauge_elem_loc(e) = elem_l(n)
+      end if
+    end do
     loc%anti_locking = glob%anti_locking
     loc%tet_formulation = glob%tet_formulation
     loc%stab_beta = glob%stab_beta

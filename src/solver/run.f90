@@ -9,7 +9,7 @@ module udar_run
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use udar_kinds, only: rk, max_path_len
   use udar_config, only: config_t, geometry_axisymmetric, geometry_plane_strain, geometry_solid
-  use udar_domain, only: domain_t, wall_t
+  use udar_domain, only: domain_t, wall_t, gauge_node, gauge_element, gauge_point
   use udar_kinds, only: i8
   use udar_vectors, only: cross
   use udar_comms, only: comms_barrier, comms_wtime, comms_size, comms_min, comms_max, comms_min_int, comms_max_int, comms_max_i8, comms_is_root, &
@@ -93,6 +93,7 @@ module udar_run
     real(rk), allocatable :: contact_force(:,:)                       !< N, (3, interfaces) on the master side
     real(rk), allocatable :: part_ke(:), part_com(:,:), part_mass(:)
     real(rk), allocatable :: part_internal(:), part_plastic(:), part_eroded(:), part_momentum(:,:)
+    real(rk), allocatable :: gauge(:)      !< the gauges' values, in history column order
     integer(i8), allocatable :: acc(:,:)   !< exact accumulators, one column per summed quantity
   end type
 
@@ -1102,11 +1103,12 @@ contains
       'angular_momentum_x', 'angular_momentum_y', 'angular_momentum_z']
     nc = per_interface*ct%n_interfaces + merge(1, 0, ct%n_interfaces > 0)
     allocate(cols(n_base + per_part*dom%n_parts + nc + merge(4, 0, any_fracture(dom)) + &
-                  merge(5, 0, particles_converting(dom))))
+                  merge(5, 0, particles_converting(dom)) + gauge_values(dom)))
+    if (gauge_values(dom) > 0) cols(size(cols) - gauge_values(dom) + 1:) = gauge_columns(dom)
     if (any_fracture(dom)) cols(n_base + per_part*dom%n_parts + nc + 1:n_base + per_part*dom%n_parts + nc + 4) = &
       [character(len=80) :: 'fractured', 'eroded', 'eroded_energy', 'mass']
-    if (particles_converting(dom)) cols(size(cols)-4:) = [character(len=80) :: 'particles', 'particle_mass', &
-      'particle_kinetic', 'particle_internal', 'conversion_heat']
+    if (particles_converting(dom)) cols(size(cols)-gauge_values(dom)-4:size(cols)-gauge_values(dom)) = &
+      [character(len=80) :: 'particles', 'particle_mass', 'particle_kinetic', 'particle_internal', 'conversion_heat']
     cols(1:n_base) = base
     do ip = 1, dom%n_parts
       cols(n_base + per_part*(ip-1) + 1:n_base + per_part*ip) = [character(len=80) :: &
@@ -1129,6 +1131,109 @@ contains
     end do
     cols(ip + per_interface*ct%n_interfaces + 1) = 'contact_work'
   end function
+
+  !> The number of history values of the gauges: a node's displacement and
+  !> velocity (6), an element's pressure, stress, von Mises stress, plastic
+  !> strain, temperature and density (11), a material point's position and
+  !> velocity and its element's values (17).
+  integer function gauge_values(dom) result(n)
+    type(domain_t), intent(in) :: dom
+    integer :: g
+    n = 0
+    if (.not. allocated(dom%gauge_kind)) return
+    do g = 1, size(dom%gauge_kind)
+      n = n + gauge_width(dom%gauge_kind(g))
+    end do
+  end function
+
+  pure integer function gauge_width(kind) result(n)
+    integer, intent(in) :: kind
+    select case (kind)
+    case (gauge_node)
+      n = 6
+    case (gauge_element)
+      n = 11
+    case default
+      n = 17
+    end select
+  end function
+
+  !> The gauges' history column names, gauge_<name>_<quantity>.
+  function gauge_columns(dom) result(cols)
+    type(domain_t), intent(in) :: dom
+    character(len=80), allocatable :: cols(:)
+    character(len=16), parameter :: node_q(6) = [character(len=16) :: 'ux', 'uy', 'uz', 'vx', 'vy', 'vz'], &
+      point_q(6) = [character(len=16) :: 'x', 'y', 'z', 'vx', 'vy', 'vz'], &
+      elem_q(11) = [character(len=16) :: 'pressure', 'sxx', 'syy', 'szz', 'sxy', 'syz', 'szx', 'von_mises', &
+                    'plastic_strain', 'temperature', 'density']
+    character(len=16), allocatable :: q(:)
+    integer :: g, k
+    allocate(cols(0))
+    do g = 1, size(dom%gauge_kind)
+      select case (dom%gauge_kind(g))
+      case (gauge_node)
+        q = node_q
+      case (gauge_element)
+        q = elem_q
+      case default
+        q = [point_q, elem_q]
+      end select
+      cols = [character(len=80) :: cols, ('gauge_'//trim(dom%gauge_name(g))//'_'//trim(q(k)), k = 1, size(q))]
+    end do
+  end function
+
+  !> This rank's share of the gauges' values into their exact accumulators
+  !> (one column each): what it owns, the rest 0, so the global sum is each
+  !> value rounded once, the same for any partition. A point's position and
+  !> velocity are its element's corners' weighted sums (each corner's owner
+  !> adds its term).
+  subroutine add_gauges(dom, acc)
+    type(domain_t), intent(in) :: dom
+    integer(i8), intent(inout) :: acc(0:,:)
+    integer :: g, c, a, n, e, k
+    real(rk) :: s6(6), p
+    c = 0
+    do g = 1, size(dom%gauge_kind)
+      if (dom%gauge_kind(g) == gauge_node) then
+        n = dom%gauge_nodes_loc(1,g)
+        if (n > 0) then
+          do k = 1, 3
+            call exact_add(acc(:,c+k), dom%nd_x(k,n) - dom%nd_x0(k,n))
+            call exact_add(acc(:,c+3+k), dom%nd_v(k,n))
+          end do
+        end if
+        c = c + 6
+        cycle
+      end if
+      if (dom%gauge_kind(g) == gauge_point) then
+        do a = 1, 4
+          n = dom%gauge_nodes_loc(a,g)
+          if (n == 0) cycle
+          do k = 1, 3
+            call exact_add(acc(:,c+k), dom%gauge_w(a,g)*dom%nd_x(k,n))
+            call exact_add(acc(:,c+3+k), dom%gauge_w(a,g)*dom%nd_v(k,n))
+          end do
+        end do
+        c = c + 6
+      end if
+      e = dom%gauge_elem_loc(g)
+      if (e > 0) then
+        s6 = dom%el_s(e,:)
+        p = dom%el_p(e)
+        ! the Cauchy stress: the deviator less the pressure (no viscosity)
+        call exact_add(acc(:,c+1), p)
+        do k = 1, 3
+          call exact_add(acc(:,c+1+k), s6(k) - p)
+          call exact_add(acc(:,c+4+k), s6(3+k))
+        end do
+        call exact_add(acc(:,c+8), von_mises(s6))
+        call exact_add(acc(:,c+9), dom%el_eps_p(e))
+        call exact_add(acc(:,c+10), dom%el_temp(e))
+        call exact_add(acc(:,c+11), dom%mat(dom%el_mat(e))%rho0/dom%el_j(e))
+      end if
+      c = c + 11
+    end do
+  end subroutine
 
   !> The history's header: each column's name and its SI unit in brackets,
   !> 'kinetic [J]'; a plane-strain run's integrated columns (energies,
@@ -1177,9 +1282,26 @@ contains
     case ('mass', 'particle_mass')
       unit = 'kg'
     case default
-      ! the energies, and the per-part and per-interface families
+      ! the energies, and the per-part, per-interface and gauge families
       unit = 'J'
-      if (starts(name, 'com_')) then
+      if (starts(name, 'gauge_')) then
+        integrated = .false.
+        unit = '-'
+        if (ends(name, '_vx') .or. ends(name, '_vy') .or. ends(name, '_vz')) then
+          unit = 'm/s'
+        else if (ends(name, '_ux') .or. ends(name, '_uy') .or. ends(name, '_uz') .or. ends(name, '_x') .or. &
+                 ends(name, '_y') .or. ends(name, '_z')) then
+          unit = 'm'
+        else if (ends(name, '_pressure') .or. ends(name, '_von_mises') .or. ends(name, '_sxx') .or. &
+                 ends(name, '_syy') .or. ends(name, '_szz') .or. ends(name, '_sxy') .or. ends(name, '_syz') .or. &
+                 ends(name, '_szx')) then
+          unit = 'Pa'
+        else if (ends(name, '_temperature')) then
+          unit = 'K'
+        else if (ends(name, '_density')) then
+          unit = 'kg/m3'
+        end if
+      else if (starts(name, 'com_')) then
         unit = 'm'
         integrated = .false.
       else if (starts(name, 'mass_')) then
@@ -1206,6 +1328,14 @@ contains
       starts = len(text) >= len(head)
       if (starts) starts = text(1:len(head)) == head
     end function
+
+    logical function ends(text, tail)
+      character(len=*), intent(in) :: text, tail
+      integer :: n
+      n = len_trim(text)
+      ends = n >= len(tail)
+      if (ends) ends = text(n-len(tail)+1:n) == tail
+    end function
   end subroutine
 
   subroutine write_history_row(hist, t, cycle, dt, bal, row, ok, errmsg)
@@ -1226,10 +1356,12 @@ contains
         mean_velocity(bal%part_momentum(ip,:), bal%part_mass(ip))]
     end do
     ip = n_base + per_part*np + per_interface*size(bal%contact_normal) + merge(1, 0, size(bal%contact_normal) > 0)
-    if (size(row) > ip) row(ip+1:ip+4) = [real(bal%n_fractured, rk), real(bal%n_eroded, rk), bal%eroded_energy, &
+    if (size(row) - size(bal%gauge) > ip) row(ip+1:ip+4) = [real(bal%n_fractured, rk), real(bal%n_eroded, rk), &
+                                          bal%eroded_energy, &
                                           sum(bal%part_mass)]
-    if (size(row) > ip + 4) row(ip+5:ip+9) = [real(bal%n_particles, rk), bal%particle_mass, bal%particle_kinetic, &
-                                              bal%particle_internal, bal%conversion_heat]
+    if (size(row) - size(bal%gauge) > ip + 4) row(ip+5:ip+9) = [real(bal%n_particles, rk), bal%particle_mass, &
+                                              bal%particle_kinetic, bal%particle_internal, bal%conversion_heat]
+    if (size(bal%gauge) > 0) row(size(row) - size(bal%gauge) + 1:) = bal%gauge
     do ip = 1, size(bal%contact_normal)
       row(n_base + per_part*np + per_interface*(ip-1) + 1:n_base + per_part*np + per_interface*ip) = &
         [bal%contact_normal(ip), bal%contact_friction(ip), bal%contact_slip(ip), bal%contact_deep(ip), &
@@ -1327,7 +1459,8 @@ contains
     c_part = c_wall + nw            ! per part: part_sums accumulators
     if (.not. allocated(bal%part_ke)) allocate(bal%part_ke(np), bal%part_com(np,3), bal%part_mass(np), &
                                                bal%part_internal(np), bal%part_plastic(np), bal%part_eroded(np), &
-                                               bal%part_momentum(np,3), bal%acc(0:exact_limbs, c_part + part_sums*np - 1))
+                                               bal%part_momentum(np,3), bal%gauge(gauge_values(dom)), &
+                                               bal%acc(0:exact_limbs, c_part + part_sums*np + gauge_values(dom) - 1))
     bal%acc = 0
     do n = 1, dom%n_owned_nodes
       call add_point(dom%nd_mass(n), dom%nd_x(:,n), dom%nd_v(:,n), dom%nd_part(n), ke)
@@ -1362,7 +1495,11 @@ contains
     do i = 1, nw
       bal%acc(:,c_wall+i-1) = walls%impulse(:,i)
     end do
+    call add_gauges(dom, bal%acc(:, c_part + part_sums*np:))
     call comms_sum_exact(bal%acc)
+    do i = 1, size(bal%gauge)
+      bal%gauge(i) = exact_value(bal%acc(:, c_part + part_sums*np + i - 1))
+    end do
     bal%kinetic = exact_value(bal%acc(:,c_kin))
     bal%internal = exact_value(bal%acc(:,c_int))
     bal%plastic = exact_value(bal%acc(:,c_pla))

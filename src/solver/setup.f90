@@ -13,7 +13,7 @@ module udar_setup
       tet_stabilised_linear, geometry_solid, geometry_axisymmetric
   use udar_gmsh, only: gmsh_mesh_t
   use udar_nodal, only: apply_velocity_conditions
-  use udar_domain, only: domain_t, block_size, wall_t
+  use udar_domain, only: domain_t, block_size, wall_t, gauge_node, gauge_element, gauge_point
   use udar_input_errors, only: input_errors_t
   use udar_deck, only: deck_where
   use udar_tet4, only: tet_volume
@@ -130,6 +130,9 @@ contains
     dom%corner_share = 1.0_rk/nc
     dom%geometry = cfg%mesh%geometry
     deallocate(mesh%cell, mesh%cell_tag)
+
+    call resolve_gauges(cfg, dom, errs)
+    if (errs%count() > n_err0) return
 
     ! materials and parts
     dom%mat = cfg%materials
@@ -321,6 +324,107 @@ contains
       fill(nd_blk(n)) = k + 1
     end do
   end subroutine
+
+  !> Each &gauge's node, element or material point on the whole mesh: its
+  !> global node and element indices and, for a point, the element that
+  !> holds it (the lowest in the global order where it lies on a face
+  !> shared by several) and its barycentric weights there.
+  subroutine resolve_gauges(cfg, dom, errs)
+    type(config_t), intent(in) :: cfg
+    type(domain_t), intent(inout) :: dom
+    type(input_errors_t), intent(inout) :: errs
+    integer :: ng, g, e, nc
+    real(rk) :: w(4), best
+    ng = 0
+    if (allocated(cfg%gauges)) ng = size(cfg%gauges)
+    nc = dom%corners
+    allocate(dom%gauge_name(ng), dom%gauge_kind(ng), dom%gauge_nodes(4,ng), dom%gauge_w(4,ng), dom%gauge_elem(ng))
+    dom%gauge_nodes = 0
+    dom%gauge_w = 0.0_rk
+    dom%gauge_elem = 0
+    do g = 1, ng
+      associate (gc => cfg%gauges(g))
+        dom%gauge_name(g) = gc%name
+        if (gc%node > 0) then
+          dom%gauge_kind(g) = gauge_node
+          dom%gauge_nodes(1,g) = findloc(dom%nd_id, gc%node, 1)
+          dom%gauge_w(1,g) = 1.0_rk
+          if (dom%gauge_nodes(1,g) == 0) call errs%add(deck_where(cfg, 'gauge', g, 'node')// &
+            ': no node of that tag in the elements of '//trim(cfg%mesh%file))
+        else if (gc%element > 0) then
+          dom%gauge_kind(g) = gauge_element
+          dom%gauge_elem(g) = findloc(dom%el_id, gc%element, 1)
+          if (dom%gauge_elem(g) == 0) call errs%add(deck_where(cfg, 'gauge', g, 'element')// &
+            ': no '//trim(merge('tetrahedron', 'triangle   ', nc == 4))//' of that tag in '//trim(cfg%mesh%file))
+        else
+          dom%gauge_kind(g) = gauge_point
+          ! the first element in the global order that holds it (weights
+          ! >= 0 but for round-off)
+          best = -huge(1.0_rk)
+          do e = 1, dom%n_elems
+            w = barycentric(dom, e, gc%point*[1.0_rk, 1.0_rk, merge(1.0_rk, 0.0_rk, nc == 4)])
+            if (minval(w(1:nc)) >= -1.0e-9_rk) then
+              best = minval(w(1:nc))
+              dom%gauge_elem(g) = e
+              dom%gauge_w(:,g) = w
+              exit
+            end if
+          end do
+          if (best < -1.0e-9_rk) then
+            call errs%add(deck_where(cfg, 'gauge', g, 'point')//': the point is in no element of '// &
+              trim(cfg%mesh%file)//' (the deck gives it in m, the mesh is scaled by &mesh scale)')
+          else
+            dom%gauge_nodes(1:nc,g) = dom%el_conn(dom%gauge_elem(g),:)
+          end if
+        end if
+      end associate
+    end do
+  end subroutine
+
+  !> The barycentric weights of point x in element e of the undeformed
+  !> mesh (a triangle: the first three, z ignored).
+  function barycentric(dom, e, x) result(w)
+    type(domain_t), intent(in) :: dom
+    integer, intent(in) :: e
+    real(rk), intent(in) :: x(3)
+    real(rk) :: w(4), a(3,3), r(3), det
+    integer :: k
+    w = 0.0_rk
+    if (dom%corners == 4) then
+      do k = 1, 3
+        a(:,k) = dom%nd_x0(:,dom%el_conn(e,k+1)) - dom%nd_x0(:,dom%el_conn(e,1))
+      end do
+      r = x - dom%nd_x0(:,dom%el_conn(e,1))
+      det = dot_product(a(:,1), cross3(a(:,2), a(:,3)))
+      if (det == 0.0_rk) then
+        w = -huge(1.0_rk)
+        return
+      end if
+      ! Cramer: w(2:4) solve a w = r
+      w(2) = dot_product(r, cross3(a(:,2), a(:,3)))/det
+      w(3) = dot_product(a(:,1), cross3(r, a(:,3)))/det
+      w(4) = dot_product(a(:,1), cross3(a(:,2), r))/det
+      w(1) = 1.0_rk - w(2) - w(3) - w(4)
+    else
+      a(1:2,1) = dom%nd_x0(1:2,dom%el_conn(e,2)) - dom%nd_x0(1:2,dom%el_conn(e,1))
+      a(1:2,2) = dom%nd_x0(1:2,dom%el_conn(e,3)) - dom%nd_x0(1:2,dom%el_conn(e,1))
+      r(1:2) = x(1:2) - dom%nd_x0(1:2,dom%el_conn(e,1))
+      det = a(1,1)*a(2,2) - a(2,1)*a(1,2)
+      if (det == 0.0_rk) then
+        w = -huge(1.0_rk)
+        return
+      end if
+      w(2) = (r(1)*a(2,2) - r(2)*a(1,2))/det
+      w(3) = (a(1,1)*r(2) - a(2,1)*r(1))/det
+      w(1) = 1.0_rk - w(2) - w(3)
+    end if
+  contains
+    pure function cross3(u, v) result(c)
+      real(rk), intent(in) :: u(3), v(3)
+      real(rk) :: c(3)
+      c = [u(2)*v(3) - u(3)*v(2), u(3)*v(1) - u(1)*v(3), u(1)*v(2) - u(2)*v(1)]
+    end function
+  end function
 
   subroutine boundaries_check(cfg, mesh, errs)
     type(config_t), intent(in) :: cfg

@@ -31,6 +31,16 @@ expect missing_deck 1 'missing.nml' missing.nml
 printf '%s\n&numerics stabilisation = 0.2 /\n' "$good" > "$W/bad_share.nml"
 expect share_above_the_large_share 1 "bad_share.nml:6: &numerics.*stabilisation = 0.2 : must be at most stabilisation_large = 0.1" bad_share.nml
 
+# gauges: one of node, element or point, each in the mesh
+printf '%s\n&gauge name = "a-b", node = 1, element = 1 /\n' "$good" > "$W/bad_gauge.nml"
+expect gauge_name_and_kind 1 "bad_gauge.nml:6: &gauge #1 'a-b': name = .a-b. : letters, digits and _ only" bad_gauge.nml
+expect gauge_one_kind 1 "bad_gauge.nml:6: &gauge #1 'a-b': give exactly one of node" bad_gauge.nml
+printf '%s\n&gauge name = "far", point = 0.005, 0.005, 0.2 /\n' "$good" > "$W/gauge_outside.nml"
+expect gauge_point_outside 1 "gauge_outside.nml:6: &gauge #1 'far': point = 0.005, 0.005, 0.2: the point is in no element of .*bar.msh" \
+  gauge_outside.nml
+printf '%s\n&gauge name = "n", node = 999999 /\n' "$good" > "$W/gauge_no_node.nml"
+expect gauge_node_not_in_mesh 1 "gauge_no_node.nml:6: &gauge #1 'n': node = 999999: no node of that tag" gauge_no_node.nml
+
 # eroded elements become particles only where elements erode
 sed 's/&material name = "steel"/\&material name = "steel", eroded = "particles"/' "$W/good.nml" > "$W/particles_no_erosion.nml"
 expect particles_without_erosion 1 "particles_no_erosion.nml:3: &material #1 'steel': eroded = .particles. : 'particles' is what eroded elements become.*set eps_erode > 0" \

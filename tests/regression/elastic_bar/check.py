@@ -2,13 +2,14 @@
 contact stress rho c v, contact duration 2L/c, rebound speed v, energy.
 And the field file's node displacement: exactly the coordinates less the
 initial ones at every step; every field with its units and centering;
-every history column with its unit."""
+every history column with its unit; the gauges against the wave solution."""
 import math
 import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', 'tools'))
 import checks  # noqa: E402
+import numpy as np  # noqa: E402
 import udar_results  # noqa: E402
 
 E, RHO, V, L, A = 200e9, 7850.0, 10.0, 0.1, 0.01 * 0.01
@@ -35,12 +36,33 @@ HISTORY_UNITS = {'time': 's', 'cycle': '-', 'dt': 's', 'kinetic': 'J', 'internal
                  'com_y_bar': 'm', 'com_z_bar': 'm', 'internal_bar': 'J', 'plastic_work_bar': 'J',
                  'eroded_energy_bar': 'J', 'mass_bar': 'kg', 'momentum_x_bar': 'kg m/s', 'momentum_y_bar': 'kg m/s',
                  'momentum_z_bar': 'kg m/s', 'velocity_x_bar': 'm/s', 'velocity_y_bar': 'm/s', 'velocity_z_bar': 'm/s'}
+GAUGE_UNITS = {'x': 'm', 'y': 'm', 'z': 'm', 'ux': 'm', 'uy': 'm', 'uz': 'm', 'vx': 'm/s', 'vy': 'm/s', 'vz': 'm/s',
+               'pressure': 'Pa', 'sxx': 'Pa', 'syy': 'Pa', 'szz': 'Pa', 'sxy': 'Pa', 'syz': 'Pa', 'szx': 'Pa',
+               'von_mises': 'Pa', 'plastic_strain': '-', 'temperature': 'K', 'density': 'kg/m3'}
+POINT = ['x', 'y', 'z', 'vx', 'vy', 'vz', 'pressure', 'sxx', 'syy', 'szz', 'sxy', 'syz', 'szx', 'von_mises',
+         'plastic_strain', 'temperature', 'density']
+for g, quantities in (('free_end', POINT), ('middle', POINT), ('corner', ['ux', 'uy', 'uz', 'vx', 'vy', 'vz'])):
+    HISTORY_UNITS.update({f'gauge_{g}_{q}': GAUGE_UNITS[q] for q in quantities})
 units = udar_results.history_units(os.path.join(sys.argv[1], 'out', 'elastic_bar_history.csv'))
 print(f"MEASURED history units {units}")
 checks.above('history_header_units', float(units == HISTORY_UNITS), 1.0)
 
+# gauges (&gauge) against the wave solution: the free end's material point
+# moves at -v until the wave reaches it (L/c) and at +v after; the middle's
+# axial stress is -rho c v while the wave is past it (L/2c .. 3L/2c); the
+# impact corner's node stays on the wall while the bar touches it
+T = L / c
+window = (t > 0.1 * T) & (t < 0.9 * T)
+checks.compare('gauge_free_end_velocity_before_reflection', h['gauge_free_end_vz'][window].mean(), -V, 0.02, 'm/s')
+window = (t > 1.1 * T) & (t < 1.9 * T)
+checks.compare('gauge_free_end_velocity_after_reflection', h['gauge_free_end_vz'][window].mean(), V, 0.02, 'm/s')
+window = (t > 0.6 * T) & (t < 1.4 * T)
+checks.compare('gauge_middle_axial_stress_rho_c_v', h['gauge_middle_szz'][window].mean(), -RHO * c * V, 0.02, 'Pa')
+checks.below('gauge_middle_stress_before_the_wave', np.abs(h['gauge_middle_szz'][t < 0.4 * T]).max(), 1e-3 * RHO * c * V, 'Pa')
+checks.compare('gauge_free_end_starts_at_its_point', h['gauge_free_end_z'][0], L, 1e-12, 'm')
+checks.below('gauge_corner_stays_on_the_wall', np.abs(h['gauge_corner_uz'][t < 1.9 * T]).max(), 1e-12, 'm')
+
 import h5py  # noqa: E402
-import numpy as np  # noqa: E402
 
 UNITS = {'coordinates': ('m', 'Node'), 'velocity': ('m/s', 'Node'), 'displacement': ('m', 'Node'),
          'pressure': ('Pa', 'Cell'), 'von_mises': ('Pa', 'Cell'), 'plastic_strain': ('-', 'Cell'),
