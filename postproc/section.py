@@ -186,6 +186,30 @@ def polygon_areas(poly2d):
     return 0.5 * np.abs(np.sum(x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y, axis=1))
 
 
+def part_outlines(poly2d, parts):
+    """The outline of each part in a section: the polygon edges that border no other polygon
+    of the same part (the body's boundary and the interfaces between parts) -> (m, 2, 2)
+    segments. Edges are matched by their end points rounded to 1e-9 of the section's size
+    (the cut points of a face two elements share come from the same nodes)."""
+    poly2d = np.asarray(poly2d, dtype=float)
+    if poly2d.size == 0:
+        return np.zeros((0, 2, 2))
+    a = poly2d
+    b = np.roll(poly2d, -1, axis=1)
+    seg = np.stack([a, b], axis=2).reshape(-1, 2, 2)          # (k*n, 2 ends, 2)
+    owner = np.repeat(np.asarray(parts), poly2d.shape[1])
+    real = np.any(seg[:, 0] != seg[:, 1], axis=1)             # a repeated vertex is no edge
+    seg, owner = seg[real], owner[real]
+    size = max(float(np.ptp(poly2d.reshape(-1, 2), axis=0).max()), 1e-300)
+    q = np.round(seg / (1e-9 * size)).astype(np.int64)
+    # the same edge whichever way round: its lower end first
+    swap = (q[:, 0, 0] > q[:, 1, 0]) | ((q[:, 0, 0] == q[:, 1, 0]) & (q[:, 0, 1] > q[:, 1, 1]))
+    q[swap] = q[swap][:, ::-1]
+    key = np.column_stack([q.reshape(-1, 4), owner])
+    _, inverse, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    return seg[counts[inverse.ravel()] == 1]
+
+
 def planar_polygons(coords, connectivity):
     """A 2D mesh's triangles as the section -> (elem (k,), poly2d (k, 4, 2) in m), each
     triangle's third vertex repeated as the fourth (as section_polygons gives cut triangles)."""
@@ -275,8 +299,9 @@ def particle_values(particles, color):
 def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cmap=None,
                    vmin=None, vmax=None, part_names=None, edges=False, undeformed=False,
                    xlim=None, ylim=None, title=None, size=None, dpi=150, time_us=None,
-                   verbose=True, particles=True, particle_slab=None):
-    """Draw the section of field file ``path`` into image ``out``. Returns a dict with the
+                   verbose=True, particles=True, particle_slab=None, decorate=None):
+    """Draw the section of field file ``path`` into image ``out`` (``decorate(ax)``, if given,
+    draws more on the axes, in mm, before the file is written). Returns a dict with the
     numbers of cut tets, total cut area (m²), step index and time, and, when the step has
     particles, ``particles`` (how many lie in the slab), ``particles_total``,
     ``particle_slab_m`` and ``particles_xy_mm`` (the markers' picture coordinates, mirrored
@@ -320,8 +345,9 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
                                "0; e.g. an edge of a half or quarter model)" % (path, plane.description, idx))
         file_pids = list(f.part_ids)
         deck_names = f.part_names
+        part_values = f.part_id[elem]
         if color == "part":
-            values = f.part_id[elem]
+            values = part_values
         else:
             allvals, label = element_values(st, color, conn)
             values = allvals[elem]
@@ -356,6 +382,7 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
             copies.append(poly_mm * np.array([sx, sy]))
         poly_mm = np.concatenate(copies)
         values = np.concatenate([values] * len(copies))
+        part_values = np.concatenate([part_values] * len(copies))
         mirror_lines = list(mirror)
     p_mm = p2d * 1e3
     n_drawn = len(p_mm)
@@ -423,9 +450,15 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
         lo = np.nanmin(values) if vmin is None else vmin
         hi = np.nanmax(values) if vmax is None else vmax
         scale, dunit = _pretty_unit(unit, np.array([lo, hi], dtype=float))
-        cm = plt.get_cmap(cmap or "viridis").copy()
+        # a field of both signs (pressure, a stress or velocity component): a
+        # diverging map with white at zero, unless a map was asked for
+        signed = lo < 0.0 < hi
+        cm = plt.get_cmap(cmap or ("RdBu_r" if signed else "viridis")).copy()
         cm.set_bad("0.6")
-        norm = mcolors.Normalize(vmin=lo * scale, vmax=hi * scale)
+        if signed and cmap is None:
+            norm = mcolors.TwoSlopeNorm(vmin=lo * scale, vcenter=0.0, vmax=hi * scale)
+        else:
+            norm = mcolors.Normalize(vmin=lo * scale, vmax=hi * scale)
         pc = PolyCollection(poly_mm, cmap=cm, norm=norm, linewidths=lw,
                             edgecolors="0.2" if edges else "face")
         pc.set_array(np.ma.masked_invalid(values * scale))
@@ -441,6 +474,10 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
         if p_handle is not None:
             ax.legend(handles=[p_handle], loc="best", fontsize="small", framealpha=0.8)
 
+    # the parts' outlines (the body's boundary and the interfaces)
+    from matplotlib.collections import LineCollection
+    outline_parts = part_values if part_values is not None else values
+    ax.add_collection(LineCollection(part_outlines(poly_mm, outline_parts), colors="k", linewidths=0.8))
     for m in mirror_lines:
         if m == "h":
             ax.axvline(0.0, color="k", lw=0.6, ls="--", alpha=0.5)
@@ -457,6 +494,8 @@ def render_section(path, out, step=-1, plane=None, color="part", mirror=None, cm
             fname, " (%s)" % ftitle if ftitle else "", plane.description, idx, step_cycle,
             step_time * 1e6, ", undeformed" if undeformed else "")
     ax.set_title(title, fontsize="medium")
+    if decorate is not None:
+        decorate(ax)
     ur.save_figure(fig, out, dpi, SectionError)
     info = {"file": path, "out": out, "step": idx, "cycle": step_cycle, "time_s": step_time,
             "cut_tets": int(elem.size), "area_m2": area, "seconds_cut": t_cut,
@@ -483,6 +522,15 @@ def _self_test(verbose=True):
     """Known cut areas of a unit cube of tets, plus an end-to-end render. Returns True if OK."""
     test = ur.SelfTest("section", verbose)
     check = test.check
+
+    # outlines: a unit square as two triangles (third vertex repeated, as cut triangles are)
+    square = np.array([[[0, 0], [1, 0], [1, 1], [1, 1]], [[0, 0], [1, 1], [0, 1], [0, 1]]], dtype=float)
+    one = part_outlines(square, [1, 1])
+    two = part_outlines(square, [1, 2])
+    check(len(one) == 4 and abs(np.linalg.norm(one[:, 1] - one[:, 0], axis=1).sum() - 4.0) < 1e-12,
+          "one part's outline: the square's 4 sides (perimeter 4)")
+    check(len(two) == 6 and abs(np.linalg.norm(two[:, 1] - two[:, 0], axis=1).sum() - 4.0 - 2 * 2 ** 0.5) < 1e-12,
+          "two parts: each part's outline, the diagonal between them drawn from both sides")
 
     def area_of(nodes, conn, point, normal):
         pl = plane_from_normal(normal, point)

@@ -234,6 +234,11 @@ def _self_test(verbose=True):
               and all(close(vals[k], v, 1e-8) for k, v in exp.items())
               and "gap to the wall 0.9000 mm" in out and "difference +0.000 mm" in out,
               "rebounded bar through the CLI: length, gap and footprint on the machine line")
+        png = os.path.join(tmp, "rebounded_section.png")
+        rc, out, err = test.run_main(main, [h5, "--axis", "z", "--wall", "0", "--reference-length",
+                                            repr(0.8 * L), "--section", png])
+        check(rc == 0 and os.path.exists(png) and os.path.getsize(png) > 5000,
+              "--section: the quarter bar's section drawn with its length and footprint")
         # a 2D axisymmetric bar (x = r, y along the axis): measured about y by default
         nodes, conn = ur.rectangle_tris(4, n_len, (0.0, 0.0), (R, L))
         t = nodes[:, 1] / L
@@ -292,6 +297,10 @@ models give the same result when the axis lies in the symmetry planes.""")
                    help="measured final length, m: also print the difference from it")
     p.add_argument("--reference-diameter", type=float, metavar="D", default=None,
                    help="measured footprint diameter, m: also print the difference from it")
+    p.add_argument("--section", metavar="OUT.png", default=None,
+                   help="also draw the section through the axis (plastic strain; a quarter or half "
+                        "model mirrored) with the computed length and footprint, solid, and the "
+                        "measured ones (--reference-*), dashed")
     return ur.add_self_test(p, "run the built-in checks on synthetic cylinders, print PASS/FAIL")
 
 
@@ -303,6 +312,58 @@ def materials_line(path):
     mats = [ur.deck_values(body) for group, body in ur.deck_groups(text) if group == "material"]
     return ("material: " + ", ".join("%s (strength = '%s')" % (m.get("name", "?"), m.get("strength", "elastic"))
                                      for m in mats)) if mats else ""
+
+
+def draw_section(path, out, m, axis, wall, center, ref_length=None, ref_diameter=None, step=-1):
+    """The section through the rod's axis (section.py: plastic strain, mirrored about the axis)
+    with the measured rod drawn on it: its length (a line across the top) and footprint (a bar
+    on the wall), and the experiment's where given (dashed)."""
+    if __package__:
+        from . import section as sec
+    else:
+        import section as sec
+    with ur.open_fields(path) as f:
+        planar = f.dim == 2
+    if planar and axis != 1:
+        raise TaylorError("--section: a 2D file's rod axis is y")
+    if not planar and axis != 2:
+        raise TaylorError("--section draws a 3D rod along z only (its section y = %g)" % center[1])
+    plane = None if planar else sec.plane_from_spec("y=%r" % center[1])
+    side = m["side"]
+    bottom = wall + side * m["gap_m"]
+    top = bottom + side * m["length_m"]
+    x0 = center[0]
+
+    def decorate(ax):
+        half = 0.5 * m["max_diameter_m"]
+        ax.plot([(x0 - half) * 1e3, (x0 + half) * 1e3], [top * 1e3] * 2, color="k", lw=1.6,
+                label="computed: length %.3f mm, footprint %.3f mm"
+                % (m["length_m"] * 1e3, m["footprint_diameter_m"] * 1e3))
+        r = 0.5 * m["footprint_diameter_m"]
+        ax.plot([(x0 - r) * 1e3, (x0 + r) * 1e3], [bottom * 1e3] * 2, color="k", lw=3.0)
+        if ref_length or ref_diameter:
+            parts = []
+            if ref_length:
+                ax.plot([(x0 - half) * 1e3, (x0 + half) * 1e3], [(bottom + side * ref_length) * 1e3] * 2,
+                        color="C3", lw=1.6, ls="--")
+                parts.append("length %.3f mm" % (ref_length * 1e3))
+            if ref_diameter:
+                ax.plot([(x0 - 0.5 * ref_diameter) * 1e3, (x0 + 0.5 * ref_diameter) * 1e3],
+                        [bottom * 1e3] * 2, color="C3", lw=1.6, ls="--")
+                parts.append("footprint %.3f mm" % (ref_diameter * 1e3))
+            ax.plot([], [], color="C3", ls="--", label="measured: " + ", ".join(parts))
+        lo, hi = ax.get_ylim()
+        ax.set_ylim(min(lo, top * 1e3 - 0.5), max(hi, top * 1e3 + 0.5))
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.07), fontsize="small", frameon=False)
+
+    # a model on one side of the axis (a quarter, a half, an axisymmetric meridian) is drawn
+    # with its mirror image
+    with ur.open_fields(path) as f:
+        one_side = f.x0[:, 0].min() >= x0 - 1e-9 * max(np.ptp(f.x0[:, 0]), 1e-300)
+        colour = "plastic_strain" if "plastic_strain" in f.step(step).fields else "part"
+    sec.render_section(path, out, step=step, plane=plane, color=colour,
+                       mirror="h" if one_side else None, decorate=decorate, verbose=False)
+    print("wrote %s" % out)
 
 
 def main(argv=None):
@@ -327,6 +388,9 @@ def _run(args, p):
         payload = [clean(m) for m in res] if args.all else clean(res[0])
         print(json.dumps(payload, indent=2))
         return 0
+    if args.section:
+        draw_section(args.fields, args.section, res[-1], AXES.index(axis), args.wall, tuple(args.center),
+                     args.reference_length, args.reference_diameter, args.step if not args.all else -1)
     materials = materials_line(args.fields)
     for m in res:
         print(machine_line(m))

@@ -1077,7 +1077,8 @@ def save_figure(fig, out, dpi, error=UdarFileError):
     ``error("cannot write OUT: reason")``."""
     import matplotlib.pyplot as plt
     try:
-        fig.savefig(out, dpi=dpi)
+        # the whole figure, labels and titles included (an equal-aspect axes can push them out)
+        fig.savefig(out, dpi=dpi, bbox_inches="tight", pad_inches=0.1)
     except (OSError, ValueError) as e:
         raise error("cannot write %s: %s" % (out, e)) from None
     finally:
