@@ -1399,13 +1399,16 @@ contains
   !> Adds this rank's owned elements' energies to exact accumulators:
   !> internal energy of the elements left (acc_int) and of the eroded ones
   !> (acc_ero, counted n_ero), and if asked the plastic work (acc_pla) and
-  !> the elements fractured or eroded (n_frac).
-  subroutine add_element_energies(dom, acc_int, acc_ero, n_ero, n_frac, acc_pla)
+  !> the elements fractured or eroded (n_frac), and each part's internal,
+  !> plastic and eroded energy (acc_part: part_sums columns a part, as
+  !> compute_balance lays them out: internal the 6th, plastic the 7th,
+  !> eroded the 8th).
+  subroutine add_element_energies(dom, acc_int, acc_ero, n_ero, n_frac, acc_pla, acc_part)
     type(domain_t), intent(in) :: dom
     integer(i8), intent(inout) :: acc_int(0:), acc_ero(0:)
     integer, intent(out) :: n_ero, n_frac
-    integer(i8), intent(inout), optional :: acc_pla(0:)
-    integer :: i, e
+    integer(i8), intent(inout), optional :: acc_pla(0:), acc_part(0:,:)
+    integer :: i, e, c
     n_frac = 0
     n_ero = 0
     do i = 1, size(dom%el_owned_list)
@@ -1418,6 +1421,15 @@ contains
       end if
       if (dom%el_state(e) /= el_intact) n_frac = n_frac + 1
       if (present(acc_pla)) call exact_add(acc_pla, dom%el_mass(e)*dom%el_wp(e))
+      if (present(acc_part)) then
+        c = part_sums*(dom%el_part(e) - 1)
+        if (dom%el_state(e) == el_eroded) then
+          call exact_add(acc_part(:,c+8), dom%el_mass(e)*dom%el_e(e))
+        else
+          call exact_add(acc_part(:,c+6), dom%el_mass(e)*dom%el_e(e))
+        end if
+        call exact_add(acc_part(:,c+7), dom%el_mass(e)*dom%el_wp(e))
+      end if
     end do
   end subroutine
 
@@ -1452,7 +1464,7 @@ contains
     type(balance_t), intent(inout) :: bal
     integer, parameter :: c_kin = 1, c_int = 2, c_pla = 3, c_mom = 4, c_work = 7, c_ero = 8, c_cwork = 9, &
                           c_ang = 10, c_mx = 13, c_m = 16, c_pm = 17, c_pk = 18, c_pi = 19, c_wall = 20
-    integer :: n, ip, i, np, nw, c_part, n_frac, n_ero, e
+    integer :: n, ip, i, np, nw, c_part, n_frac, n_ero
     real(rk) :: ke, mx(3), p(3), lo(3)
     np = dom%n_parts
     nw = size(dom%walls)
@@ -1476,18 +1488,9 @@ contains
         call exact_add(bal%acc(:,c_pm), pt%m(n))
       end do
     end if
-    call add_element_energies(dom, bal%acc(:,c_int), bal%acc(:,c_ero), n_ero, n_frac, bal%acc(:,c_pla))
-    ! and each part's: internal (elements left), eroded, plastic work
-    do i = 1, size(dom%el_owned_list)
-      e = dom%el_owned_list(i)
-      n = c_part + part_sums*(dom%el_part(e) - 1)
-      if (dom%el_state(e) == el_eroded) then
-        call exact_add(bal%acc(:,n+7), dom%el_mass(e)*dom%el_e(e))
-      else
-        call exact_add(bal%acc(:,n+5), dom%el_mass(e)*dom%el_e(e))
-      end if
-      call exact_add(bal%acc(:,n+6), dom%el_mass(e)*dom%el_wp(e))
-    end do
+    ! the elements' energies, in all and each part's (one pass)
+    call add_element_energies(dom, bal%acc(:,c_int), bal%acc(:,c_ero), n_ero, n_frac, bal%acc(:,c_pla), &
+                              bal%acc(:, c_part:c_part + part_sums*np - 1))
     bal%n_fractured = int(comms_sum_int(int(n_frac, i8)))
     bal%n_eroded = int(comms_sum_int(int(n_ero, i8)))
     bal%acc(:,c_work) = walls%work

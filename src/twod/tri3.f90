@@ -139,6 +139,10 @@ contains
     real(rk), intent(in), optional :: g_el(nb)
     real(rk) :: srr, szz, srz, s_max, eta
     integer :: i
+    ! two loops on purpose: the constant-G one is the code every constant-G
+    ! deck was measured and baselined with (G as an array changed its last
+    ! bits by code generation: design.md D13); the per-element one serves
+    ! state-dependent shear moduli only
     if (present(g_el)) then
       do i = 1, nb
         srr = grad(i,1,1)**2 + grad(i,2,1)**2 + grad(i,3,1)**2
