@@ -12,7 +12,7 @@ module udar_exact_sum
   use udar_kinds, only: rk, i8
   implicit none
   private
-  public :: exact_limbs, exact_clear, exact_add, exact_normalize, exact_value
+  public :: exact_limbs, exact_clear, exact_add, exact_normalize, exact_value, exact_sum_of
 
   integer, parameter :: exact_limbs = 66       !< 32-bit digits per accumulator
   integer(i8), parameter :: mask32 = 4294967295_i8
@@ -125,6 +125,19 @@ contains
     ! m * 2^(shift - 1074): exact, m has at most 53 bits
     v = scale(real(m, rk), shift - 1074)
     if (negative) v = -v
+  end function
+
+  !> The sum of values rounded once to the nearest double (ties to even):
+  !> what Python's math.fsum gives, and for two values their IEEE sum.
+  pure real(rk) function exact_sum_of(values) result(v)
+    real(rk), intent(in) :: values(:)
+    integer(i8) :: acc(0:exact_limbs)
+    integer :: i
+    call exact_clear(acc)
+    do i = 1, size(values)
+      call exact_add(acc, values(i))
+    end do
+    v = exact_value(acc)
   end function
 
   !> Bits [lo, lo+n) of the limb array as an integer (n <= 62).

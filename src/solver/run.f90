@@ -15,7 +15,7 @@ module udar_run
   use udar_comms, only: comms_barrier, comms_wtime, comms_size, comms_min, comms_max, comms_min_int, comms_max_int, comms_max_i8, comms_is_root, &
       comms_sum_int, comms_allgather_count, comms_allgatherv_int, &
       comms_sum_exact, halo_t, comms_halo_exchange, comms_halo_exchange_scalar
-  use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_value
+  use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_value, exact_sum_of
   use udar_fatal, only: fatal, fatal_all, fatal_unless_all_ok, exit_physics, exit_io, log_error_here
   use udar_log, only: log_info, log_warn
   use udar_element_passes, only: element_volumes, element_update, nodal_pressures, element_time_steps, &
@@ -1540,6 +1540,16 @@ contains
         bal%part_com(ip,i) = exact_value(bal%acc(:,n+i))
         if (bal%part_mass(ip) > 0.0_rk) bal%part_com(ip,i) = bal%part_com(ip,i)/bal%part_mass(ip)
       end do
+    end do
+    ! the totals of what the parts have: the parts' rounded values summed
+    ! and rounded once more (at most an ulp from the exact total), so that
+    ! the part columns add up to them bitwise (math.fsum; two parts: a + b)
+    bal%kinetic = exact_sum_of(bal%part_ke)
+    bal%internal = exact_sum_of(bal%part_internal)
+    bal%plastic = exact_sum_of(bal%part_plastic)
+    bal%eroded_energy = exact_sum_of(bal%part_eroded)
+    do i = 1, 3
+      bal%momentum(i) = exact_sum_of(bal%part_momentum(:,i))
     end do
     bal%total = bal%kinetic + bal%internal + bal%eroded_energy
     ! the contact pass is replicated: its sums are already the same on every rank

@@ -4,7 +4,7 @@ program test_exact_sum
   use, intrinsic :: iso_fortran_env, only: real128
   use udar_kinds, only: rk, i8
   use udar_strings, only: r2s
-  use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_normalize, exact_value
+  use udar_exact_sum, only: exact_limbs, exact_clear, exact_add, exact_normalize, exact_value, exact_sum_of
   use unit_checks, only: check, check_summary
   implicit none
   integer, parameter :: n = 20000
@@ -79,5 +79,11 @@ program test_exact_sum
   call exact_clear(acc)
   call exact_add(acc, -0.1_rk); call exact_add(acc, 0.1_rk)
   call check('exact_zero', exact_value(acc) == 0.0_rk, r2s(exact_value(acc)))
+  ! the history's totals of the part columns: math.fsum's value (here by hand:
+  ! 1 + 2^-53 + 2^-53 = 1 + 2^-52 exactly, where adding left to right gives 1)
+  call check('sum_of_three', exact_sum_of([1.0_rk, 2.0_rk**(-53), 2.0_rk**(-53)]) == 1.0_rk + 2.0_rk**(-52), &
+             r2s(exact_sum_of([1.0_rk, 2.0_rk**(-53), 2.0_rk**(-53)])))
+  call check('sum_of_two_is_ieee_sum', exact_sum_of([0.1_rk, 0.2_rk]) == 0.1_rk + 0.2_rk, '0.1 + 0.2')
+  call check('sum_of_none', exact_sum_of([real(rk) ::]) == 0.0_rk, 'empty')
   call check_summary()
 end program test_exact_sum
