@@ -1,12 +1,14 @@
 #!/usr/bin/python3
 """Plot a udar history CSV (<case>_history.csv): energies, energy error, momentum, wall
-force, and per-part kinetic energy and centre-of-mass displacement, against time in µs.
+force, and per-part kinetic energy and centre-of-mass displacement, against time in µs;
+with --gauges, the gauges' histories (&gauge) instead.
 
     /usr/bin/python3 postproc/plot_history.py out/taylor_history.csv -o taylor_history.png
+    /usr/bin/python3 postproc/plot_history.py out/taylor_history.csv --gauges -o gauges.png
     /usr/bin/python3 postproc/plot_history.py --self-test
 
 Panels whose columns are missing from the file are left out (a warning names them).
-Library use: ``plot_history(path, out, ...)``.
+Library use: ``plot_history(path, out, ...)``, ``plot_gauges(path, out, ...)``.
 """
 
 import math
@@ -230,6 +232,86 @@ def plot_history(path, out, title=None, error_limit=None, size=None, dpi=150, ve
     return summary
 
 
+# the gauge quantities drawn by default (those some gauge has and that are not 0 throughout)
+GAUGE_DEFAULT = ("vx", "vy", "vz", "ux", "uy", "uz", "pressure", "von_mises", "plastic_strain", "temperature")
+GAUGE_LABELS = {"ux": "displacement x", "uy": "displacement y", "uz": "displacement z", "vx": "velocity x",
+                "vy": "velocity y", "vz": "velocity z", "x": "position x", "y": "position y", "z": "position z",
+                "pressure": "pressure", "sxx": "stress xx", "syy": "stress yy", "szz": "stress zz",
+                "sxy": "stress xy", "syz": "stress yz", "szx": "stress zx", "von_mises": "von Mises stress",
+                "plastic_strain": "plastic strain", "temperature": "temperature", "density": "density"}
+# drawn in these units (SI in the file)
+GAUGE_SCALE = {"m": (1e3, "mm"), "Pa": (1e-6, "MPa")}
+
+
+def plot_gauges(path, out, names=None, quantities=None, title=None, size=None, dpi=150, verbose=True):
+    """The gauges' histories (&gauge) of the history CSV ``path``: a panel per quantity, a
+    curve per gauge, against time in µs; where a gauge's element eroded (state 2) or became
+    a particle (state 3) its curve is marked. ``names``: the gauges (default all);
+    ``quantities``: what to draw (default GAUGE_DEFAULT, those present and not all 0).
+    Returns a summary dict."""
+    plt = ur.agg_pyplot()
+    h = ur.read_history(path)
+    units = ur.history_units(path)
+    gauges = ur.history_gauges(h)
+    if not gauges:
+        raise HistoryError("%s: no gauge columns (gauge_<name>_<quantity>; a deck's &gauge groups "
+                           "make them)" % path)
+    for g in names or []:
+        if g not in gauges:
+            raise HistoryError("%s: no gauge %r (gauges: %s)" % (path, g, ", ".join(gauges)))
+    names = list(names or gauges)
+    for q in quantities or []:
+        if q not in GAUGE_LABELS:
+            raise HistoryError("unknown gauge quantity %r (known: %s)" % (q, ", ".join(GAUGE_LABELS)))
+    wanted = quantities or [q for q in GAUGE_DEFAULT
+                            if any(q in gauges[g] and np.any(h["gauge_%s_%s" % (g, q)] != 0.0) for g in names)]
+    wanted = [q for q in wanted if any(q in gauges[g] for g in names)]
+    if not wanted:
+        raise HistoryError("%s: the gauges %s have none of %s" % (path, ", ".join(names),
+                                                                  ", ".join(quantities or GAUGE_DEFAULT)))
+    t_us = h["time"] * 1e6
+    ncols = 1 if len(wanted) == 1 else 2
+    nrows = int(math.ceil(len(wanted) / ncols))
+    fig, axes = plt.subplots(nrows, ncols, figsize=size or (6.0 * ncols, 3.0 * nrows + 0.6),
+                             sharex=True, squeeze=False, constrained_layout=True)
+    flat = axes.ravel()
+    marked = set()
+    for ax, q in zip(flat, wanted):
+        unit = units.get("gauge_%s_%s" % (names[0], q), "") or "-"
+        scale, shown = GAUGE_SCALE.get(unit, (1.0, unit))
+        for k, g in enumerate(names):
+            if q not in gauges[g]:
+                continue
+            y = h["gauge_%s_%s" % (g, q)] * scale
+            line, = ax.plot(*decimate(t_us, y), lw=1.0, label=g, color="C%d" % (k % 10))
+            if "state" in gauges[g]:
+                state = h["gauge_%s_state" % g]
+                for s, marker, what in ((2, "x", "eroded"), (3, "o", "became a particle")):
+                    hit = np.flatnonzero(state == s)
+                    if len(hit):
+                        ax.plot(t_us[hit[0]], y[hit[0]], marker, color=line.get_color(), mfc="none", ms=7)
+                        marked.add((marker, what))
+        ax.set_ylabel("%s (%s)" % (GAUGE_LABELS[q], shown) if shown != "-" else GAUGE_LABELS[q])
+        ax.grid(True, lw=0.4, alpha=0.5)
+    flat[0].legend(fontsize="small")
+    for ax in flat[len(wanted):]:
+        ax.remove()
+    for c in range(ncols):
+        col = [flat[r * ncols + c] for r in range(nrows) if r * ncols + c < len(wanted)]
+        if col:
+            col[-1].set_xlabel("time (µs)")
+            col[-1].xaxis.set_tick_params(labelbottom=True)
+    head = title or "%s — gauges" % case_name(path)
+    if marked:
+        head += "\n" + ", ".join("%s: the element %s" % (m, w) for m, w in sorted(marked, reverse=True))
+    fig.suptitle(head, fontsize="medium")
+    ur.save_figure(fig, out, dpi, HistoryError)
+    if verbose:
+        print("%s: gauges %s, quantities %s" % (path, ", ".join(names), ", ".join(wanted)))
+        print("wrote %s" % out)
+    return {"gauges": names, "quantities": wanted, "panels": len(wanted), "marked": sorted(marked)}
+
+
 # --------------------------------------------------------------------------------------
 # self-test
 # --------------------------------------------------------------------------------------
@@ -293,6 +375,26 @@ def _self_test(verbose=True):
                     verbose=False, contains=("empty_history.csv", "no data rows"))
         rc, _, _ = test.run_main(main, [os.path.join(tmp, "nope.csv"), "-o", out])
         check(rc == 1, "missing file: exit code 1")
+        # gauges: a node gauge and a point gauge whose element becomes a particle
+        gp = os.path.join(tmp, "gauged_history.csv")
+        t = np.linspace(0.0, 1e-5, 200)
+        cols = {"time": t, "kinetic": np.ones_like(t)}
+        for q in ("ux", "uy", "uz", "vx", "vy", "vz"):
+            cols["gauge_rear_face_" + q] = (t * 10.0 if q == "uz" else 10.0 + 0 * t) if q[1] == "z" else 0 * t
+        for q in ur.GAUGE_QUANTITIES[6:]:
+            cols["gauge_nose_" + q] = 1e8 * np.sin(t / 1e-6) if q == "pressure" else 0 * t
+        cols["gauge_nose_state"] = np.where(t > 5e-6, 3.0, 0.0)
+        ur.write_history(gp, cols)
+        check(ur.history_gauges(ur.read_history(gp)) == {"rear_face": ["ux", "uy", "uz", "vx", "vy", "vz"],
+                                                         "nose": list(ur.GAUGE_QUANTITIES[6:])},
+              "gauge names (with underscores) and quantities from the columns")
+        g = plot_gauges(gp, out, verbose=False)
+        check(g["quantities"] == ["vz", "uz", "pressure"] and g["marked"] == [("o", "became a particle")],
+              "gauge figure: the quantities not 0 throughout, the particle marked")
+        test.raises(HistoryError, "unknown gauge named", plot_gauges, gp, out, names=["tail"], verbose=False,
+                    contains=("no gauge 'tail'", "rear_face"))
+        rc, _, _ = test.run_main(main, [gp, "--gauges", "nose", "--quantities", "pressure,temperature", "-o", out])
+        check(rc == 0 and os.path.getsize(out) > 5000, "--gauges nose --quantities pressure,temperature")
     return test.finish()
 
 
@@ -309,6 +411,7 @@ def build_parser():
         """examples:
   /usr/bin/python3 postproc/plot_history.py out/taylor_history.csv -o taylor_history.png
   /usr/bin/python3 postproc/plot_history.py out/taylor_history.csv --error-limit 0.2 -o h.pdf
+  /usr/bin/python3 postproc/plot_history.py out/elastic_bar_history.csv --gauges -o gauges.png
   /usr/bin/python3 postproc/plot_history.py --self-test
 
 The energy_error column is taken as relative (dimensionless) and drawn in percent.""")
@@ -318,6 +421,12 @@ The energy_error column is taken as relative (dimensionless) and drawn in percen
     p.add_argument("--title", help="figure title (default: case name from the file name)")
     p.add_argument("--error-limit", type=float, metavar="FRAC",
                    help="draw +-FRAC lines on the energy error panel (e.g. 0.2, the run's limit)")
+    p.add_argument("--gauges", nargs="*", metavar="NAME",
+                   help="draw the gauges' histories instead (&gauge; the named ones, default all): a panel "
+                        "per quantity, a curve per gauge, marked where its element eroded or became a particle")
+    p.add_argument("--quantities", metavar="Q,Q",
+                   help="with --gauges: the quantities to draw, e.g. vz,pressure,szz (default: velocities, "
+                        "displacements, pressure, von Mises stress, plastic strain, temperature, those not 0)")
     p.add_argument("--whole", type=float, metavar="F",
                    help="multiply the energies, masses and forces by F: the whole body of a model cut "
                         "by symmetry planes (4 for a quarter model; the history's note gives the factor; "
@@ -335,6 +444,13 @@ def _run(args, p):
     out = args.output or os.path.splitext(os.path.basename(args.history))[0] + ".png"
     if os.path.abspath(out) == os.path.abspath(args.history):
         p.error("the output file would overwrite the input")
+    if args.gauges is not None:
+        plot_gauges(args.history, out, names=args.gauges, title=args.title,
+                    quantities=args.quantities.split(",") if args.quantities else None,
+                    size=tuple(args.size) if args.size else None, dpi=args.dpi)
+        return
+    if args.quantities:
+        p.error("--quantities goes with --gauges")
     plot_history(args.history, out, title=args.title, error_limit=args.error_limit,
                  size=tuple(args.size) if args.size else None, dpi=args.dpi, whole=args.whole)
 

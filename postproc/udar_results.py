@@ -905,6 +905,24 @@ def history_parts(hist):
     return [k[3:] for k in hist if k.startswith("ke_") and len(k) > 3]
 
 
+GAUGE_QUANTITIES = ("ux", "uy", "uz", "vx", "vy", "vz", "x", "y", "z", "pressure", "sxx", "syy", "szz", "sxy",
+                    "syz", "szx", "von_mises", "plastic_strain", "temperature", "density", "state")
+
+
+def history_gauges(hist):
+    """{gauge name: [its quantities]} from a history dict's ``gauge_<name>_<quantity>`` columns
+    (file order; a name may hold underscores)."""
+    out = {}
+    by_length = sorted(GAUGE_QUANTITIES, key=len, reverse=True)
+    for k in hist:
+        if not k.startswith("gauge_"):
+            continue
+        q = next((q for q in by_length if k.endswith("_" + q) and len(k) > len(q) + 7), None)
+        if q is not None:
+            out.setdefault(k[6:-len(q) - 1], []).append(q)
+    return out
+
+
 # --------------------------------------------------------------------------------------
 # synthetic data helpers (used by the self-tests)
 # --------------------------------------------------------------------------------------

@@ -125,6 +125,7 @@ run_test "cli/validation_meshes" tests/cli/validation_meshes.sh
 run_test "unit/test_distribution_mpi_np3" mpirun -np 3 build/debug/tests/test_distribution_mpi "$ROOT/tests/unit" "$WORK"
 run_test "cli/field_output_ranks" tests/cli/field_output_ranks.sh build/debug/tests/test_field_output_mpi "$WORK/field_output_ranks"
 run_test "cli/ranks_elastic_bar" tests/cli/rank_invariance.sh bin/udar elastic_bar
+run_test "cli/gauge_element_tag" tests/cli/gauge_element_tag.sh bin/udar
 run_test "cli/ranks_elastic_bar_2d" tests/cli/rank_invariance.sh bin/udar elastic_bar_2d
 run_test "cli/ranks_taylor_wg_2d" tests/cli/rank_invariance.sh bin/udar taylor_wg_2d 10.0e-6
 run_test "cli/ranks_taylor_mts_2d" tests/cli/rank_invariance.sh bin/udar taylor_mts_2d 10.0e-6

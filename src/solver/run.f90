@@ -56,6 +56,9 @@ module udar_run
   !> of mass, internal energy, plastic work, eroded energy, mass, momentum,
   !> mean velocity
   integer, parameter :: per_part = 14
+  !> a gauge's state column: its element's (el_intact, el_fractured,
+  !> el_eroded), or this once the element has become a particle
+  integer, parameter :: gauge_particle = 3
   !> exact accumulators of each part: kinetic energy, mass moments (3), mass,
   !> internal energy, plastic work, eroded energy, momentum (3)
   integer, parameter :: part_sums = 11
@@ -1152,9 +1155,9 @@ contains
     case (gauge_node)
       n = 6
     case (gauge_element)
-      n = 11
+      n = 12
     case default
-      n = 17
+      n = 18
     end select
   end function
 
@@ -1164,8 +1167,8 @@ contains
     character(len=80), allocatable :: cols(:)
     character(len=16), parameter :: node_q(6) = [character(len=16) :: 'ux', 'uy', 'uz', 'vx', 'vy', 'vz'], &
       point_q(6) = [character(len=16) :: 'x', 'y', 'z', 'vx', 'vy', 'vz'], &
-      elem_q(11) = [character(len=16) :: 'pressure', 'sxx', 'syy', 'szz', 'sxy', 'syz', 'szx', 'von_mises', &
-                    'plastic_strain', 'temperature', 'density']
+      elem_q(12) = [character(len=16) :: 'pressure', 'sxx', 'syy', 'szz', 'sxy', 'syz', 'szx', 'von_mises', &
+                    'plastic_strain', 'temperature', 'density', 'state']
     character(len=16), allocatable :: q(:)
     integer :: g, k
     allocate(cols(0))
@@ -1186,12 +1189,16 @@ contains
   !> (one column each): what it owns, the rest 0, so the global sum is each
   !> value rounded once, the same for any partition. A point's position and
   !> velocity are its element's corners' weighted sums (each corner's owner
-  !> adds its term).
-  subroutine add_gauges(dom, acc)
+  !> adds its term). Once the element has become a particle (eroded =
+  !> 'particles') the gauge follows the particle (every rank has it, the
+  !> root adds it): its position, velocity and state; an element eroded
+  !> into free nodes carries no stress (0), its plastic strain, temperature
+  !> and density stay those it had.
+  subroutine add_gauges(dom, pt, acc)
     type(domain_t), intent(in) :: dom
+    type(particles_t), intent(in) :: pt
     integer(i8), intent(inout) :: acc(0:,:)
-    integer :: g, c, a, n, e, k
-    real(rk) :: s6(6), p
+    integer :: g, c, a, n, e, k, q
     c = 0
     do g = 1, size(dom%gauge_kind)
       if (dom%gauge_kind(g) == gauge_node) then
@@ -1205,34 +1212,60 @@ contains
         c = c + 6
         cycle
       end if
+      q = 0
+      if (pt%n > 0) q = findloc(pt%elem(1:pt%n), dom%gauge_elem(g), dim=1)
       if (dom%gauge_kind(g) == gauge_point) then
-        do a = 1, 4
-          n = dom%gauge_nodes_loc(a,g)
-          if (n == 0) cycle
-          do k = 1, 3
-            call exact_add(acc(:,c+k), dom%gauge_w(a,g)*dom%nd_x(k,n))
-            call exact_add(acc(:,c+3+k), dom%gauge_w(a,g)*dom%nd_v(k,n))
+        if (q > 0) then
+          if (comms_is_root()) then
+            do k = 1, 3
+              call exact_add(acc(:,c+k), pt%x(k,q))
+              call exact_add(acc(:,c+3+k), pt%v(k,q))
+            end do
+          end if
+        else
+          do a = 1, 4
+            n = dom%gauge_nodes_loc(a,g)
+            if (n == 0) cycle
+            do k = 1, 3
+              call exact_add(acc(:,c+k), dom%gauge_w(a,g)*dom%nd_x(k,n))
+              call exact_add(acc(:,c+3+k), dom%gauge_w(a,g)*dom%nd_v(k,n))
+            end do
           end do
-        end do
+        end if
         c = c + 6
       end if
       e = dom%gauge_elem_loc(g)
-      if (e > 0) then
-        s6 = dom%el_s(e,:)
-        p = dom%el_p(e)
-        ! the Cauchy stress: the deviator less the pressure (no viscosity)
-        call exact_add(acc(:,c+1), p)
-        do k = 1, 3
-          call exact_add(acc(:,c+1+k), s6(k) - p)
-          call exact_add(acc(:,c+4+k), s6(3+k))
-        end do
-        call exact_add(acc(:,c+8), von_mises(s6))
-        call exact_add(acc(:,c+9), dom%el_eps_p(e))
-        call exact_add(acc(:,c+10), dom%el_temp(e))
-        call exact_add(acc(:,c+11), dom%mat(dom%el_mat(e))%rho0/dom%el_j(e))
+      if (q > 0) then
+        if (comms_is_root()) call add_state(pt%p(q), pt%s(:,q), pt%eps_p(q), pt%temp(q), pt%rho(q), gauge_particle)
+      else if (e > 0) then
+        if (dom%el_state(e) == el_eroded) then
+          call add_state(0.0_rk, [(0.0_rk, k = 1, 6)], dom%el_eps_p(e), dom%el_temp(e), &
+                         dom%mat(dom%el_mat(e))%rho0/dom%el_j(e), dom%el_state(e))
+        else
+          call add_state(dom%el_p(e), dom%el_s(e,:), dom%el_eps_p(e), dom%el_temp(e), &
+                         dom%mat(dom%el_mat(e))%rho0/dom%el_j(e), dom%el_state(e))
+        end if
       end if
-      c = c + 11
+      c = c + gauge_width(gauge_element)
     end do
+  contains
+    !> An element's or a particle's values: pressure p, the Cauchy stress
+    !> (the deviator s less p; no viscosity), von Mises, plastic strain,
+    !> temperature, density and what it is (gauge state).
+    subroutine add_state(p, s6, eps_p, temp, rho, state)
+      real(rk), intent(in) :: p, s6(6), eps_p, temp, rho
+      integer, intent(in) :: state
+      call exact_add(acc(:,c+1), p)
+      do k = 1, 3
+        call exact_add(acc(:,c+1+k), s6(k) - p)
+        call exact_add(acc(:,c+4+k), s6(3+k))
+      end do
+      call exact_add(acc(:,c+8), von_mises(s6))
+      call exact_add(acc(:,c+9), eps_p)
+      call exact_add(acc(:,c+10), temp)
+      call exact_add(acc(:,c+11), rho)
+      call exact_add(acc(:,c+12), real(state, rk))
+    end subroutine
   end subroutine
 
   !> The history's header: each column's name and its SI unit in brackets,
@@ -1498,7 +1531,7 @@ contains
     do i = 1, nw
       bal%acc(:,c_wall+i-1) = walls%impulse(:,i)
     end do
-    call add_gauges(dom, bal%acc(:, c_part + part_sums*np:))
+    call add_gauges(dom, pt, bal%acc(:, c_part + part_sums*np:))
     call comms_sum_exact(bal%acc)
     do i = 1, size(bal%gauge)
       bal%gauge(i) = exact_value(bal%acc(:, c_part + part_sums*np + i - 1))

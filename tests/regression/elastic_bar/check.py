@@ -38,9 +38,9 @@ HISTORY_UNITS = {'time': 's', 'cycle': '-', 'dt': 's', 'kinetic': 'J', 'internal
                  'momentum_z_bar': 'kg m/s', 'velocity_x_bar': 'm/s', 'velocity_y_bar': 'm/s', 'velocity_z_bar': 'm/s'}
 GAUGE_UNITS = {'x': 'm', 'y': 'm', 'z': 'm', 'ux': 'm', 'uy': 'm', 'uz': 'm', 'vx': 'm/s', 'vy': 'm/s', 'vz': 'm/s',
                'pressure': 'Pa', 'sxx': 'Pa', 'syy': 'Pa', 'szz': 'Pa', 'sxy': 'Pa', 'syz': 'Pa', 'szx': 'Pa',
-               'von_mises': 'Pa', 'plastic_strain': '-', 'temperature': 'K', 'density': 'kg/m3'}
+               'von_mises': 'Pa', 'plastic_strain': '-', 'temperature': 'K', 'density': 'kg/m3', 'state': '-'}
 POINT = ['x', 'y', 'z', 'vx', 'vy', 'vz', 'pressure', 'sxx', 'syy', 'szz', 'sxy', 'syz', 'szx', 'von_mises',
-         'plastic_strain', 'temperature', 'density']
+         'plastic_strain', 'temperature', 'density', 'state']
 for g, quantities in (('free_end', POINT), ('middle', POINT), ('corner', ['ux', 'uy', 'uz', 'vx', 'vy', 'vz'])):
     HISTORY_UNITS.update({f'gauge_{g}_{q}': GAUGE_UNITS[q] for q in quantities})
 units = udar_results.history_units(os.path.join(sys.argv[1], 'out', 'elastic_bar_history.csv'))
