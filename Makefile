@@ -119,6 +119,9 @@ tests/regression/deep_node/deep_node.msh: tests/tools/deep_node_mesh.py
 MSH += tests/regression/buried_particles/buried_particles.msh
 tests/regression/buried_particles/buried_particles.msh: tests/tools/buried_cube_mesh.py tests/tools/deep_node_mesh.py
 	$(PYTHON) $< $@
+MSH += tests/regression/buried_particles/buried_particles_half.msh
+tests/regression/buried_particles/buried_particles_half.msh: tests/tools/buried_cube_mesh.py tests/tools/deep_node_mesh.py
+	$(PYTHON) $< $@ --half
 # normal_cylinder.geo includes the oblique one: remesh when that changes
 input/normal_cylinder/normal_cylinder.msh: input/oblique_cylinder/oblique_cylinder.geo
 meshes: deps-quiet $(MSH)

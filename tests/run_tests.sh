@@ -200,6 +200,7 @@ run_test "cli/fig4_depth" tests/cli/fig4_depth.sh bin/udar
 run_test "regression/long_rod_particles" regression long_rod_particles bin/udar
 run_test "regression/long_rod_energy" regression long_rod_energy bin/udar
 run_test "regression/buried_particles" regression buried_particles bin/udar
+run_test "regression/buried_particles_half" regression buried_particles bin/udar buried_particles_half
 run_test "regression/oblique_particles" regression oblique_particles bin/udar
 run_test "regression/taylor_particles" regression taylor_ofhc_baseline bin/udar taylor_particles
 run_test "regression/taylor_particles_strengthless_fails" regression_fails taylor_ofhc_baseline bin/udar \

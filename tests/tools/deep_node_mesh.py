@@ -55,19 +55,21 @@ def main(out):
     write_msh(out, np.vstack([x, xr]), [('plate', tets), ('rod', rod)])
 
 
-def write_msh(out, x, volumes):
-    """A gmsh 2.2 ASCII mesh: nodes x (numbered from 1) and the tetrahedra of
-    each (name, tets) of volumes, physical volume k + 1."""
-    lines = ['$MeshFormat', '2.2 0 8', '$EndMeshFormat', '$PhysicalNames', str(len(volumes))]
-    lines += [f'3 {k + 1} "{name}"' for k, (name, _) in enumerate(volumes)]
+def write_msh(out, x, volumes, surfaces=()):
+    """A gmsh 2.2 ASCII mesh: nodes x (numbered from 1), the tetrahedra of
+    each (name, tets) of volumes, physical volume k + 1, and the triangles
+    of each (name, tris) of surfaces, physical surface len(volumes) + k + 1."""
+    groups = [(3, name, 4, els) for name, els in volumes] + [(2, name, 2, els) for name, els in surfaces]
+    lines = ['$MeshFormat', '2.2 0 8', '$EndMeshFormat', '$PhysicalNames', str(len(groups))]
+    lines += [f'{dim} {k + 1} "{name}"' for k, (dim, name, _, _) in enumerate(groups)]
     lines += ['$EndPhysicalNames', '$Nodes', str(len(x))]
     lines += [f'{k + 1} {p[0]!r} {p[1]!r} {p[2]!r}' for k, p in enumerate(x)]
-    lines += ['$EndNodes', '$Elements', str(sum(len(t) for _, t in volumes))]
+    lines += ['$EndNodes', '$Elements', str(sum(len(g[3]) for g in groups))]
     e = 0
-    for k, (_, tets) in enumerate(volumes):
-        for t in tets:
+    for k, (_, _, kind, els) in enumerate(groups):
+        for t in els:
             e += 1
-            lines.append(f'{e} 4 2 {k + 1} {k + 1} ' + ' '.join(map(str, t)))
+            lines.append(f'{e} {kind} 2 {k + 1} {k + 1} ' + ' '.join(map(str, t)))
     lines += ['$EndElements']
     with open(out, 'w') as f:
         f.write('\n'.join(lines) + '\n')
