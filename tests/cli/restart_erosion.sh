@@ -10,6 +10,7 @@
 # edges: edge-to-edge contact, whose feature edges erosion changes;
 # particles: eroded elements become particles (issue 15), which the
 # checkpoint carries, and the nodes' masses without them are recomputed;
+# its gauges follow particles made before and after the checkpoint;
 # particles_strength: besides, strained elements convert before they
 # fracture (eps_convert), so particles carry their stress, hardening and
 # damage through the checkpoint, and fracture later.
@@ -32,6 +33,14 @@ elif [ "${2:-}" = edges ]; then
 elif [ "${2:-}" = particles ]; then
   sed -i "s/eps_erode = 1.5$/eps_erode = 1.5, eroded = 'particles'/" "$W/$case.nml"
   grep -q "eroded = 'particles'" "$W/$case.nml" || { bad "deck_has_particles"; exit 1; }
+  # gauges whose elements become particles before the checkpoint (nose_side,
+  # 1.30 us) and after it (the others, 1.59-1.98 us): followed alike after a restart
+  cat >> "$W/$case.nml" <<'DECK'
+&gauge name = 'nose', point = 0.3e-3, 0.2e-3, 0.3e-3 /
+&gauge name = 'nose_side', point = 1.5e-3, 0.5e-3, 0.5e-3 /
+&gauge name = 'behind_nose', point = 0.2e-3, 0.3e-3, 1.2e-3 /
+&gauge name = 'plate_below', point = 0.4e-3, -0.3e-3, -0.5e-3 /
+DECK
 elif [ "${2:-}" = particles_strength ]; then
   sed -i "s/eps_erode = 1.5$/eps_erode = 1.5, eroded = 'particles', eps_convert = 0.8/" "$W/$case.nml"
   grep -q "eps_convert = 0.8" "$W/$case.nml" || { bad "deck_has_particles_with_strength"; exit 1; }
@@ -41,10 +50,24 @@ eroded=$(grep -o '[0-9]* eroded;' "$W/straight.log" | cut -d' ' -f1)
 echo "MEASURED $eroded elements eroded in the straight run"
 [ "${eroded:-0}" -gt 0 ] && ok "elements_eroded_before_the_end" || bad "elements_eroded_before_the_end"
 if [ "${2:-}" = particles ] || [ "${2:-}" = particles_strength ]; then
-  made=$(grep -c 'particles' "$W/out/${case}_history.csv")
-  n=$(tail -1 "$W/straight/${case}_history.csv" | awk -F, '{print $(NF-4)}')
+  n=$($PYTHON -c "import sys; sys.path.insert(0, sys.argv[1]); import udar_results as u; print(int(u.read_history(sys.argv[2])['particles'][-1]))" \
+      "$ROOT/postproc" "$W/straight/${case}_history.csv")
   echo "MEASURED particles at the end of the straight run: $n"
-  awk "BEGIN{exit !($n > 0)}" && ok "particles_made" || bad "particles_made"
+  [ "${n:-0}" -gt 0 ] && ok "particles_made" || bad "particles_made"
+fi
+if [ "${2:-}" = particles ]; then
+  # when each gauge's element became a particle (state 3), against the checkpoint's 1.5 us
+  times=$($PYTHON -c "
+import sys; sys.path.insert(0, sys.argv[1]); import udar_results as u
+h = u.read_history(sys.argv[2])
+print(' '.join('%.3f' % (h['time'][list(h['gauge_%s_state' % g]).index(3.0)] * 1e6) if 3.0 in h['gauge_%s_state' % g] else 'never'
+               for g in ('nose_side', 'nose', 'behind_nose', 'plate_below')))" "$ROOT/postproc" "$W/straight/${case}_history.csv")
+  echo "MEASURED gauges nose_side, nose, behind_nose, plate_below on a particle from (us): $times"
+  read -r t_side t_nose _ <<< "$times"
+  [ "$t_side" != never ] && awk "BEGIN{exit !($t_side < 1.5)}" && ok "gauge_on_a_particle_before_the_checkpoint" \
+    || bad "gauge_on_a_particle_before_the_checkpoint"
+  [ "$t_nose" != never ] && awk "BEGIN{exit !($t_nose > 1.5)}" && ok "gauge_on_a_particle_after_the_checkpoint" \
+    || bad "gauge_on_a_particle_after_the_checkpoint"
 fi
 if [ "${2:-}" = particles_strength ]; then
   # the checkpoint the restart starts from holds particles that keep their strength
