@@ -11,7 +11,7 @@ module udar_contact
   use udar_exact_sum, only: exact_limbs, exact_add
   use udar_domain, only: domain_t
   use udar_particle_model, only: particles_t
-  use udar_contact_model, only: contact_t, interface_t, neighbour_across, contact_grow_nodes, on_symmetry_plane
+  use udar_contact_model, only: contact_t, interface_t, neighbour_across, contact_grow_nodes
   use udar_contact_search, only: grid_build, grid_cell, ensure
   use udar_contact_kernels, only: match_velocities, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
                                   edge_crossing, behind_not, behind_face, behind_seam
@@ -208,9 +208,8 @@ contains
             best = 0
             best_d = reach
             do t = 1, size(it%tri, 2)
-              ! (a face in a symmetry plane is no surface: the body goes on
-              ! across it, and a particle made on the plane is on that face)
-              if (on_symmetry_plane(ct%sym_planes, it%tri(:,t))) cycle
+              ! (no face lies in a symmetry plane, contact_setup: a particle
+              ! made on the plane goes to the real surface)
               call gather_columns(xa, ct%x, it%tri(:,t))
               if (any(ct%x(:,p) < minval(xa(:,1:nf), dim=2) - best_d) .or. &
                   any(ct%x(:,p) > maxval(xa(:,1:nf), dim=2) + best_d)) cycle

@@ -93,9 +93,8 @@ contains
       associate (it => ct%ifc(k))
         if (.not. (changed(it%master_part) .or. changed(it%slave_part))) cycle
         if (it%self) then
-          ! the part's boundary without its faces on symmetry planes; its nodes and free nodes
-          it%tri = faces(:, pack([(i, i = 1, n)], face_part == it%master_part .and. &
-                                 [(.not. on_symmetry_plane(ct%sym_planes, faces(:,i)), i = 1, n)]))
+          ! the part's boundary (exposed: no face on a symmetry plane); its nodes and free nodes
+          it%tri = faces(:, pack([(i, i = 1, n)], face_part == it%master_part))
           if (allocated(it%apex)) deallocate(it%apex)
           allocate(it%apex(size(it%tri, 2)), source=0)    ! self-contact: only what crosses in a cycle
           it%slave = slave_nodes(it%slave_part, it%tri)
@@ -137,13 +136,13 @@ contains
       if (ip > 0) changed = part_changed(ip)
     end function
 
-    !> Whether face f of element t is on the current boundary (in 2D not on
-    !> the axis or a symmetry line, where the body continues).
+    !> Whether face f of element t is on the current boundary (not on a
+    !> symmetry plane, 2D: the axis or a symmetry line, where the body continues).
     logical function exposed(t, f)
       integer, intent(in) :: t, f
       exposed = ct%tet_alive(t)
       if (exposed .and. ct%tet_nbr(f,t) > 0) exposed = .not. ct%tet_alive(ct%tet_nbr(f,t))
-      if (exposed .and. nc == 3) exposed = .not. on_symmetry_plane(ct%sym_planes, ct%tet(element_face(nc, f), t))
+      if (exposed) exposed = .not. on_symmetry_plane(ct%sym_planes, ct%tet(element_face(nc, f), t))
     end function
 
     !> Slave nodes of part ip: the nodes of its current boundary (or of the

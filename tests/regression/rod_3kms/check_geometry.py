@@ -2,16 +2,38 @@
 import numpy as np
 
 
-def deepest_inside(points, x, tets):
+def deepest_inside(points, x, tets, in_plane=None):
     """Largest depth (m) of any point inside any tetrahedron (or 2D
     triangle: tets with 3 columns, points in z = 0), 0 if none: the depth of
     a point is its smallest barycentric coordinate times the element's
-    smallest altitude (positive only when it is strictly inside)."""
-    depth = depths_inside(points, x, tets)
+    smallest altitude (positive only when it is strictly inside). in_plane
+    (one row per element, a column per corner): the face opposite that
+    corner lies in a symmetry plane, where the mirrored body goes on, so a
+    point on it is inside (its coordinate there is left out of the
+    smallest)."""
+    depth = depths_inside(points, x, tets, in_plane)
     return depth.max() if len(depth) else 0.0
 
 
-def depths_inside(points, x, tets):
+def faces_in_planes(tets, x0):
+    """(elements, corners) booleans: the face opposite each corner lies in a
+    symmetry plane of the mesh, a coordinate plane x, y or z = 0 that the
+    whole mesh lies on one side of (the planes of udar's half and quarter
+    models)."""
+    in_plane = np.zeros(tets.shape, bool)
+    d = tets.shape[1] - 1
+    tol = 1e-9 * np.ptp(x0[:, :d], axis=0).max()    # (gmsh puts some plane nodes at 1e-19)
+    for a in range(d):
+        if abs(x0[:, a].min()) > tol and abs(x0[:, a].max()) > tol:
+            continue
+        on = np.abs(x0[:, a]) <= tol
+        for k in range(d + 1):
+            others = [j for j in range(d + 1) if j != k]
+            in_plane[:, k] |= np.all(on[tets[:, others]], axis=1)
+    return in_plane
+
+
+def depths_inside(points, x, tets, in_plane=None):
     """Each point's depth (m) inside the tetrahedra (or 2D triangles) as
     deepest_inside measures it: the largest over the elements, 0 where it
     is in none."""
@@ -42,6 +64,10 @@ def depths_inside(points, x, tets):
             continue
         lam = np.einsum('nij,nj->ni', inv[near], p - a[near])
         bary = np.column_stack([1.0 - lam.sum(axis=1), lam])
+        if in_plane is not None:
+            # on a face in a symmetry plane (to rounding): inside the mirrored body
+            bary = np.where(in_plane[near] & (bary >= -1e-12), np.inf, bary)
+            bary[np.all(np.isinf(bary), axis=1)] = 0.0
         depths[i] = max((bary.min(axis=1) * h_min[near]).max(), 0.0)
     return depths
 
@@ -66,8 +92,11 @@ def frames_inside(f, slave_part, master_part, remaining_only=False):
     nodes of its remaining elements and its particles (a node whose
     elements all became particles has no mass and is no slave node).
     remaining_only: only the nodes of the slave part's remaining elements
-    (not its free nodes, not its particles)."""
-    conn, _, slave_nodes, master, _ = slave_and_master(f, slave_part, master_part)
+    (not its free nodes, not its particles). A point on a master face in a
+    symmetry plane is inside the mirrored body (faces_in_planes; before
+    0.9.4 such points counted 0 deep)."""
+    conn, x0, slave_nodes, master, _ = slave_and_master(f, slave_part, master_part)
+    in_plane = faces_in_planes(conn, x0)
     slave = f['mesh/part_id'][...] == slave_part
     for k in sorted(f['steps'].keys(), key=lambda k: f['steps'][k].attrs['time']):
         g = f['steps'][k]
@@ -86,4 +115,4 @@ def frames_inside(f, slave_part, master_part, remaining_only=False):
             mine = p['part_id'][...] == slave_part
             if mine.any():
                 points = np.vstack([x[np.unique(conn[slave_alive])], p['coordinates'][...][mine]])
-        yield g, x, deepest_inside(points, x, conn[alive])
+        yield g, x, deepest_inside(points, x, conn[alive], in_plane[alive])
