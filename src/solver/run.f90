@@ -1429,62 +1429,54 @@ contains
     if (known) balance_energy = bal%kinetic + 0.5_rk*(u_start + (bal%internal + bal%eroded_energy))
   end function
 
-  !> Adds this rank's owned elements' energies to exact accumulators:
-  !> internal energy of the elements left (acc_int) and of the eroded ones
-  !> (acc_ero, counted n_ero), and if asked the plastic work (acc_pla) and
-  !> the elements fractured or eroded (n_frac), and each part's internal,
-  !> plastic and eroded energy (acc_part: part_sums columns a part, as
+  !> Adds this rank's owned elements' energies to exact accumulators, each
+  !> part's internal energy of the elements left, plastic work and eroded
+  !> elements' energy (acc_part: part_sums columns a part, as
   !> compute_balance lays them out: internal the 6th, plastic the 7th,
-  !> eroded the 8th).
-  subroutine add_element_energies(dom, acc_int, acc_ero, n_ero, n_frac, acc_pla, acc_part)
+  !> eroded the 8th), and counts the eroded elements (n_ero) and those
+  !> fractured or eroded (n_frac).
+  subroutine add_element_energies(dom, acc_part, n_ero, n_frac)
     type(domain_t), intent(in) :: dom
-    integer(i8), intent(inout) :: acc_int(0:), acc_ero(0:)
+    integer(i8), intent(inout) :: acc_part(0:,:)
     integer, intent(out) :: n_ero, n_frac
-    integer(i8), intent(inout), optional :: acc_pla(0:), acc_part(0:,:)
     integer :: i, e, c
     n_frac = 0
     n_ero = 0
     do i = 1, size(dom%el_owned_list)
       e = dom%el_owned_list(i)
+      c = part_sums*(dom%el_part(e) - 1)
       if (dom%el_state(e) == el_eroded) then
-        call exact_add(acc_ero, dom%el_mass(e)*dom%el_e(e))
+        call exact_add(acc_part(:,c+8), dom%el_mass(e)*dom%el_e(e))
         n_ero = n_ero + 1
       else
-        call exact_add(acc_int, dom%el_mass(e)*dom%el_e(e))
+        call exact_add(acc_part(:,c+6), dom%el_mass(e)*dom%el_e(e))
       end if
       if (dom%el_state(e) /= el_intact) n_frac = n_frac + 1
-      if (present(acc_pla)) call exact_add(acc_pla, dom%el_mass(e)*dom%el_wp(e))
-      if (present(acc_part)) then
-        c = part_sums*(dom%el_part(e) - 1)
-        if (dom%el_state(e) == el_eroded) then
-          call exact_add(acc_part(:,c+8), dom%el_mass(e)*dom%el_e(e))
-        else
-          call exact_add(acc_part(:,c+6), dom%el_mass(e)*dom%el_e(e))
-        end if
-        call exact_add(acc_part(:,c+7), dom%el_mass(e)*dom%el_wp(e))
-      end if
+      call exact_add(acc_part(:,c+7), dom%el_mass(e)*dom%el_wp(e))
     end do
   end subroutine
 
   !> The elements' energy, internal and eroded, and the particles' internal
   !> energy (global, the same on every rank and bitwise equal to
-  !> compute_balance's internal + eroded_energy): what the next cycle's
-  !> balance needs from this cycle's end.
+  !> compute_balance's internal + eroded_energy: the same parts' sums,
+  !> each total rounded from them): what the next cycle's balance needs
+  !> from this cycle's end.
   real(rk) function element_energy(dom, pt) result(u)
     type(domain_t), intent(in) :: dom
     type(particles_t), intent(in) :: pt
-    integer(i8) :: acc(0:exact_limbs, 2)
-    integer :: n_ero, n_frac, k
+    integer(i8) :: acc(0:exact_limbs, part_sums*dom%n_parts)
+    integer :: n_ero, n_frac, k, ip
     acc = 0
-    call add_element_energies(dom, acc(:,1), acc(:,2), n_ero, n_frac)
+    call add_element_energies(dom, acc, n_ero, n_frac)
     ! the particles' (every rank has them all: one adds)
     if (comms_is_root()) then
       do k = 1, pt%n
-        call exact_add(acc(:,1), pt%m(k)*pt%e(k))
+        call exact_add(acc(:,part_sums*(pt%part(k) - 1) + 6), pt%m(k)*pt%e(k))
       end do
     end if
     call comms_sum_exact(acc)
-    u = exact_value(acc(:,1)) + exact_value(acc(:,2))
+    u = exact_sum_of([(exact_value(acc(:,part_sums*(ip - 1) + 6)), ip = 1, dom%n_parts)]) &
+      + exact_sum_of([(exact_value(acc(:,part_sums*(ip - 1) + 8)), ip = 1, dom%n_parts)])
   end function
 
   !> Global sums over the owned nodes and elements, exact (udar_exact_sum),
@@ -1495,8 +1487,9 @@ contains
     type(contact_t), intent(in) :: ct
     type(particles_t), intent(in) :: pt
     type(balance_t), intent(inout) :: bal
-    integer, parameter :: c_kin = 1, c_int = 2, c_pla = 3, c_mom = 4, c_work = 7, c_ero = 8, c_cwork = 9, &
-                          c_ang = 10, c_mx = 13, c_m = 16, c_pm = 17, c_pk = 18, c_pi = 19, c_wall = 20
+    ! (the totals of the parts' columns are summed from them: no columns of their own)
+    integer, parameter :: c_mom = 1, c_work = 4, c_cwork = 5, c_ang = 6, c_mx = 9, c_m = 12, c_pm = 13, c_pk = 14, &
+                          c_pi = 15, c_wall = 16
     integer :: n, ip, i, np, nw, c_part, n_frac, n_ero
     real(rk) :: ke, mx(3), p(3), lo(3)
     np = dom%n_parts
@@ -1515,15 +1508,13 @@ contains
       do n = 1, pt%n
         call add_point(pt%m(n), pt%x(:,n), pt%v(:,n), pt%part(n), ke)
         call exact_add(bal%acc(:,c_pk), ke)
-        call exact_add(bal%acc(:,c_int), pt%m(n)*pt%e(n))
         call exact_add(bal%acc(:,c_part + part_sums*(pt%part(n) - 1) + 5), pt%m(n)*pt%e(n))
         call exact_add(bal%acc(:,c_pi), pt%m(n)*pt%e(n))
         call exact_add(bal%acc(:,c_pm), pt%m(n))
       end do
     end if
-    ! the elements' energies, in all and each part's (one pass)
-    call add_element_energies(dom, bal%acc(:,c_int), bal%acc(:,c_ero), n_ero, n_frac, bal%acc(:,c_pla), &
-                              bal%acc(:, c_part:c_part + part_sums*np - 1))
+    ! the elements' energies, each part's (its totals are the parts' sums, below)
+    call add_element_energies(dom, bal%acc(:, c_part:c_part + part_sums*np - 1), n_ero, n_frac)
     bal%n_fractured = int(comms_sum_int(int(n_frac, i8)))
     bal%n_eroded = int(comms_sum_int(int(n_ero, i8)))
     bal%acc(:,c_work) = walls%work
@@ -1536,9 +1527,6 @@ contains
     do i = 1, size(bal%gauge)
       bal%gauge(i) = exact_value(bal%acc(:, c_part + part_sums*np + i - 1))
     end do
-    bal%kinetic = exact_value(bal%acc(:,c_kin))
-    bal%internal = exact_value(bal%acc(:,c_int))
-    bal%plastic = exact_value(bal%acc(:,c_pla))
     do i = 1, 3
       bal%momentum(i) = exact_value(bal%acc(:,c_mom+i-1))
       lo(i) = exact_value(bal%acc(:,c_ang+i-1))
@@ -1549,7 +1537,6 @@ contains
     bal%angular_momentum = lo
     if (exact_value(bal%acc(:,c_m)) > 0.0_rk) bal%angular_momentum = lo - cross(mx, p)/exact_value(bal%acc(:,c_m))
     bal%wall_work = exact_value(bal%acc(:,c_work))
-    bal%eroded_energy = exact_value(bal%acc(:,c_ero))
     bal%contact_work = exact_value(bal%acc(:,c_cwork))
     bal%n_particles = pt%n
     bal%particle_mass = exact_value(bal%acc(:,c_pm))
@@ -1607,7 +1594,6 @@ contains
       integer :: c, k
       ke = 0.5_rk*m*(v(1)**2 + v(2)**2 + v(3)**2)
       c = c_part + part_sums*(part - 1)
-      call exact_add(bal%acc(:,c_kin), ke)
       call exact_add(bal%acc(:,c), ke)
       lo = m*cross(x, v)
       do k = 1, 3
