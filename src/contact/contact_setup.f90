@@ -97,9 +97,7 @@ contains
         call surface(c%slave, 'slave', k, tri_all, sname, s_part, s_body)
         if (errs%count() > n_err0) cycle
         if (to_lower(c%master) == to_lower(c%slave)) then
-          ! self-contact: the surface without its faces on symmetry planes
-          master = master(:, pack([(e, e = 1, size(master, 2))], &
-                                  [(.not. on_symmetry_plane(sym_planes, master(:,e)), e = 1, size(master, 2))]))
+          ! self-contact (its faces on symmetry planes were left out above, as everywhere)
           i = i + 1
           call make_interface(ifc(i), master, unique_nodes(master), master, sname//'_on_itself')
           ifc(i)%self = .true.
@@ -256,7 +254,7 @@ contains
         call group_triangles(ig, tri, body)
         if (size(tri, 2) == 0) call errs%add(deck_where(cfg, 'contact', k, role)//": "// &
           trim(merge('surface group', 'curve group  ', nv == 3))//" '"//trim(name)//"' has no "//trim(face_word)// &
-          ' on the boundary of the mesh'//trim(merge(' (off the axis and symmetry lines)', '                                  ', &
+          ' on the boundary of the mesh'//trim(merge(' (off the axis and symmetry lines)', ' (off the symmetry planes)        ', &
           nv == 2)))
         return
       end if

@@ -131,6 +131,13 @@ printf '%s\n&contact master = "bar_side", slave = "bar" /\n' "$good2d" > "$W/con
 expect unknown_contact_curve_in_2d 1 "contact2d.nml:6: &contact #1.*'bar_side' is neither a part nor a physical curve group .*curve groups: 'impact_face', 'axis'" "--check contact2d.nml"
 printf '%s\n&contact master = "axis", slave = "bar" /\n' "$good2d" > "$W/axis2d.nml"
 expect contact_on_the_axis 1 "axis2d.nml:6: &contact #1.*curve group 'axis' has no segment on the boundary of the mesh \\(off the axis" "--check axis2d.nml"
+# 3D: a contact surface that lies in a symmetry plane bounds no material either
+cp "$ROOT/tests/regression/plate_impact/plate_impact.msh" "$W/column.msh"
+printf '%s\n' '&run t_end = 1e-6 /' '&mesh file = "column.msh" /' \
+  '&material name = "copper", rho0 = 8930, youngs_modulus = 120e9, poisson_ratio = 0.3 /' \
+  '&part group = "column", material = "copper" /' '&boundary kind = "symmetry", surface = "side_x0" /' \
+  '&contact master = "column", slave = "side_x0" /' '&output directory = "out" /' > "$W/plane3d.nml"
+expect contact_on_a_symmetry_plane 1 "plane3d.nml:6: &contact #1.*surface group 'side_x0' has no triangle on the boundary of the mesh \\(off the symmetry planes\\)" "--check plane3d.nml"
 sed 's/geometry = "axisymmetric"/geometry = "axisymetric"/' "$W/good2d.nml" > "$W/geom.nml"
 expect misspelled_geometry 1 "geom.nml:2: &mesh: geometry = .*axisymetric.*axisymmetric" "--check geom.nml"
 # an axisymmetric mesh with a node at r < 0
