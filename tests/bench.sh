@@ -210,7 +210,7 @@ echo "# OpenRadioss: 'plain' rows against its default tetrahedron, 'stabilised' 
 # sets els, cyc, ns, wall (cost per element-cycle, cycles, time to solution)
 #   full_run H MODEL DECK_PATH_WITHOUT_EXTENSION CASE_NAME T_END
 full_run() {
-  gmsh -3 -v 0 -setnumber h "$1" "$3.geo" -o "$W/$4.msh"
+  gmsh -3 -v 0 -setnumber h "$1" "${3%_jc}.geo" -o "$W/$4.msh"   # (a _jc deck shares its mesh)
   sed -e "s|file = '[^']*.msh'|file = '$W/$4.msh'|" \
       -e "s|directory = 'out'|directory = '$W/twod', case_name = '$4'|" \
       -e "s|cycle_print = 500|cycle_print = 1000000|" -e "s|dt_field = 10.0e-6|dt_field = $5|" \
@@ -221,11 +221,11 @@ full_run() {
   ns=$(grep -o '[0-9.]* ns per element-cycle' "$W/log" | cut -d' ' -f1)
   wall=$(grep -o '[0-9.]* s wall' "$W/log" | cut -d' ' -f1)
 }
-# the OFHC bar (input/taylor_ofhc quarter model, input/taylor_ofhc_2d
+# the OFHC bar, Johnson-Cook in both (input/taylor_ofhc/taylor_ofhc_jc quarter model, input/taylor_ofhc_2d
 # axisymmetric), 80 us: final length and footprint
 echo "# 2D against 3D: OFHC bar, 190 m/s, 80 us, default element; time to solution = wall" | tee -a "$out"
 printf '%-5s %-14s %9s %9s %8s %9s %16s\n' h model elements cycles ns wall_s "Lf/Dm mm" | tee -a "$out"
-for spec in "0.45 3d input/taylor_ofhc/taylor_ofhc" "0.45 2d input/taylor_ofhc_2d/taylor_ofhc_2d" \
+for spec in "0.45 3d input/taylor_ofhc/taylor_ofhc_jc" "0.45 2d input/taylor_ofhc_2d/taylor_ofhc_2d" \
             "0.2 2d input/taylor_ofhc_2d/taylor_ofhc_2d"; do
   set -- $spec
   case_name=ofhc_$2_h$1
