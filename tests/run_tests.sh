@@ -205,6 +205,8 @@ run_test "regression/oblique_particles" regression oblique_particles bin/udar
 run_test "regression/taylor_particles" regression taylor_ofhc_baseline bin/udar taylor_particles
 run_test "regression/taylor_particles_strengthless_fails" regression_fails taylor_ofhc_baseline bin/udar \
   taylor_particles_strengthless particle_mass_radius_95
+run_test "regression/taylor_particles_no_art_fails" regression_fails taylor_ofhc_baseline bin/udar \
+  taylor_particles_no_art particles_paired
 run_test "regression/penetration_2d" regression penetration_2d bin/udar
 run_test "regression/deep_node" regression deep_node bin/udar-debug
 run_test "regression/crossed_edges" regression crossed_edges bin/udar-debug

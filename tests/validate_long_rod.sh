@@ -17,7 +17,9 @@
 # with EPS_CONVERT=X besides, strained elements become particles that keep
 # their strength (&material eps_convert = X, both materials), and with
 # EPS_F=Y the fracture strain of both is Y (eps_erode too); csv
-# long_rod_particles_convertX[_fY][_hH].csv.
+# long_rod_particles_convertX[_fY][_hH].csv; with ARTIFICIAL_STRESS=Z
+# besides, those particles have Monaghan's artificial stress (&material
+# artificial_stress = Z, both materials; csv ..._convertX_artZ...).
 dim=3d
 if [ "${1:-}" = 2d ]; then dim=2d; shift; fi
 source "$(dirname "$0")/validate_common.sh" long_rod_$dim
@@ -42,6 +44,10 @@ for v in ${VELOCITIES:-1500 2000 2500}; do
     sed -i "s|eps_erode = 2.0$|eps_erode = 2.0, eroded = 'particles'|" "$W/$run.nml"
     [ "$(grep -c "eroded = 'particles'" "$W/$run.nml")" = 2 ] || { echo "deck edit failed: eroded"; exit 1; }
     with_eps_convert "$W/$run.nml" 2
+    if [ -n "${ARTIFICIAL_STRESS:-}" ]; then
+      sed -i "s|eps_convert = ${EPS_CONVERT:-}\$|eps_convert = ${EPS_CONVERT:-}, artificial_stress = $ARTIFICIAL_STRESS|" "$W/$run.nml"
+      [ "$(grep -c "artificial_stress = $ARTIFICIAL_STRESS" "$W/$run.nml")" = 2 ] || { echo "deck edit failed: artificial_stress"; exit 1; }
+    fi
     if [ -n "${EPS_F:-}" ]; then
       sed -i "s|eps_f = 1.5, eps_erode = 2.0|eps_f = $EPS_F, eps_erode = $EPS_F|" "$W/$run.nml"
       [ "$(grep -c "eps_f = $EPS_F, eps_erode = $EPS_F" "$W/$run.nml")" = 2 ] || { echo "deck edit failed: eps_f"; exit 1; }
@@ -55,7 +61,7 @@ mm=$(awk -v h=$H 'BEGIN{print h*1000}')
 if [ $dim = 2d ]; then
   csv=doc/validation/long_rod_2d_h$mm.csv
 else
-  csv=doc/validation/long_rod$([ "${ERODED:-}" = particles ] && echo _particles)$([ -n "${EPS_CONVERT:-}" ] && echo _convert$EPS_CONVERT)$([ -n "${EPS_F:-}" ] && echo _f$EPS_F)$([ "$mm" = 1 ] || echo _h$mm).csv
+  csv=doc/validation/long_rod$([ "${ERODED:-}" = particles ] && echo _particles)$([ -n "${EPS_CONVERT:-}" ] && echo _convert$EPS_CONVERT)$([ -n "${ARTIFICIAL_STRESS:-}" ] && echo _art$ARTIFICIAL_STRESS)$([ -n "${EPS_F:-}" ] && echo _f$EPS_F)$([ "$mm" = 1 ] || echo _h$mm).csv
 fi
 echo "velocity_m_s,mesh_mm,tet_formulation,$([ $dim = 2d ] && echo triangles || echo tets),cycles,wall_s,crater_depth_mm,P_over_L,lanz_odermatt,difference_percent,energy_error" > $csv
 form=$(grep -o "tet_formulation = '[a-z_]*'" input/$name/$name.nml | cut -d"'" -f2)

@@ -3,10 +3,12 @@
 # footprint 13.56 mm) on the coarse mesh of regression/taylor_ofhc_baseline
 # with its strained elements converted (part of make validate; issue 15,
 # doc/validation.md 4zb): no conversion; particles that keep their strength
-# (eps_convert 2.0, 1.5, 1.0); strengthless particles and free nodes at the
+# (eps_convert 2.0, 1.5, 1.0; 1.5 and 1.0 again without the artificial
+# stress, artificial_stress = 0, as udar 0.9.4 had them); strengthless particles and free nodes at the
 # same strain (eps_f = eps_erode = 1.0). Length and footprint over the
 # remaining elements and the particles, the radius holding 95 % of the
-# particles' mass, and the energy error go to doc/validation/taylor_particles.csv.
+# particles' mass, the share of particles paired up (another within half
+# their spacing: the tensile instability) and the energy error go to doc/validation/taylor_particles.csv.
 #   tests/validate_taylor_particles.sh
 source "$(dirname "$0")/validate_common.sh" taylor_particles
 case=tests/regression/taylor_ofhc_baseline
@@ -18,6 +20,8 @@ variants=(
   "convert_2.0|fracture = 'plastic_strain', eps_f = 100.0, eps_erode = 100.0, eroded = 'particles', eps_convert = 2.0"
   "convert_1.5|fracture = 'plastic_strain', eps_f = 100.0, eps_erode = 100.0, eroded = 'particles', eps_convert = 1.5"
   "convert_1.0|fracture = 'plastic_strain', eps_f = 100.0, eps_erode = 100.0, eroded = 'particles', eps_convert = 1.0"
+  "convert_1.5_art0|fracture = 'plastic_strain', eps_f = 100.0, eps_erode = 100.0, eroded = 'particles', eps_convert = 1.5, artificial_stress = 0.0"
+  "convert_1.0_art0|fracture = 'plastic_strain', eps_f = 100.0, eps_erode = 100.0, eroded = 'particles', eps_convert = 1.0, artificial_stress = 0.0"
   "strengthless_1.0|fracture = 'plastic_strain', eps_f = 1.0, eps_erode = 1.0, eroded = 'particles'"
   "free_nodes_1.0|fracture = 'plastic_strain', eps_f = 1.0, eps_erode = 1.0"
 )
@@ -36,7 +40,7 @@ for v in "${variants[@]}"; do
 done
 printf '%s\n' "${runs[@]}" | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"
 csv=doc/validation/taylor_particles.csv
-echo "run,tets,cycles,particles,length_mm,footprint_mm,r95_mm,energy_error,experiment_length_mm,experiment_footprint_mm" > $csv
+echo "run,tets,cycles,particles,length_mm,footprint_mm,r95_mm,paired,energy_error,experiment_length_mm,experiment_footprint_mm" > $csv
 for run in "${runs[@]}"; do
   m=$($PYTHON $case/particles_check.py --measure "$W/$run/$run.h5")
   echo "$run,$(log_value "$W/$run.log" tets),$(log_value "$W/$run.log" cycles),$m,$(log_value "$W/$run.log" energy_error),16.21,13.56" \

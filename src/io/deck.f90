@@ -227,6 +227,7 @@ module udar_deck
        var_t('material', 'eps_erode', 'r', 1, 0, '-', '>= 0'), &
        var_t('material', 'eroded', 'c', 1, code_len, '', ''), &
        var_t('material', 'eps_convert', 'r', 1, 0, '-', '>= 0'), &
+       var_t('material', 'artificial_stress', 'r', 1, 0, '-', '>= 0'), &
        var_t('part', 'group', 'c', 1, max_name_len, '', ''), &
        var_t('part', 'material', 'c', 1, max_name_len, '', ''), &
        var_t('part', 'velocity', 'r', 3, 0, 'm/s', 'finite numbers'), &
@@ -733,7 +734,7 @@ contains
              m%ptw_theta, m%ptw_p, m%ptw_s0, m%ptw_sinf, m%ptw_kappa, m%ptw_gamma, m%ptw_y0, m%ptw_yinf, m%ptw_y1, m%ptw_y2, m%ptw_beta, m%ptw_molar_mass, m%ptw_alpha, &
              v%melt_model, m%melt_a, &
              m%t_melt, m%t_room, m%specific_heat, m%taylor_quinney, m%shock_heating, m%initial_temperature, &
-             v%fracture, m%eps_f, m%jc_d1, m%jc_d2, m%jc_d3, m%jc_d4, m%jc_d5, m%p_spall, m%eps_erode, v%eroded, m%eps_convert)
+             v%fracture, m%eps_f, m%jc_d1, m%jc_d2, m%jc_d3, m%jc_d4, m%jc_d5, m%p_spall, m%eps_erode, v%eroded, m%eps_convert, m%artificial_stress)
       end associate
     case ('part')
       call part_nml(v%part%group, v%part%material, v%part%velocity, v%part%initial_temperature)
@@ -787,7 +788,7 @@ contains
                             ptw_theta, ptw_p, ptw_s0, ptw_sinf, ptw_kappa, ptw_gamma, ptw_y0, ptw_yinf, ptw_y1, ptw_y2, ptw_beta, ptw_molar_mass, ptw_alpha, &
                             melt_model, melt_a, t_melt, t_room, specific_heat, &
                             taylor_quinney, shock_heating, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
-                            jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert)
+                            jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert, artificial_stress)
       character(len=*), intent(inout) :: name, eos, strength, jc_rate_form, fracture, eroded, shear_model, melt_model
       real(rk), intent(inout) :: rho0, bulk_modulus, c0, s, gamma0, shear_modulus, youngs_modulus, &
            poisson_ratio, yield_stress, hardening_modulus, jc_a, jc_b, jc_n, jc_c, jc_m, jc_rate0, &
@@ -797,7 +798,7 @@ contains
            ptw_theta, ptw_p, ptw_s0, ptw_sinf, ptw_kappa, ptw_gamma, ptw_y0, ptw_yinf, ptw_y1, ptw_y2, ptw_beta, &
            ptw_molar_mass, ptw_alpha, &
            t_melt, t_room, specific_heat, taylor_quinney, initial_temperature, eps_f, jc_d1, jc_d2, &
-           jc_d3, jc_d4, jc_d5, p_spall, eps_erode, eps_convert
+           jc_d3, jc_d4, jc_d5, p_spall, eps_erode, eps_convert, artificial_stress
       logical, intent(inout) :: shock_heating
       namelist /material/ name, rho0, eos, bulk_modulus, c0, s, gamma0, strength, shear_modulus, &
                           youngs_modulus, poisson_ratio, yield_stress, hardening_modulus, jc_a, &
@@ -809,7 +810,7 @@ contains
                           ptw_theta, ptw_p, ptw_s0, ptw_sinf, ptw_kappa, ptw_gamma, ptw_y0, ptw_yinf, ptw_y1, ptw_y2, ptw_beta, ptw_molar_mass, ptw_alpha, &
                           melt_model, melt_a, t_melt, t_room, specific_heat, &
                           taylor_quinney, shock_heating, initial_temperature, fracture, eps_f, jc_d1, jc_d2, jc_d3, &
-                          jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert
+                          jc_d4, jc_d5, p_spall, eps_erode, eroded, eps_convert, artificial_stress
       read(text, nml=material, iostat=ios, iomsg=msg)
     end subroutine material_nml
 
@@ -1253,6 +1254,9 @@ contains
       if (positive(m%eps_convert) .and. m%eroded /= eroded_particles .and. .not. is_bad(inst, 'eroded')) &
            call complain(ctx, inst, 'eps_convert', "set, but only eroded = 'particles' converts elements: "// &
            "add eroded = 'particles' or remove the line")
+      call ranges('artificial_stress')
+      if (.not. positive(m%eps_convert) .and. .not. is_bad(inst, 'eps_convert')) &
+           call not_used('artificial_stress', 'particles that keep their strength (eps_convert > 0)')
     end associate
 
   contains
@@ -1810,7 +1814,8 @@ contains
                 choice_val(m%melt_model, melt_words, melt_codes), val(m%melt_a), val(m%t_melt), val(m%t_room), val(m%specific_heat), val(m%taylor_quinney), val_t(l=m%shock_heating), &
                 val(m%initial_temperature, 't_room'), choice_val(m%fracture, fracture_words, fracture_codes), &
                 val(m%eps_f), val(m%jc_d1), val(m%jc_d2), val(m%jc_d3), val(m%jc_d4), val(m%jc_d5), &
-                val(m%p_spall), val(m%eps_erode), choice_val(m%eroded, eroded_words, eroded_codes), val(m%eps_convert)]
+                val(m%p_spall), val(m%eps_erode), choice_val(m%eroded, eroded_words, eroded_codes), val(m%eps_convert), &
+                val(m%artificial_stress)]
       end associate
     case (g_part)
       associate(p => cfg%parts(k))

@@ -142,6 +142,8 @@ module udar_config
     real(rk) :: eps_convert = 0.0_rk           !< -, eroded = 'particles': an element not fractured becomes a particle
                                                !< that keeps its strength when its accumulated equivalent total
                                                !< strain passes this; 0 = only fractured elements convert
+    real(rk) :: artificial_stress = 0.3_rk     !< -, eps of the artificial stress of particles that keep their strength
+                                               !< (Gray, Monaghan and Swift 2001), against SPH's tensile instability; 0 = none
   end type
 
   type :: part_cfg_t

@@ -10,12 +10,12 @@
 module udar_particle_driver
   use udar_kinds, only: rk, i8
   use udar_domain, only: domain_t, wall_t
-  use udar_config, only: eroded_particles, strength_none
+  use udar_config, only: eroded_particles, strength_none, material_cfg_t
   use udar_fracture, only: el_eroded
   use udar_ordering, only: stable_sort_permutation, find_sorted
   use udar_particle_model, only: particles_t, particles_reserve, particles_pair_room
   use udar_sph, only: element_to_particle, particle_pressure, smoothing_length, sph_pairs, sph_forces, sph_rates, &
-                      particle_update, particle_strength, wave_speed
+                      particle_update, particle_strength, wave_speed, artificial_stress
   use udar_comms, only: comms_allgather_count, comms_allgatherv_real, comms_size
   use udar_exact_sum, only: exact_add
   implicit none
@@ -219,11 +219,12 @@ contains
   !> The first half of the particles' step, at x(n) with p(n): their mirror
   !> images across the symmetry planes (sym), the pairs (none between two
   !> images) and the accelerations (sph_forces); v(n+1/2) = v(n-1/2) + dt_v a.
-  subroutine particles_forces(pt, sym, dt_v)
+  subroutine particles_forces(pt, sym, mats, dt_v)
     type(particles_t), intent(inout) :: pt
     type(wall_t), intent(in) :: sym(:)
+    type(material_cfg_t), intent(in) :: mats(:)
     real(rk), intent(in) :: dt_v
-    integer :: np, nt, k
+    integer :: np, nt, k, q
     if (pt%n == 0) return
     pt%v_prev(:,1:pt%n) = pt%v(:,1:pt%n)
     call make_ghosts(pt, sym)
@@ -247,8 +248,21 @@ contains
     pt%n_pairs = np
     pt%acc(:,1:pt%n+pt%n_ghosts) = 0
     pt%vsig(1:pt%n+pt%n_ghosts) = 0
-    call sph_forces(3, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
-                    pt%acc, pt%vsig)
+    pt%artificial = .false.
+    do k = 1, pt%n + pt%n_ghosts
+      q = k
+      if (k > pt%n) q = pt%ghost_of(k - pt%n)
+      pt%art_eps(k) = merge(mats(pt%mat(q))%artificial_stress, 0.0_rk, pt%strong(q))
+      pt%artificial = pt%artificial .or. pt%art_eps(k) > 0.0_rk
+    end do
+    if (pt%artificial) then
+      call artificial_stress(pt%n + pt%n_ghosts, pt%art_eps, pt%rho, pt%p, pt%s, pt%r_art)
+      call sph_forces(3, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
+                      pt%acc, pt%vsig, pt%r_art, 1.0_rk/smoothing_factor)
+    else
+      call sph_forces(3, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
+                      pt%acc, pt%vsig)
+    end if
     pt%v(:,1:pt%n) = pt%v(:,1:pt%n) + dt_v*pt%acc(:,1:pt%n)
   end subroutine
 
@@ -375,7 +389,11 @@ contains
     end do
     pt%drho(1:pt%n+pt%n_ghosts) = 0
     pt%dheat(1:pt%n+pt%n_ghosts) = 0
-    if (any(pt%strong(1:pt%n))) then
+    if (pt%artificial) then
+      pt%grad(:,1:pt%n+pt%n_ghosts) = 0
+      call sph_rates(3, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad, &
+                     pt%r_art, 1.0_rk/smoothing_factor)
+    else if (any(pt%strong(1:pt%n))) then
       pt%grad(:,1:pt%n+pt%n_ghosts) = 0
       call sph_rates(3, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad)
     else

@@ -19,10 +19,12 @@ module udar_sph
   implicit none
   private
   public :: spline_w, spline_dw, sph_forces, sph_rates, particle_update, particle_pressure, element_to_particle, sph_pairs, &
-            smoothing_length, sph_stable_dt, particle_strength, wave_speed
+            smoothing_length, sph_stable_dt, particle_strength, wave_speed, artificial_stress, symmetric_eigen3
 
   !> Monaghan's viscosity's quadratic term's guard: mu = h v.r / (r^2 + eta2 h^2)
   real(rk), parameter :: eta2 = 0.01_rk
+  !> the exponent n of the artificial stress's pair factor (W_ij/W(dp))^n (Monaghan 2000)
+  integer, parameter :: art_exponent = 4
 
 contains
 
@@ -118,12 +120,13 @@ contains
   !> Added to acc (zero it first); visc(k) keeps pair k's Pi for
   !> sph_rates; vsig is raised to each particle's largest signal speed
   !> c_i + c_j - 3 min(v_ij . x_ij/|x_ij|, 0) (Monaghan 1997), for the step.
-  pure subroutine sph_forces(dim, alpha, beta, np, pairs, x, v, m, rho, p, c, h, s, visc, acc, vsig)
+  pure subroutine sph_forces(dim, alpha, beta, np, pairs, x, v, m, rho, p, c, h, s, visc, acc, vsig, r_art, spacing)
     integer, intent(in) :: dim, np, pairs(:,:)
     real(rk), intent(in) :: alpha, beta
     real(rk), intent(in) :: x(:,:), v(:,:), m(:), rho(:), p(:), c(:), h(:), s(:,:)
     real(rk), intent(out) :: visc(:)
     real(rk), intent(inout) :: acc(:,:), vsig(:)
+    real(rk), intent(in), optional :: r_art(:,:), spacing
     integer :: k, i, j
     real(rk) :: g(3), vij(3), vr, d, mu, coef, speed, hij, a(6), f(3)
     do k = 1, np
@@ -146,6 +149,13 @@ contains
         f = [a(1)*g(1) + a(4)*g(2) + a(6)*g(3), a(4)*g(1) + a(2)*g(2) + a(5)*g(3), a(6)*g(1) + a(5)*g(2) + a(3)*g(3)]
         acc(:,i) = acc(:,i) + m(j)*f
         acc(:,j) = acc(:,j) - m(i)*f
+      end if
+      if (present(r_art)) then
+        if (any(r_art(:,i) /= 0.0_rk) .or. any(r_art(:,j) /= 0.0_rk)) then
+          f = art_pair_force(dim, d, hij, spacing, r_art(:,i) + r_art(:,j), g)
+          acc(:,i) = acc(:,i) + m(j)*f
+          acc(:,j) = acc(:,j) - m(i)*f
+        end if
       end if
       speed = c(i) + c(j) - 3.0_rk*min(vr/d, 0.0_rk)
       vsig(i) = max(vsig(i), speed)
@@ -173,13 +183,14 @@ contains
   !> internal energy gains what the stresses and the viscosity take from
   !> the motion. Added to drho, heat and grad (zero them first); grad only
   !> when asked for (particles that keep their strength: no work otherwise).
-  pure subroutine sph_rates(dim, dt, np, pairs, x, v, m, h, visc, drho, heat, grad)
+  pure subroutine sph_rates(dim, dt, np, pairs, x, v, m, h, visc, drho, heat, grad, r_art, spacing)
     integer, intent(in) :: dim, np, pairs(:,:)
     real(rk), intent(in) :: dt, x(:,:), v(:,:), m(:), h(:), visc(:)
     real(rk), intent(inout) :: drho(:), heat(:)
     real(rk), intent(inout), optional :: grad(:,:)
+    real(rk), intent(in), optional :: r_art(:,:), spacing
     integer :: k, i, j, b
-    real(rk) :: g(3), d, hij, vg, vij(3)
+    real(rk) :: g(3), d, hij, vg, vij(3), work
     do k = 1, np
       i = pairs(1,k)
       j = pairs(2,k)
@@ -197,7 +208,104 @@ contains
       end if
       heat(i) = heat(i) + m(j)*0.5_rk*visc(k)*vg
       heat(j) = heat(j) + m(i)*0.5_rk*visc(k)*vg
+      if (present(r_art)) then
+        if (any(r_art(:,i) /= 0.0_rk) .or. any(r_art(:,j) /= 0.0_rk)) then
+          ! the work of the pair's artificial stress force, half to each
+          work = -0.5_rk*dot_product(vij, art_pair_force(dim, d, hij, spacing, r_art(:,i) + r_art(:,j), g))
+          heat(i) = heat(i) + m(j)*work
+          heat(j) = heat(j) + m(i)*work
+        end if
+      end if
     end do
+  end subroutine
+
+  !> A pair's artificial stress force per unit mass of the other particle,
+  !> (W(d)/W(dp))^n (R_i + R_j) grad_i W_ij, with rsum = R_i + R_j (6, as s)
+  !> and dp = spacing h_ij, the particles' initial spacing (Monaghan 2000;
+  !> Gray, Monaghan and Swift 2001).
+  pure function art_pair_force(dim, d, hij, spacing, rsum, g) result(f)
+    integer, intent(in) :: dim
+    real(rk), intent(in) :: d, hij, spacing, rsum(6), g(3)
+    real(rk) :: f(3), fn
+    fn = (spline_w(d, hij, dim)/spline_w(spacing*hij, hij, dim))**art_exponent
+    f = fn*[rsum(1)*g(1) + rsum(4)*g(2) + rsum(6)*g(3), rsum(4)*g(1) + rsum(2)*g(2) + rsum(5)*g(3), &
+            rsum(6)*g(1) + rsum(5)*g(2) + rsum(3)*g(3)]
+  end function
+
+  !> The artificial stress R (6, as s) of n particles (Monaghan 2000; Gray,
+  !> Monaghan and Swift 2001): in the principal axes of the stress
+  !> sigma = s - p I, R_a = -eps sigma_a / rho^2 for each principal stress
+  !> in tension (sigma_a > 0), 0 otherwise; rotated back. The pair term
+  !> (W_ij/W(dp))^n (R_i + R_j) of the momentum equation then pushes apart
+  !> particles in tension that come closer than their spacing: SPH's
+  !> tensile instability (Swegle, Hicks and Attaway 1995; particles in
+  !> tension clump instead of parting).
+  pure subroutine artificial_stress(n, eps, rho, p, s, r)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: eps(:), rho(:), p(:), s(:,:)
+    real(rk), intent(out) :: r(:,:)
+    integer :: i, a, b
+    real(rk) :: sig(3,3), q(3,3), lam(3), ra(3,3)
+    do i = 1, n
+      r(:,i) = 0
+      if (eps(i) == 0.0_rk) cycle
+      sig = reshape([s(1,i) - p(i), s(4,i), s(6,i), s(4,i), s(2,i) - p(i), s(5,i), s(6,i), s(5,i), s(3,i) - p(i)], [3, 3])
+      call symmetric_eigen3(sig, lam, q)
+      if (all(lam <= 0.0_rk)) cycle
+      ra = 0
+      do a = 1, 3
+        if (lam(a) <= 0.0_rk) cycle
+        do b = 1, 3
+          ra(:,b) = ra(:,b) - (eps(i)*lam(a)/rho(i)**2)*q(:,a)*q(b,a)
+        end do
+      end do
+      r(:,i) = [ra(1,1), ra(2,2), ra(3,3), ra(1,2), ra(2,3), ra(3,1)]
+    end do
+  end subroutine
+
+  !> Eigenvalues lam and eigenvectors (the columns of q) of a symmetric 3x3
+  !> matrix a, by cyclic Jacobi rotations until the off-diagonal part is
+  !> at the rounding of a.
+  pure subroutine symmetric_eigen3(a, lam, q)
+    real(rk), intent(in) :: a(3,3)
+    real(rk), intent(out) :: lam(3), q(3,3)
+    integer, parameter :: pp(3) = [1, 1, 2], qq(3) = [2, 3, 3]
+    real(rk) :: b(3,3), theta, t, sn, tau, bpq, scale, g, hh
+    integer :: sweep, r, ip, iq, k
+    b = a
+    q = 0
+    do r = 1, 3
+      q(r,r) = 1
+    end do
+    scale = max(maxval(abs(a)), tiny(1.0_rk))
+    do sweep = 1, 50
+      if (abs(b(1,2)) + abs(b(1,3)) + abs(b(2,3)) <= 1e-15_rk*scale) exit
+      do r = 1, 3
+        ip = pp(r); iq = qq(r)
+        bpq = b(ip,iq)
+        if (bpq == 0.0_rk) cycle
+        ! the rotation in the plane (ip, iq) that zeroes b(ip,iq) (Numerical Recipes' jacobi)
+        theta = (b(iq,iq) - b(ip,ip))/(2.0_rk*bpq)
+        t = sign(1.0_rk, theta)/(abs(theta) + sqrt(theta**2 + 1.0_rk))
+        sn = t/sqrt(t**2 + 1.0_rk)
+        tau = sn/(1.0_rk + 1.0_rk/sqrt(t**2 + 1.0_rk))
+        b(ip,ip) = b(ip,ip) - t*bpq
+        b(iq,iq) = b(iq,iq) + t*bpq
+        b(ip,iq) = 0; b(iq,ip) = 0
+        do k = 1, 3
+          if (k == ip .or. k == iq) cycle
+          g = b(k,ip); hh = b(k,iq)
+          b(k,ip) = g - sn*(hh + g*tau); b(ip,k) = b(k,ip)
+          b(k,iq) = hh + sn*(g - hh*tau); b(iq,k) = b(k,iq)
+        end do
+        do k = 1, 3
+          g = q(k,ip); hh = q(k,iq)
+          q(k,ip) = g - sn*(hh + g*tau)
+          q(k,iq) = hh + sn*(g - hh*tau)
+        end do
+      end do
+    end do
+    lam = [b(1,1), b(2,2), b(3,3)]
   end subroutine
 
   !> The particles' density and energy over a step dt from their rates

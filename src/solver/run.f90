@@ -319,7 +319,7 @@ contains
       ! the particles, every one on every rank: forces at x(n), the walls
       ! (their sums on one rank), x(n+1); their state at n+1 after the contact
       if (pt%n > 0) then
-        call particles_forces(pt, dom%sym_walls, dt_v)
+        call particles_forces(pt, dom%sym_walls, dom%mat, dt_v)
         call walls_on_particles(dom%walls, walls%impulse, wall_impulse_dummy)
         ! the symmetry planes as frictionless walls (their impulses are no wall's force)
         call walls_on_particles(dom%sym_walls, sym_impulse_dummy, sym_impulse_dummy)

@@ -53,6 +53,12 @@ expect convert_without_particles 1 "convert_no_particles.nml:3: &material #1 'st
 sed 's/&material name = "steel"/\&material name = "steel", eroded = "particles", fracture = "plastic_strain", eps_f = 1, eps_erode = 2, eps_convert = -1/' \
   "$W/good.nml" > "$W/convert_negative.nml"
 expect convert_negative 1 "convert_negative.nml:3: &material #1 'steel': eps_convert = -1.*>= 0" convert_negative.nml
+# the artificial stress is for particles that keep their strength (and carry tension)
+sed 's/&material name = "steel"/\&material name = "steel", eroded = "particles", fracture = "plastic_strain", eps_f = 1, eps_erode = 2, artificial_stress = 0.2/' \
+  "$W/good.nml" > "$W/artificial_no_convert.nml"
+expect artificial_stress_without_strong_particles 1 \
+  "artificial_no_convert.nml:3: &material #1 'steel': artificial_stress = 0.2.*only used with particles that keep their strength" \
+  artificial_no_convert.nml
 sed 's/&material name = "steel"/\&material name = "steel", eroded = "dust"/' "$W/good.nml" > "$W/eroded_word.nml"
 expect eroded_unknown_word 1 "eroded_word.nml:3: &material #1 'steel': eroded = .dust. : unknown choice.*'free_nodes', 'particles'" eroded_word.nml
 

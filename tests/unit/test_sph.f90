@@ -9,14 +9,18 @@
 !> particle pressure has no tension; an element's conversion keeps mass,
 !> momentum and energy; two particles striking head-on rebound with
 !> at the speed they met (no viscosity: an elastic collision), momentum
-!> exact and energy kept to the time integration's error.
+!> exact and energy kept to the time integration's error. The artificial
+!> stress: the eigen-decomposition it takes, R of a uniaxial tension by
+!> hand and none in compression, energy and momentum exact with it, and on
+!> a lattice in uniform tension a displaced particle pushed further away
+!> without it (SPH's tensile instability) and back with it.
 program test_sph
   use udar_kinds, only: rk, pi
   use udar_vectors, only: cross
   use udar_strings, only: r2s, itoa
   use udar_config, only: material_cfg_t, eos_linear, eos_mie_gruneisen
   use udar_sph, only: spline_w, spline_dw, sph_forces, sph_rates, particle_update, particle_pressure, element_to_particle, sph_pairs, &
-                      smoothing_length, sph_stable_dt, particle_strength, wave_speed
+                      smoothing_length, sph_stable_dt, particle_strength, wave_speed, artificial_stress, symmetric_eigen3
   use udar_config, only: strength_perfectly_plastic, fracture_plastic_strain, shear_constant, shear_steinberg_guinan
   use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
   use unit_checks, only: check, check_summary
@@ -56,6 +60,7 @@ program test_sph
   call conversion_tests()
   call head_on_pair()
   call strength_tests()
+  call artificial_stress_tests()
   call check_summary()
 
 contains
@@ -63,7 +68,8 @@ contains
   !> A random cloud: pairs against brute force, then conservation.
   subroutine cloud_tests()
     real(rk) :: x(3,n_cloud), v(3,n_cloud), m(n_cloud), rho(n_cloud), p(n_cloud), c(n_cloud), hh(n_cloud), &
-                acc(3,n_cloud), dedt(n_cloud), drho(n_cloud), vsig(n_cloud), u(3), s(6,n_cloud), grad(9,n_cloud), su(6)
+                acc(3,n_cloud), dedt(n_cloud), drho(n_cloud), vsig(n_cloud), u(3), s(6,n_cloud), grad(9,n_cloud), su(6), &
+                ra(6,n_cloud), pt(n_cloud)
     real(rk), allocatable :: coef(:)
     integer, allocatable :: pairs(:,:), brute(:,:)
     integer :: np, nb, i, j, cell_start(4097), order(n_cloud), cand(n_cloud + 4096)
@@ -157,6 +163,30 @@ contains
                'sum m a '//r2s(norm2(mom)/scale_f)//' of sum m |a|')
     call check('stress_rates_conserve_energy', abs(power) < 1e-14_rk*scale_e, &
                'sum m (v.a + de/dt) '//r2s(abs(power)/scale_e)//' of its terms')
+    ! with the artificial stress of tension besides: its work is the heat's
+    pt = p - 1.2e9_rk
+    call artificial_stress(n_cloud, [(0.3_rk, i = 1, n_cloud)], rho, pt, s, ra)
+    acc = 0
+    dedt = 0
+    drho = 0
+    grad = 0
+    call sph_forces(3, 1.0_rk, 2.0_rk, np, pairs, x, v, m, rho, pt, c, hh, s, coef, acc, vsig, ra, 1.0_rk/1.2_rk)
+    call sph_rates(3, 0.0_rk, np, pairs, x, v, m, hh, coef, drho, dedt, grad, ra, 1.0_rk/1.2_rk)
+    mom = 0
+    power = 0
+    scale_e = 0
+    scale_f = 0
+    do i = 1, n_cloud
+      dedt(i) = dedt(i) + pt(i)/rho(i)**2*drho(i) - stress_power(s(:,i), grad(:,i))/rho(i)**2
+      mom = mom + m(i)*acc(:,i)
+      scale_f = scale_f + m(i)*norm2(acc(:,i))
+      power = power + m(i)*(dot_product(v(:,i), acc(:,i)) + dedt(i))
+      scale_e = scale_e + m(i)*(abs(dot_product(v(:,i), acc(:,i))) + abs(dedt(i)))
+    end do
+    call check('artificial_stress_conserves_momentum', norm2(mom) < 1e-14_rk*scale_f .and. any(ra /= 0.0_rk), &
+               'sum m a '//r2s(norm2(mom)/scale_f)//' of sum m |a|')
+    call check('artificial_stress_conserves_energy', abs(power) < 1e-14_rk*scale_e, &
+               'sum m (v.a + de/dt) '//r2s(abs(power)/scale_e)//' of its terms')
     call check('signal_speed_at_least_2c', all(vsig >= 2.0_rk*4500.0_rk .or. vsig == 0.0_rk) .and. any(vsig > 9000.0_rk), &
                'largest '//r2s(maxval(vsig))//' m/s')
     call check('stable_dt_by_hand', abs(sph_stable_dt(n_cloud, 0.3_rk, hh, c, vsig) - &
@@ -235,6 +265,80 @@ contains
     call check('velocity_gradient_under_simple_shear', abs(l(1,2)/gam - 1.0_rk) < 0.02_rk .and. &
                maxval(abs(l - gam*reshape([0, 0, 0, 1, 0, 0, 0, 0, 0], [3, 3]))) < 0.02_rk*gam, &
                'L_xy '//r2s(l(1,2))//', largest other '//r2s(maxval(abs(l - gam*reshape([0, 0, 0, 1, 0, 0, 0, 0, 0], [3, 3])))))
+  end subroutine
+
+  !> The artificial stress (Monaghan 2000; Gray, Monaghan and Swift 2001).
+  subroutine artificial_stress_tests()
+    integer, parameter :: nl = 9, n = nl**3
+    real(rk) :: am(3,3), lam(3), q(3,3), d(3,3), nv(3), sig(3,3), r(6,2), want(6), rho1(2), p1(2), s1(6,2)
+    real(rk) :: x(3,n), v(3,n), m(n), rho(n), p(n), c(n), hh(n), acc(3,n), vsig(n), s(6,n), a, delta(3), push(2), &
+                ra(6,n), eps(n)
+    real(rk), allocatable :: coef(:)
+    integer, allocatable :: pairs(:,:)
+    integer :: i, j, k, np, centre, cell_start(4097), order(n), cand(n + 4096), trial
+    ! eigen-decomposition: a q = q diag(lam), q orthonormal
+    am = reshape([4.0_rk, 1.0_rk, 2.0_rk, 1.0_rk, 3.0_rk, 0.5_rk, 2.0_rk, 0.5_rk, 5.0_rk], [3, 3])
+    call symmetric_eigen3(am, lam, q)
+    d = 0
+    do i = 1, 3
+      d(i,i) = lam(i)
+    end do
+    call check('eigen3_reconstructs', maxval(abs(matmul(q, matmul(d, transpose(q))) - am)) < 1e-13_rk .and. &
+               maxval(abs(matmul(transpose(q), q) - identity())) < 1e-14_rk, &
+               'largest error '//r2s(maxval(abs(matmul(q, matmul(d, transpose(q))) - am))))
+    ! a uniaxial tension of 1e8 Pa along (1,1,0)/sqrt 2 as p and s, and the same compression
+    nv = [1.0_rk, 1.0_rk, 0.0_rk]/sqrt(2.0_rk)
+    sig = 1e8_rk*spread(nv, 2, 3)*spread(nv, 1, 3)
+    p1 = [-1e8_rk/3, 1e8_rk/3]
+    do i = 1, 2
+      s1(:,i) = merge(1.0_rk, -1.0_rk, i == 1)*[sig(1,1), sig(2,2), sig(3,3), sig(1,2), sig(2,3), sig(3,1)]
+      s1(1:3,i) = s1(1:3,i) + p1(i)
+    end do
+    rho1 = 8000.0_rk
+    call artificial_stress(2, [0.3_rk, 0.3_rk], rho1, p1, s1, r)
+    want = -0.3_rk*1e8_rk/8000.0_rk**2*[sig(1,1), sig(2,2), sig(3,3), sig(1,2), sig(2,3), sig(3,1)]/1e8_rk
+    call check('artificial_stress_of_uniaxial_tension', maxval(abs(r(:,1) - want)) < 1e-12_rk*maxval(abs(want)), &
+               'R_xy '//r2s(r(4,1))//' against '//r2s(want(4)))
+    call check('no_artificial_stress_in_compression', all(r(:,2) == 0.0_rk), 'largest '//r2s(maxval(abs(r(:,2)))))
+    ! a lattice in uniform tension (p < 0, no deviator, no viscosity) with
+    ! its centre particle displaced: the pair forces push it on (trial 1)
+    ! or back (trial 2, eps 0.3)
+    a = 1e-4_rk
+    k = 0
+    do j = 0, nl**2 - 1
+      do i = 0, nl - 1
+        k = k + 1
+        x(:,k) = a*[i, mod(j, nl), j/nl] - a*(nl - 1)/2
+      end do
+    end do
+    centre = (n + 1)/2
+    allocate(pairs(2,60000), coef(60000))
+    m = 8000.0_rk*a**3
+    rho = 8000.0_rk
+    p = -1e9_rk
+    c = 5000.0_rk
+    s = 0
+    v = 0
+    hh = smoothing_length(m, rho, 1.2_rk, 3)
+    delta = 0.1_rk*a*[1.0_rk, 0.4_rk, 0.2_rk]
+    x(:,centre) = x(:,centre) + delta
+    call sph_pairs(3, n, x, hh, 4096, cell_start, order, cand, pairs, np)
+    eps = 0.3_rk
+    call artificial_stress(n, eps, rho, p, s, ra)
+    do trial = 1, 2
+      acc = 0
+      vsig = 0
+      if (trial == 1) then
+        call sph_forces(3, 0.0_rk, 0.0_rk, np, pairs, x, v, m, rho, p, c, hh, s, coef, acc, vsig)
+      else
+        call sph_forces(3, 0.0_rk, 0.0_rk, np, pairs, x, v, m, rho, p, c, hh, s, coef, acc, vsig, ra, 1.0_rk/1.2_rk)
+      end if
+      push(trial) = dot_product(acc(:,centre), delta)/norm2(delta)**2
+    end do
+    print '(a)', 'MEASURED displaced particle in tension: a.d/|d|^2 '//r2s(push(1))//' 1/s2 without, '//r2s(push(2))// &
+                 ' with the artificial stress'
+    call check('tension_pushes_a_displaced_particle_on', push(1) > 0.0_rk, 'a.d/|d|^2 '//r2s(push(1)))
+    call check('artificial_stress_pulls_it_back', push(2) < 0.0_rk, 'a.d/|d|^2 '//r2s(push(2)))
   end subroutine
 
   pure function identity() result(i3)
