@@ -21,8 +21,8 @@ program test_particle_ghosts
   integer, parameter :: nq = 60
   type(particles_t) :: quarter, full, lone, sparse, tq, tf
   type(domain_t) :: dom_q, dom_f, dom_n
-  real(rk) :: u(3), xq(3,nq), vq(3,nq), err_a, err_r, err_h, scale_a, scale_r, scale_h, dt, sq(6,nq), flip(6)
-  integer :: i, k, s, q
+  real(rk) :: u(3), xq(3,nq), vq(3,nq), err_a, err_r, err_h, scale_a, scale_r, scale_h, dt, sq(6,nq)
+  integer :: i, k
 
   call random_seed(put=[(4711 + 13*i, i = 1, 64)])
   do i = 1, nq
@@ -38,20 +38,11 @@ program test_particle_ghosts
   dom_q%sym_walls(1) = wall_t(point=[0.0_rk, 0.0_rk, 0.0_rk], normal=[1.0_rk, 0.0_rk, 0.0_rk])
   dom_q%sym_walls(2) = wall_t(point=[0.0_rk, 0.0_rk, 0.0_rk], normal=[0.0_rk, 1.0_rk, 0.0_rk])
   ! the quarter, and the full model: the quarter and its three mirror images
-  call fill(quarter, nq)
+  sq = 0
+  call quarter_and_full(quarter, full)
   call fill(lone, nq)
-  call fill(full, 4*nq)
-  do i = 1, nq
-    do s = 0, 3
-      q = s*nq + i
-      full%x(:,q) = xq(:,i)*[merge(-1, 1, btest(s, 0)), merge(-1, 1, btest(s, 1)), 1]
-      full%v(:,q) = vq(:,i)*[merge(-1, 1, btest(s, 0)), merge(-1, 1, btest(s, 1)), 1]
-    end do
-    quarter%x(:,i) = xq(:,i)
-    quarter%v(:,i) = vq(:,i)
-    lone%x(:,i) = xq(:,i)
-    lone%v(:,i) = vq(:,i)
-  end do
+  lone%x(:,1:nq) = xq
+  lone%v(:,1:nq) = vq
   dt = 1e-9_rk
   call particles_forces(quarter, dom_q%sym_walls, dom_q%mat, dt)
   call particles_forces(full, dom_f%sym_walls, dom_f%mat, dt)
@@ -88,23 +79,7 @@ program test_particle_ghosts
     sq(:,i) = 1e9_rk*(sq(:,i) - 0.5_rk)
     sq(1:3,i) = sq(1:3,i) - sum(sq(1:3,i))/3
   end do
-  call fill(tq, nq)
-  call fill(tf, 4*nq)
-  do i = 1, nq
-    do s = 0, 3
-      q = s*nq + i
-      tf%x(:,q) = xq(:,i)*[merge(-1, 1, btest(s, 0)), merge(-1, 1, btest(s, 1)), 1]
-      tf%v(:,q) = vq(:,i)*[merge(-1, 1, btest(s, 0)), merge(-1, 1, btest(s, 1)), 1]
-      ! (xx,yy,zz,xy,yz,zx): x -> -x flips xy and zx, y -> -y flips xy and yz
-      flip = 1
-      if (btest(s, 0)) flip = flip*[1, 1, 1, -1, 1, -1]
-      if (btest(s, 1)) flip = flip*[1, 1, 1, -1, -1, 1]
-      tf%s(:,q) = flip*sq(:,i)
-    end do
-    tq%x(:,i) = xq(:,i)
-    tq%v(:,i) = vq(:,i)
-    tq%s(:,i) = sq(:,i)
-  end do
+  call quarter_and_full(tq, tf)
   tq%p(1:nq) = -2e9_rk
   tf%p(1:4*nq) = -2e9_rk
   tq%strong(1:nq) = .true.
@@ -144,6 +119,32 @@ program test_particle_ghosts
   call check_summary()
 
 contains
+
+  !> The quarter (xq, vq, sq) as its own particles, and the full model:
+  !> the quarter and its three mirror images (positions, velocities and
+  !> the deviator mirrored).
+  subroutine quarter_and_full(qt, fl)
+    type(particles_t), intent(inout) :: qt, fl
+    real(rk) :: flip(6)
+    integer :: i, s, q
+    call fill(qt, nq)
+    call fill(fl, 4*nq)
+    do i = 1, nq
+      do s = 0, 3
+        q = s*nq + i
+        fl%x(:,q) = xq(:,i)*[merge(-1, 1, btest(s, 0)), merge(-1, 1, btest(s, 1)), 1]
+        fl%v(:,q) = vq(:,i)*[merge(-1, 1, btest(s, 0)), merge(-1, 1, btest(s, 1)), 1]
+        ! (xx,yy,zz,xy,yz,zx): x -> -x flips xy and zx, y -> -y flips xy and yz
+        flip = 1
+        if (btest(s, 0)) flip = flip*[1, 1, 1, -1, 1, -1]
+        if (btest(s, 1)) flip = flip*[1, 1, 1, -1, -1, 1]
+        fl%s(:,q) = flip*sq(:,i)
+      end do
+      qt%x(:,i) = xq(:,i)
+      qt%v(:,i) = vq(:,i)
+      qt%s(:,i) = sq(:,i)
+    end do
+  end subroutine
 
   subroutine material(dom)
     type(domain_t), intent(inout) :: dom

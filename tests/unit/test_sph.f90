@@ -142,55 +142,55 @@ contains
       s(:,i) = 4e8_rk*(su - 0.5_rk)
       s(1:3,i) = s(1:3,i) - sum(s(1:3,i))/3
     end do
+    call stress_balance('stress_rates', np, pairs, x, v, m, rho, p, c, hh, s, coef, vsig)
+    ! with the artificial stress of tension besides: its work is the heat's
+    pt = p - 1.2e9_rk
+    call artificial_stress(n_cloud, [(0.3_rk, i = 1, n_cloud)], rho, pt, s, ra)
+    call check('artificial_stress_acts', any(ra /= 0.0_rk), 'largest |R| '//r2s(maxval(abs(ra)))//' m2/s2')
+    call stress_balance('artificial_stress', np, pairs, x, v, m, rho, pt, c, hh, s, coef, vsig, ra)
+    call check('signal_speed_at_least_2c', all(vsig >= 2.0_rk*4500.0_rk .or. vsig == 0.0_rk) .and. any(vsig > 9000.0_rk), &
+               'largest '//r2s(maxval(vsig))//' m/s')
+    call check('stable_dt_by_hand', abs(sph_stable_dt(n_cloud, 0.3_rk, hh, c, vsig) - &
+               minval(0.3_rk*hh/max(vsig, c))) < 1e-25_rk, r2s(sph_stable_dt(n_cloud, 0.3_rk, hh, c, vsig))//' s')
+  end subroutine
+
+  !> Forces and rates of a cloud with deviatoric stresses s (and the
+  !> artificial stress r_art when given): momentum exact, and the power
+  !> balance sum m (v.a + de/dt) = 0 with de/dt = p/rho^2 drho/dt + heat
+  !> - s : grad / rho^2 (L = -grad/rho).
+  subroutine stress_balance(name, np, pairs, x, v, m, rho, p, c, hh, s, coef, vsig, r_art)
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: np, pairs(:,:)
+    real(rk), intent(in) :: x(:,:), v(:,:), m(:), rho(:), p(:), c(:), hh(:), s(:,:)
+    real(rk), intent(inout) :: coef(:), vsig(:)
+    real(rk), intent(in), optional :: r_art(:,:)
+    real(rk) :: acc(3,size(m)), dedt(size(m)), drho(size(m)), grad(9,size(m)), mom(3), power, scale_e, scale_f
+    integer :: i
     acc = 0
     dedt = 0
     drho = 0
     grad = 0
-    call sph_forces(3, 1.0_rk, 2.0_rk, np, pairs, x, v, m, rho, p, c, hh, s, coef, acc, vsig)
-    call sph_rates(3, 0.0_rk, np, pairs, x, v, m, hh, coef, drho, dedt, grad)
+    if (present(r_art)) then
+      call sph_forces(3, 1.0_rk, 2.0_rk, np, pairs, x, v, m, rho, p, c, hh, s, coef, acc, vsig, r_art, 1.0_rk/1.2_rk)
+      call sph_rates(3, 0.0_rk, np, pairs, x, v, m, hh, coef, drho, dedt, grad, r_art, 1.0_rk/1.2_rk)
+    else
+      call sph_forces(3, 1.0_rk, 2.0_rk, np, pairs, x, v, m, rho, p, c, hh, s, coef, acc, vsig)
+      call sph_rates(3, 0.0_rk, np, pairs, x, v, m, hh, coef, drho, dedt, grad)
+    end if
     mom = 0
     power = 0
     scale_e = 0
     scale_f = 0
-    do i = 1, n_cloud
+    do i = 1, size(m)
       dedt(i) = dedt(i) + p(i)/rho(i)**2*drho(i) - stress_power(s(:,i), grad(:,i))/rho(i)**2
       mom = mom + m(i)*acc(:,i)
       scale_f = scale_f + m(i)*norm2(acc(:,i))
       power = power + m(i)*(dot_product(v(:,i), acc(:,i)) + dedt(i))
       scale_e = scale_e + m(i)*(abs(dot_product(v(:,i), acc(:,i))) + abs(dedt(i)))
     end do
-    call check('stress_rates_conserve_momentum', norm2(mom) < 1e-14_rk*scale_f, &
-               'sum m a '//r2s(norm2(mom)/scale_f)//' of sum m |a|')
-    call check('stress_rates_conserve_energy', abs(power) < 1e-14_rk*scale_e, &
+    call check(name//'_conserve_momentum', norm2(mom) < 1e-14_rk*scale_f, 'sum m a '//r2s(norm2(mom)/scale_f)//' of sum m |a|')
+    call check(name//'_conserve_energy', abs(power) < 1e-14_rk*scale_e, &
                'sum m (v.a + de/dt) '//r2s(abs(power)/scale_e)//' of its terms')
-    ! with the artificial stress of tension besides: its work is the heat's
-    pt = p - 1.2e9_rk
-    call artificial_stress(n_cloud, [(0.3_rk, i = 1, n_cloud)], rho, pt, s, ra)
-    acc = 0
-    dedt = 0
-    drho = 0
-    grad = 0
-    call sph_forces(3, 1.0_rk, 2.0_rk, np, pairs, x, v, m, rho, pt, c, hh, s, coef, acc, vsig, ra, 1.0_rk/1.2_rk)
-    call sph_rates(3, 0.0_rk, np, pairs, x, v, m, hh, coef, drho, dedt, grad, ra, 1.0_rk/1.2_rk)
-    mom = 0
-    power = 0
-    scale_e = 0
-    scale_f = 0
-    do i = 1, n_cloud
-      dedt(i) = dedt(i) + pt(i)/rho(i)**2*drho(i) - stress_power(s(:,i), grad(:,i))/rho(i)**2
-      mom = mom + m(i)*acc(:,i)
-      scale_f = scale_f + m(i)*norm2(acc(:,i))
-      power = power + m(i)*(dot_product(v(:,i), acc(:,i)) + dedt(i))
-      scale_e = scale_e + m(i)*(abs(dot_product(v(:,i), acc(:,i))) + abs(dedt(i)))
-    end do
-    call check('artificial_stress_conserves_momentum', norm2(mom) < 1e-14_rk*scale_f .and. any(ra /= 0.0_rk), &
-               'sum m a '//r2s(norm2(mom)/scale_f)//' of sum m |a|')
-    call check('artificial_stress_conserves_energy', abs(power) < 1e-14_rk*scale_e, &
-               'sum m (v.a + de/dt) '//r2s(abs(power)/scale_e)//' of its terms')
-    call check('signal_speed_at_least_2c', all(vsig >= 2.0_rk*4500.0_rk .or. vsig == 0.0_rk) .and. any(vsig > 9000.0_rk), &
-               'largest '//r2s(maxval(vsig))//' m/s')
-    call check('stable_dt_by_hand', abs(sph_stable_dt(n_cloud, 0.3_rk, hh, c, vsig) - &
-               minval(0.3_rk*hh/max(vsig, c))) < 1e-25_rk, r2s(sph_stable_dt(n_cloud, 0.3_rk, hh, c, vsig))//' s')
   end subroutine
 
   !> s : grad for a symmetric s (xx,yy,zz,xy,yz,zx) and grad column by column.
