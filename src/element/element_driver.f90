@@ -34,7 +34,7 @@ contains
   subroutine element_volumes(dom)
     type(domain_t), intent(inout) :: dom
     real(rk) :: xe(block_size,4,3), vol(block_size)
-    integer :: b, k, n, i, c, first, nb
+    integer :: b, n, i, c, first, nb
     integer(i8) :: tick0
     dom%nd_j(1:dom%n_owned_nodes) = 0.0_rk
     do b = 1, dom%n_blocks

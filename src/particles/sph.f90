@@ -35,16 +35,19 @@ contains
   pure elemental real(rk) function spline_w(r, h, dim) result(w)
     real(rk), intent(in) :: r, h
     integer, intent(in) :: dim
-    real(rk) :: q
-    q = r/h
+    w = spline_shape(r/h)*spline_sigma(dim)/h**dim
+  end function
+
+  !> f(q) of spline_w.
+  pure elemental real(rk) function spline_shape(q) result(f)
+    real(rk), intent(in) :: q
     if (q < 1.0_rk) then
-      w = 1.0_rk - 1.5_rk*q**2 + 0.75_rk*q**3
+      f = 1.0_rk - 1.5_rk*q**2 + 0.75_rk*q**3
     else if (q < 2.0_rk) then
-      w = 0.25_rk*(2.0_rk - q)**3
+      f = 0.25_rk*(2.0_rk - q)**3
     else
-      w = 0.0_rk
+      f = 0.0_rk
     end if
-    w = w*spline_sigma(dim)/h**dim
   end function
 
   !> dW/dr of spline_w.
@@ -152,7 +155,7 @@ contains
       end if
       if (present(r_art)) then
         if (any(r_art(:,i) /= 0.0_rk) .or. any(r_art(:,j) /= 0.0_rk)) then
-          f = art_pair_force(dim, d, hij, spacing, r_art(:,i) + r_art(:,j), g)
+          f = art_pair_force(d, hij, spacing, r_art(:,i) + r_art(:,j), g)
           acc(:,i) = acc(:,i) + m(j)*f
           acc(:,j) = acc(:,j) - m(i)*f
         end if
@@ -211,7 +214,7 @@ contains
       if (present(r_art)) then
         if (any(r_art(:,i) /= 0.0_rk) .or. any(r_art(:,j) /= 0.0_rk)) then
           ! the work of the pair's artificial stress force, half to each
-          work = -0.5_rk*dot_product(vij, art_pair_force(dim, d, hij, spacing, r_art(:,i) + r_art(:,j), g))
+          work = -0.5_rk*dot_product(vij, art_pair_force(d, hij, spacing, r_art(:,i) + r_art(:,j), g))
           heat(i) = heat(i) + m(j)*work
           heat(j) = heat(j) + m(i)*work
         end if
@@ -223,11 +226,11 @@ contains
   !> (W(d)/W(dp))^n (R_i + R_j) grad_i W_ij, with rsum = R_i + R_j (6, as s)
   !> and dp = spacing h_ij, the particles' initial spacing (Monaghan 2000;
   !> Gray, Monaghan and Swift 2001).
-  pure function art_pair_force(dim, d, hij, spacing, rsum, g) result(f)
-    integer, intent(in) :: dim
+  pure function art_pair_force(d, hij, spacing, rsum, g) result(f)
     real(rk), intent(in) :: d, hij, spacing, rsum(6), g(3)
     real(rk) :: f(3), fn
-    fn = (spline_w(d, hij, dim)/spline_w(spacing*hij, hij, dim))**art_exponent
+    ! (W(d)/W(dp) is the kernel shape's ratio: the factor sigma/h^dim cancels)
+    fn = (spline_shape(d/hij)/spline_shape(spacing))**art_exponent
     f = fn*[rsum(1)*g(1) + rsum(4)*g(2) + rsum(6)*g(3), rsum(4)*g(1) + rsum(2)*g(2) + rsum(5)*g(3), &
             rsum(6)*g(1) + rsum(5)*g(2) + rsum(3)*g(3)]
   end function
