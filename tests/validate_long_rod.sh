@@ -19,7 +19,9 @@
 # EPS_F=Y the fracture strain of both is Y (eps_erode too); csv
 # long_rod_particles_convertX[_fY][_hH].csv; with ARTIFICIAL_STRESS=Z
 # besides, those particles have Monaghan's artificial stress (&material
-# artificial_stress = Z, both materials; csv ..._convertX_artZ...).
+# artificial_stress = Z, both materials; csv ..._convertX_artZ...); with
+# SPH_SWITCH=1 the particles' viscosity has Balsara's switch (&numerics
+# sph_viscosity_switch; csv ..._switch...).
 dim=3d
 if [ "${1:-}" = 2d ]; then dim=2d; shift; fi
 source "$(dirname "$0")/validate_common.sh" long_rod_$dim
@@ -53,6 +55,10 @@ for v in ${VELOCITIES:-1500 2000 2500}; do
       [ "$(grep -c "eps_f = $EPS_F, eps_erode = $EPS_F" "$W/$run.nml")" = 2 ] || { echo "deck edit failed: eps_f"; exit 1; }
     fi
   fi
+  if [ "${SPH_SWITCH:-0}" = 1 ]; then
+    sed -i "s|^&numerics |\&numerics sph_viscosity_switch = .true., |" "$W/$run.nml"
+    grep -q "sph_viscosity_switch = .true." "$W/$run.nml" || { echo "deck edit failed: sph_viscosity_switch"; exit 1; }
+  fi
   grep -q "velocity = ${vel3}-$v.0" "$W/$run.nml" || { echo "deck edit failed for $v m/s"; exit 1; }
   runs+=("$run")
 done
@@ -61,7 +67,7 @@ mm=$(awk -v h=$H 'BEGIN{print h*1000}')
 if [ $dim = 2d ]; then
   csv=doc/validation/long_rod_2d_h$mm.csv
 else
-  csv=doc/validation/long_rod$([ "${ERODED:-}" = particles ] && echo _particles)$([ -n "${EPS_CONVERT:-}" ] && echo _convert$EPS_CONVERT)$([ -n "${ARTIFICIAL_STRESS:-}" ] && echo _art$ARTIFICIAL_STRESS)$([ -n "${EPS_F:-}" ] && echo _f$EPS_F)$([ "$mm" = 1 ] || echo _h$mm).csv
+  csv=doc/validation/long_rod$([ "${ERODED:-}" = particles ] && echo _particles)$([ -n "${EPS_CONVERT:-}" ] && echo _convert$EPS_CONVERT)$([ -n "${ARTIFICIAL_STRESS:-}" ] && echo _art$ARTIFICIAL_STRESS)$([ "${SPH_SWITCH:-0}" = 1 ] && echo _switch)$([ -n "${EPS_F:-}" ] && echo _f$EPS_F)$([ "$mm" = 1 ] || echo _h$mm).csv
 fi
 echo "velocity_m_s,mesh_mm,tet_formulation,$([ $dim = 2d ] && echo triangles || echo tets),cycles,wall_s,crater_depth_mm,P_over_L,lanz_odermatt,difference_percent,energy_error" > $csv
 form=$(grep -o "tet_formulation = '[a-z_]*'" input/$name/$name.nml | cut -d"'" -f2)

@@ -259,6 +259,7 @@ module udar_deck
        var_t('numerics', 'q_linear', 'r', 1, 0, '-', '>= 0'), &
        var_t('numerics', 'q_quadratic', 'r', 1, 0, '-', '>= 0'), &
        var_t('numerics', 'erode_dt_ratio', 'r', 1, 0, '-', 'in [0, 1)'), &
+       var_t('numerics', 'sph_viscosity_switch', 'l', 1, 0, '', ''), &
        var_t('output', 'directory', 'c', 1, max_path_len, '', ''), &
        var_t('output', 'case_name', 'c', 1, max_name_len, '', ''), &
        var_t('output', 'dt_field', 'r', 1, 0, 's', '>= 0'), &
@@ -747,7 +748,8 @@ contains
       end associate
     case ('numerics')
       call numerics_nml(v%num%anti_locking, v%tet_formulation, v%num%stabilisation, v%num%stabilisation_large, &
-                        v%num%stabilisation_onset, v%num%q_linear, v%num%q_quadratic, v%num%erode_dt_ratio)
+                        v%num%stabilisation_onset, v%num%q_linear, v%num%q_quadratic, v%num%erode_dt_ratio, &
+                        v%num%sph_viscosity_switch)
     case ('output')
       call output_nml(v%out%directory, v%out%case_name, v%out%dt_field, v%out%dt_history, v%out%dt_checkpoint, &
                       v%out%checkpoint_keep)
@@ -841,13 +843,13 @@ contains
     end subroutine contact_nml
 
     subroutine numerics_nml(anti_locking, tet_formulation, stabilisation, stabilisation_large, stabilisation_onset, &
-                            q_linear, q_quadratic, erode_dt_ratio)
-      logical, intent(inout) :: anti_locking
+                            q_linear, q_quadratic, erode_dt_ratio, sph_viscosity_switch)
+      logical, intent(inout) :: anti_locking, sph_viscosity_switch
       character(len=*), intent(inout) :: tet_formulation
       real(rk), intent(inout) :: stabilisation, stabilisation_large, stabilisation_onset, q_linear, q_quadratic, &
                                  erode_dt_ratio
       namelist /numerics/ anti_locking, tet_formulation, stabilisation, stabilisation_large, stabilisation_onset, &
-                          q_linear, q_quadratic, erode_dt_ratio
+                          q_linear, q_quadratic, erode_dt_ratio, sph_viscosity_switch
       read(text, nml=numerics, iostat=ios, iomsg=msg)
     end subroutine numerics_nml
 
@@ -1839,7 +1841,8 @@ contains
       vals = [val_t(l=cfg%numerics%anti_locking), &
               choice_val(cfg%numerics%tet_formulation, tet_words, tet_codes), val(cfg%numerics%stabilisation), &
               val(cfg%numerics%stabilisation_large), val(cfg%numerics%stabilisation_onset), val(cfg%numerics%q_linear), &
-              val(cfg%numerics%q_quadratic), val(cfg%numerics%erode_dt_ratio)]
+              val(cfg%numerics%q_quadratic), val(cfg%numerics%erode_dt_ratio), &
+              val_t(l=cfg%numerics%sph_viscosity_switch)]
     case (g_gauge)
       associate(g => cfg%gauges(k))
         vals = [val_t(c=g%name), val_t(i=g%node), val_t(i=g%element), val(g%point)]

@@ -172,6 +172,7 @@ module udar_config
     real(rk) :: q_quadratic = 1.5_rk    !< -, quadratic artificial viscosity coefficient
     real(rk) :: erode_dt_ratio = 0.1_rk !< -, an element of a material with eps_erode > 0 is eroded when its stable
                                         !< step falls below this fraction of the run's initial stable step; 0 = off
+    logical  :: sph_viscosity_switch = .false. !< Balsara's switch on the particles' artificial viscosity
   end type
 
   type :: output_cfg_t

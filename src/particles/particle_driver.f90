@@ -15,7 +15,7 @@ module udar_particle_driver
   use udar_ordering, only: stable_sort_permutation, find_sorted
   use udar_particle_model, only: particles_t, particles_reserve, particles_pair_room
   use udar_sph, only: element_to_particle, particle_pressure, smoothing_length, sph_pairs, sph_forces, sph_rates, &
-                      particle_update, particle_strength, wave_speed, artificial_stress
+                      particle_update, particle_strength, wave_speed, artificial_stress, shear_switch
   use udar_comms, only: comms_allgather_count, comms_allgatherv_real, comms_size
   use udar_exact_sum, only: exact_add
   implicit none
@@ -255,13 +255,22 @@ contains
       pt%art_eps(k) = merge(mats(pt%mat(q))%artificial_stress, 0.0_rk, pt%strong(q))
       pt%artificial = pt%artificial .or. pt%art_eps(k) > 0.0_rk
     end do
+    nt = pt%n + pt%n_ghosts
+    pt%switch(1:nt) = 1
+    if (pt%shear_switch) then
+      ! (an image's |div v| and |curl v| are its original's)
+      call shear_switch(3, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%c, pt%h, nt, pt%grad, pt%switch)
+      do k = 1, pt%n_ghosts
+        pt%switch(pt%n+k) = pt%switch(pt%ghost_of(k))
+      end do
+    end if
     if (pt%artificial) then
-      call artificial_stress(pt%n + pt%n_ghosts, pt%art_eps, pt%rho, pt%p, pt%s, pt%r_art)
+      call artificial_stress(nt, pt%art_eps, pt%rho, pt%p, pt%s, pt%r_art)
       call sph_forces(3, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
-                      pt%acc, pt%vsig, pt%r_art, 1.0_rk/smoothing_factor)
+                      pt%acc, pt%vsig, pt%r_art, 1.0_rk/smoothing_factor, pt%switch)
     else
       call sph_forces(3, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
-                      pt%acc, pt%vsig)
+                      pt%acc, pt%vsig, switch=pt%switch)
     end if
     pt%v(:,1:pt%n) = pt%v(:,1:pt%n) + dt_v*pt%acc(:,1:pt%n)
   end subroutine

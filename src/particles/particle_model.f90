@@ -37,6 +37,8 @@ module udar_particle_model
     real(rk), allocatable :: grad(:,:)    !< (9,n) sum_j m_j v_ij (x) grad_i W_ij (sph_rates)
     real(rk), allocatable :: r_art(:,:), art_eps(:)   !< (6,n+images) m2/s2 artificial stress of the step, and its eps
     logical :: artificial = .false.       !< some particle's material has an artificial stress
+    logical :: shear_switch = .false.     !< Balsara's switch on the artificial viscosity (&numerics sph_viscosity_switch)
+    real(rk), allocatable :: switch(:)    !< (n+images) the switch's factor of the step
     real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3,n) m/s: v(n-1/2), and v(n+1/2) before the contact pass
     real(rk), allocatable :: x_start(:,:) !< (3,n+images) m: x(n), for the rates after the contact pass
     integer, allocatable :: pairs(:,:), cell_start(:), order(:), cand(:)
@@ -62,7 +64,7 @@ contains
     if (allocated(pt%m)) cap = max(cap, 2*size(pt%m))
     call grow2(pt%x, 3, cap); call grow2(pt%v, 3, cap); call grow2(pt%acc, 3, cap); call grow2(pt%v_prev, 3, cap)
     call grow2(pt%v_pre, 3, cap); call grow2(pt%x_start, 3, cap); call grow2(pt%s, 6, cap); call grow2(pt%grad, 9, cap)
-    call grow2(pt%r_art, 6, cap); call grow1(pt%art_eps, cap)
+    call grow2(pt%r_art, 6, cap); call grow1(pt%art_eps, cap); call grow1(pt%switch, cap)
     call grow1(pt%hard, cap); call grow1(pt%soft, cap); call grow1(pt%damage, cap); call growl(pt%strong, cap)
     call grow1(pt%m, cap); call grow1(pt%rho, cap); call grow1(pt%e, cap); call grow1(pt%p, cap)
     call grow1(pt%c, cap); call grow1(pt%h, cap); call grow1(pt%temp, cap); call grow1(pt%eps_p, cap)

@@ -19,7 +19,8 @@ module udar_sph
   implicit none
   private
   public :: spline_w, spline_dw, sph_forces, sph_rates, particle_update, particle_pressure, element_to_particle, sph_pairs, &
-            smoothing_length, sph_stable_dt, particle_strength, wave_speed, artificial_stress, symmetric_eigen3
+            smoothing_length, sph_stable_dt, particle_strength, wave_speed, artificial_stress, symmetric_eigen3, &
+            shear_switch
 
   !> Monaghan's viscosity's quadratic term's guard: mu = h v.r / (r^2 + eta2 h^2)
   real(rk), parameter :: eta2 = 0.01_rk
@@ -123,13 +124,14 @@ contains
   !> Added to acc (zero it first); visc(k) keeps pair k's Pi for
   !> sph_rates; vsig is raised to each particle's largest signal speed
   !> c_i + c_j - 3 min(v_ij . x_ij/|x_ij|, 0) (Monaghan 1997), for the step.
-  pure subroutine sph_forces(dim, alpha, beta, np, pairs, x, v, m, rho, p, c, h, s, visc, acc, vsig, r_art, spacing)
+  pure subroutine sph_forces(dim, alpha, beta, np, pairs, x, v, m, rho, p, c, h, s, visc, acc, vsig, r_art, spacing, &
+                             switch)
     integer, intent(in) :: dim, np, pairs(:,:)
     real(rk), intent(in) :: alpha, beta
     real(rk), intent(in) :: x(:,:), v(:,:), m(:), rho(:), p(:), c(:), h(:), s(:,:)
     real(rk), intent(out) :: visc(:)
     real(rk), intent(inout) :: acc(:,:), vsig(:)
-    real(rk), intent(in), optional :: r_art(:,:), spacing
+    real(rk), intent(in), optional :: r_art(:,:), spacing, switch(:)
     integer :: k, i, j
     real(rk) :: g(3), vij(3), vr, d, mu, coef, speed, hij, a(6), f(3)
     do k = 1, np
@@ -143,6 +145,7 @@ contains
       if (vr < 0.0_rk) then
         mu = hij*vr/(d**2 + eta2*hij**2)
         visc(k) = (-alpha*0.5_rk*(c(i) + c(j))*mu + beta*mu**2)/(0.5_rk*(rho(i) + rho(j)))
+        if (present(switch)) visc(k) = visc(k)*0.5_rk*(switch(i) + switch(j))
       end if
       coef = p(i)/rho(i)**2 + p(j)/rho(j)**2 + visc(k)
       acc(:,i) = acc(:,i) - (m(j)*coef)*g
@@ -219,6 +222,40 @@ contains
           heat(j) = heat(j) + m(i)*work
         end if
       end if
+    end do
+  end subroutine
+
+  !> Balsara's (1995) switch of each particle's artificial viscosity,
+  !>   f_i = |div v|_i / (|div v|_i + |curl v|_i + 1e-4 c_i/h_i),
+  !> 1 in compression without rotation, near 0 in shear: Monaghan's pair
+  !> viscosity acts on every approaching pair, so it also resists a shear
+  !> flow, in which pairs approach along one diagonal, as if it were a
+  !> shock. The velocity gradient is sph_rates' estimate,
+  !> L_i = -(1/rho_i) sum_j m_j v_ij (x) grad_i W_ij, at x and v as given
+  !> (gs(9,n): work, that sum column by column as sph_rates' grad).
+  pure subroutine shear_switch(dim, np, pairs, x, v, m, rho, c, h, n, gs, switch)
+    integer, intent(in) :: dim, np, pairs(:,:), n
+    real(rk), intent(in) :: x(:,:), v(:,:), m(:), rho(:), c(:), h(:)
+    real(rk), intent(inout) :: gs(:,:)
+    real(rk), intent(out) :: switch(:)
+    real(rk) :: g(3), d, hij, vij(3), dv, curl(3)
+    integer :: k, i, j, b
+    gs(:,1:n) = 0
+    do k = 1, np
+      i = pairs(1,k)
+      j = pairs(2,k)
+      call pair_gradient(dim, x(:,i), x(:,j), h(i), h(j), g, d, hij)
+      vij = v(:,i) - v(:,j)
+      do b = 1, 3
+        gs(3*b-2:3*b,i) = gs(3*b-2:3*b,i) + (m(j)*g(b))*vij
+        gs(3*b-2:3*b,j) = gs(3*b-2:3*b,j) + (m(i)*g(b))*vij
+      end do
+    end do
+    do i = 1, n
+      ! L = -gs/rho (gs(a + 3(b-1)) for dv_a/dx_b): |div v| and |curl v| need no sign
+      dv = abs(gs(1,i) + gs(5,i) + gs(9,i))/rho(i)
+      curl = [gs(6,i) - gs(8,i), gs(7,i) - gs(3,i), gs(2,i) - gs(4,i)]/rho(i)
+      switch(i) = dv/(dv + norm2(curl) + 1e-4_rk*c(i)/h(i))
     end do
   end subroutine
 

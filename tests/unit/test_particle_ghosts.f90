@@ -8,7 +8,8 @@
 !> next to a plane feel nothing from across it (shown failing: the test
 !> below with no planes). The same for particles that keep their strength,
 !> in tension with a deviator, so that the artificial stress acts (its
-!> images' R from the mirrored stress).
+!> images' R from the mirrored stress). Both with Balsara's switch on the
+!> viscosity (an image takes its original's factor).
 program test_particle_ghosts
   use udar_kinds, only: rk
   use udar_strings, only: r2s, itoa
@@ -129,6 +130,9 @@ contains
     integer :: i, s, q
     call fill(qt, nq)
     call fill(fl, 4*nq)
+    ! (Balsara's switch on: the images take their originals' factors)
+    qt%shear_switch = .true.
+    fl%shear_switch = .true.
     do i = 1, nq
       do s = 0, 3
         q = s*nq + i

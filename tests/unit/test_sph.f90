@@ -20,7 +20,8 @@ program test_sph
   use udar_strings, only: r2s, itoa
   use udar_config, only: material_cfg_t, eos_linear, eos_mie_gruneisen
   use udar_sph, only: spline_w, spline_dw, sph_forces, sph_rates, particle_update, particle_pressure, element_to_particle, sph_pairs, &
-                      smoothing_length, sph_stable_dt, particle_strength, wave_speed, artificial_stress, symmetric_eigen3
+                      smoothing_length, sph_stable_dt, particle_strength, wave_speed, artificial_stress, symmetric_eigen3, &
+                      shear_switch
   use udar_config, only: strength_perfectly_plastic, fracture_plastic_strain, shear_constant, shear_steinberg_guinan
   use udar_eos, only: eos_linear_ab, eos_mie_gruneisen_ab
   use unit_checks, only: check, check_summary
@@ -204,7 +205,7 @@ contains
   subroutine lattice_tests()
     integer, parameter :: nl = 9, n = nl**3
     real(rk) :: x(3,n), v(3,n), m(n), rho(n), p(n), c(n), hh(n), acc(3,n), dedt(n), drho(n), vsig(n), a, eps, rho0, &
-                s(6,n), grad(9,n), l(3,3), gam
+                s(6,n), grad(9,n), l(3,3), gam, sw(n), wall_pi, full_pi
     real(rk), allocatable :: coef(:)
     integer, allocatable :: pairs(:,:)
     integer :: np, i, j, k, q, centre, face, cell_start(4097), order(n), cand(n + 4096)
@@ -265,6 +266,35 @@ contains
     call check('velocity_gradient_under_simple_shear', abs(l(1,2)/gam - 1.0_rk) < 0.02_rk .and. &
                maxval(abs(l - gam*reshape([0, 0, 0, 1, 0, 0, 0, 0, 0], [3, 3]))) < 0.02_rk*gam, &
                'L_xy '//r2s(l(1,2))//', largest other '//r2s(maxval(abs(l - gam*reshape([0, 0, 0, 1, 0, 0, 0, 0, 0], [3, 3])))))
+    ! Balsara's switch: 0 in that shear, 1 in the compression, and the
+    ! pair viscosity scaled by it (a shear flow's approaching pairs)
+    call shear_switch(3, np, pairs, x, v, m, rho, c, hh, n, grad, sw)
+    call check('shear_switch_off_in_shear', sw(centre) < 1e-3_rk, 'f '//r2s(sw(centre)))
+    call sph_forces(3, 1.0_rk, 2.0_rk, np, pairs, x, v, m, rho, p, c, hh, s, coef, acc, vsig, switch=sw)
+    wall_pi = 0
+    do q = 1, np
+      if (pairs(1,q) == centre .or. pairs(2,q) == centre) wall_pi = max(wall_pi, abs(coef(q)))
+    end do
+    call sph_forces(3, 1.0_rk, 2.0_rk, np, pairs, x, v, m, rho, p, c, hh, s, coef, acc, vsig)
+    full_pi = 0
+    do q = 1, np
+      if (pairs(1,q) == centre .or. pairs(2,q) == centre) full_pi = max(full_pi, abs(coef(q)))
+    end do
+    print '(a)', 'MEASURED simple shear: the centre''s largest pair viscosity '//r2s(wall_pi)//' m2/s2 with the switch, '// &
+                 r2s(full_pi)//' without'
+    call check('shear_switch_removes_shear_viscosity', wall_pi < 1e-2_rk*full_pi .and. full_pi > 0.0_rk, &
+               r2s(wall_pi)//' against '//r2s(full_pi))
+    ! (an impact's rate, 1e6 1/s: the switch's floor 1e-4 c/h is 4e3 1/s here)
+    do q = 1, n
+      v(:,q) = -1e6_rk*x(:,q)
+    end do
+    call shear_switch(3, np, pairs, x, v, m, rho, c, hh, n, grad, sw)
+    call check('shear_switch_on_in_compression', sw(centre) > 0.99_rk, 'f '//r2s(sw(centre)))
+    do q = 1, n
+      v(:,q) = 3e3_rk*[-x(2,q), x(1,q), 0.0_rk]
+    end do
+    call shear_switch(3, np, pairs, x, v, m, rho, c, hh, n, grad, sw)
+    call check('shear_switch_off_in_rotation', sw(centre) < 1e-3_rk, 'f '//r2s(sw(centre)))
   end subroutine
 
   !> The artificial stress (Monaghan 2000; Gray, Monaghan and Swift 2001).
