@@ -218,7 +218,10 @@ contains
 
   !> The first half of the particles' step, at x(n) with p(n): their mirror
   !> images across the symmetry planes (sym), the pairs (none between two
-  !> images) and the accelerations (sph_forces); v(n+1/2) = v(n-1/2) + dt_v a.
+  !> images), Balsara's switch of the viscosity when asked for, the
+  !> artificial stress of the particles that keep their strength (their
+  !> material's artificial_stress, mats) and the accelerations (sph_forces);
+  !> v(n+1/2) = v(n-1/2) + dt_v a.
   subroutine particles_forces(pt, sym, mats, dt_v)
     type(particles_t), intent(inout) :: pt
     type(wall_t), intent(in) :: sym(:)
