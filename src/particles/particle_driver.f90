@@ -260,7 +260,7 @@ contains
     end do
     nt = pt%n + pt%n_ghosts
     pt%switch(1:nt) = 1
-    if (pt%shear_switch) then
+    if (pt%use_shear_switch) then
       ! (an image's |div v| and |curl v| are its original's)
       call shear_switch(3, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%c, pt%h, nt, pt%grad, pt%switch)
       do k = 1, pt%n_ghosts

@@ -37,7 +37,7 @@ module udar_particle_model
     real(rk), allocatable :: grad(:,:)    !< (9,n) sum_j m_j v_ij (x) grad_i W_ij (sph_rates)
     real(rk), allocatable :: r_art(:,:), art_eps(:)   !< (6,n+images) m2/s2 artificial stress of the step, and its eps
     logical :: artificial = .false.       !< some particle's material has an artificial stress
-    logical :: shear_switch = .false.     !< Balsara's switch on the artificial viscosity (&numerics sph_viscosity_switch)
+    logical :: use_shear_switch = .false. !< Balsara's switch on the artificial viscosity (&numerics sph_viscosity_switch)
     real(rk), allocatable :: switch(:)    !< (n+images) the switch's factor of the step
     real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3,n) m/s: v(n-1/2), and v(n+1/2) before the contact pass
     real(rk), allocatable :: x_start(:,:) !< (3,n+images) m: x(n), for the rates after the contact pass

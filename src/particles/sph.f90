@@ -195,7 +195,7 @@ contains
     real(rk), intent(inout) :: drho(:), heat(:)
     real(rk), intent(inout), optional :: grad(:,:)
     real(rk), intent(in), optional :: r_art(:,:), spacing
-    integer :: k, i, j, b
+    integer :: k, i, j
     real(rk) :: g(3), d, hij, vg, vij(3), work
     do k = 1, np
       i = pairs(1,k)
@@ -205,13 +205,7 @@ contains
       vg = dot_product(vij, g)
       drho(i) = drho(i) + m(j)*vg
       drho(j) = drho(j) + m(i)*vg
-      ! (grad_j W_ji = -g and v_ji = -v_ij: the same product for j)
-      if (present(grad)) then
-        do b = 1, 3
-          grad(3*b-2:3*b,i) = grad(3*b-2:3*b,i) + (m(j)*g(b))*vij
-          grad(3*b-2:3*b,j) = grad(3*b-2:3*b,j) + (m(i)*g(b))*vij
-        end do
-      end if
+      if (present(grad)) call add_pair_gradient(g, vij, m(i), m(j), grad(:,i), grad(:,j))
       heat(i) = heat(i) + m(j)*0.5_rk*visc(k)*vg
       heat(j) = heat(j) + m(i)*0.5_rk*visc(k)*vg
       if (present(r_art)) then
@@ -222,6 +216,19 @@ contains
           heat(j) = heat(j) + m(i)*work
         end if
       end if
+    end do
+  end subroutine
+
+  !> A pair's terms of the velocity-gradient sums sum_j m_j v_ij (x) grad_i W_ij
+  !> (column by column, gi(a + 3(b-1)) for dv_a/dx_b) of particles i and j:
+  !> grad_j W_ji = -g and v_ji = -v_ij give j the same product.
+  pure subroutine add_pair_gradient(g, vij, mi, mj, gi, gj)
+    real(rk), intent(in) :: g(3), vij(3), mi, mj
+    real(rk), intent(inout) :: gi(9), gj(9)
+    integer :: b
+    do b = 1, 3
+      gi(3*b-2:3*b) = gi(3*b-2:3*b) + (mj*g(b))*vij
+      gj(3*b-2:3*b) = gj(3*b-2:3*b) + (mi*g(b))*vij
     end do
   end subroutine
 
@@ -238,18 +245,14 @@ contains
     real(rk), intent(in) :: x(:,:), v(:,:), m(:), rho(:), c(:), h(:)
     real(rk), intent(inout) :: gs(:,:)
     real(rk), intent(out) :: switch(:)
-    real(rk) :: g(3), d, hij, vij(3), dv, curl(3)
-    integer :: k, i, j, b
+    real(rk) :: g(3), d, hij, dv, curl(3)
+    integer :: k, i, j
     gs(:,1:n) = 0
     do k = 1, np
       i = pairs(1,k)
       j = pairs(2,k)
       call pair_gradient(dim, x(:,i), x(:,j), h(i), h(j), g, d, hij)
-      vij = v(:,i) - v(:,j)
-      do b = 1, 3
-        gs(3*b-2:3*b,i) = gs(3*b-2:3*b,i) + (m(j)*g(b))*vij
-        gs(3*b-2:3*b,j) = gs(3*b-2:3*b,j) + (m(i)*g(b))*vij
-      end do
+      call add_pair_gradient(g, v(:,i) - v(:,j), m(i), m(j), gs(:,i), gs(:,j))
     end do
     do i = 1, n
       ! L = -gs/rho (gs(a + 3(b-1)) for dv_a/dx_b): |div v| and |curl v| need no sign

@@ -265,7 +265,7 @@ contains
     dom%erode_dt_limit = cfg%numerics%erode_dt_ratio*st%dt0
     dom%keep_volumes = any(erosion_enabled(dom%mat))
     dom%keep_altitudes = ct%n_interfaces > 0
-    pt%shear_switch = cfg%numerics%sph_viscosity_switch
+    pt%use_shear_switch = cfg%numerics%sph_viscosity_switch
     call particles_init(pt, dom)
     ! (a restart's particles are contact nodes, and the nodes' masses without their elements)
     if (pt%n > 0) then

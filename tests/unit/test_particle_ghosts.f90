@@ -131,8 +131,8 @@ contains
     call fill(qt, nq)
     call fill(fl, 4*nq)
     ! (Balsara's switch on: the images take their originals' factors)
-    qt%shear_switch = .true.
-    fl%shear_switch = .true.
+    qt%use_shear_switch = .true.
+    fl%use_shear_switch = .true.
     do i = 1, nq
       do s = 0, 3
         q = s*nq + i
