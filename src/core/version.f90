@@ -3,5 +3,5 @@ module udar_version
   implicit none
   private
   public :: program_version
-  character(len=*), parameter :: program_version = '0.9.5'
+  character(len=*), parameter :: program_version = '0.9.6'
 end module udar_version
