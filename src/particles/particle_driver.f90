@@ -10,7 +10,7 @@
 module udar_particle_driver
   use udar_kinds, only: rk, i8
   use udar_domain, only: domain_t, wall_t
-  use udar_config, only: eroded_particles, strength_none, material_cfg_t
+  use udar_config, only: eroded_particles, strength_none, material_cfg_t, geometry_plane_strain
   use udar_fracture, only: el_eroded
   use udar_ordering, only: stable_sort_permutation, find_sorted
   use udar_particle_model, only: particles_t, particles_reserve, particles_pair_room
@@ -54,6 +54,8 @@ contains
     integer :: e, n
     pt%enabled = particles_converting(dom)
     if (.not. pt%enabled) return
+    ! plane strain: the 2D kernel, with the masses and volumes per metre of depth
+    pt%dim = merge(2, 3, dom%geometry == geometry_plane_strain)
     call particles_reserve(pt, max(pt%n, 1))
     if (allocated(pt%converted)) deallocate(pt%converted)
     allocate(pt%converted(dom%n_elems))
@@ -156,7 +158,7 @@ contains
       pt%soft(q) = recv(first+15)
       pt%damage(q) = recv(first+16)
       pt%strong(q) = dom%mat(pt%mat(q))%strength /= strength_none .and. any(pt%s(:,q) /= 0.0_rk)
-      pt%h(q) = smoothing_length(pt%m(q), pt%rho(q), smoothing_factor, 3)
+      pt%h(q) = smoothing_length(pt%m(q), pt%rho(q), smoothing_factor, pt%dim)
       call particle_pressure(dom%mat(pt%mat(q)), pt%rho(q), pt%e(q), pt%strong(q), pt%p(q), pt%c(q))
       pt%c(q) = wave_speed(dom%mat(pt%mat(q)), pt%strong(q), pt%rho(q), pt%c(q), pt%p(q), pt%temp(q))
       pt%vsig(q) = 2.0_rk*pt%c(q)
@@ -234,7 +236,7 @@ contains
     nt = pt%n + pt%n_ghosts
     call particles_pair_room(pt, 32*nt)
     do
-      call sph_pairs(3, nt, pt%x, pt%h, 2*nt, pt%cell_start, pt%order, pt%cand, pt%pairs, np)
+      call sph_pairs(pt%dim, nt, pt%x, pt%h, 2*nt, pt%cell_start, pt%order, pt%cand, pt%pairs, np)
       if (np >= 0) exit
       call particles_pair_room(pt, 2*size(pt%pairs, 2))
     end do
@@ -262,17 +264,17 @@ contains
     pt%switch(1:nt) = 1
     if (pt%use_shear_switch) then
       ! (an image's |div v| and |curl v| are its original's)
-      call shear_switch(3, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%c, pt%h, nt, pt%grad, pt%switch)
+      call shear_switch(pt%dim, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%c, pt%h, nt, pt%grad, pt%switch)
       do k = 1, pt%n_ghosts
         pt%switch(pt%n+k) = pt%switch(pt%ghost_of(k))
       end do
     end if
     if (pt%artificial) then
       call artificial_stress(nt, pt%art_eps, pt%rho, pt%p, pt%s, pt%r_art)
-      call sph_forces(3, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
+      call sph_forces(pt%dim, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
                       pt%acc, pt%vsig, pt%r_art, 1.0_rk/smoothing_factor, pt%switch)
     else
-      call sph_forces(3, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
+      call sph_forces(pt%dim, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
                       pt%acc, pt%vsig, switch=pt%switch)
     end if
     pt%v(:,1:pt%n) = pt%v(:,1:pt%n) + dt_v*pt%acc(:,1:pt%n)
@@ -403,13 +405,13 @@ contains
     pt%dheat(1:pt%n+pt%n_ghosts) = 0
     if (pt%artificial) then
       pt%grad(:,1:pt%n+pt%n_ghosts) = 0
-      call sph_rates(3, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad, &
+      call sph_rates(pt%dim, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad, &
                      pt%r_art, 1.0_rk/smoothing_factor)
     else if (any(pt%strong(1:pt%n))) then
       pt%grad(:,1:pt%n+pt%n_ghosts) = 0
-      call sph_rates(3, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad)
+      call sph_rates(pt%dim, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad)
     else
-      call sph_rates(3, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat)
+      call sph_rates(pt%dim, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat)
     end if
     ! each run of particles of one material together (the kernel takes one)
     i = 1

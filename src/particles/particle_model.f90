@@ -12,6 +12,7 @@ module udar_particle_model
 
   type :: particles_t
     logical :: enabled = .false.          !< some material's eroded elements become particles
+    integer :: dim = 3                    !< the kernel's dimension: 3, or 2 in plane strain (masses per metre)
     integer :: n = 0                      !< particles made so far
     real(rk), allocatable :: x(:,:), v(:,:)   !< (3,n) m, m/s: position x(n), velocity v(n-1/2) as the nodes'
     real(rk), allocatable :: m(:)         !< kg

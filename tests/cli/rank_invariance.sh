@@ -17,7 +17,7 @@ deck=${5:-$case}
 # the same deck in the same folder (the resolved deck, stored in the field
 # file, names the mesh by its absolute path); each run's output moved aside
 mkdir -p "$W/run"
-cp "$ROOT/tests/regression/$case/$case.msh" "$W/run/"
+cp "$ROOT/tests/regression/$case/"*.msh "$W/run/"     # (a deck of the case may take another of its meshes)
 cp "$ROOT/tests/regression/$case/$deck.nml" "$W/run/$case.nml"
 [ -n "$t_end" ] && sed -i "s/^\( *\)t_end = .*/\1t_end = $t_end/" "$W/run/$case.nml"
 if [ -n "$tet" ]; then

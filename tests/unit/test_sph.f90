@@ -6,7 +6,9 @@
 !> at uniform pressure leaves an interior particle at rest and pushes a
 !> face particle outwards; the continuity equation gives drho/dt = 3 eps rho
 !> under a uniform compression -eps x (the continuum's -rho div v); the
-!> particle pressure has no tension; an element's conversion keeps mass,
+!> particle pressure has no tension (and in plane strain, with the 2D
+!> kernel, the lattice's pressure and continuity checks again, drho/dt = 2
+!> eps rho); an element's conversion keeps mass,
 !> momentum and energy; two particles striking head-on rebound with
 !> at the speed they met (no viscosity: an elastic collision), momentum
 !> exact and energy kept to the time integration's error. The artificial
@@ -56,6 +58,7 @@ program test_sph
 
   call cloud_tests()
   call lattice_tests()
+  call plane_lattice_tests()
   call pressure_tests()
   call tension_tests()
   call conversion_tests()
@@ -295,6 +298,65 @@ contains
     end do
     call shear_switch(3, np, pairs, x, v, m, rho, c, hh, n, grad, sw)
     call check('shear_switch_off_in_rotation', sw(centre) < 1e-3_rk, 'f '//r2s(sw(centre)))
+  end subroutine
+
+  !> The same in plane strain (dim 2, the kernel of the 2D particles):
+  !> a square lattice of particles of mass rho0 a^2 per metre of depth, h
+  !> 1.2 a; under the uniform compression -eps (x, y) the continuity gives
+  !> drho/dt = 2 eps rho0 and the velocity gradient -eps in the plane, 0
+  !> out of it; at uniform pressure an interior particle stays at rest and
+  !> a face particle is pushed out, in the plane.
+  subroutine plane_lattice_tests()
+    integer, parameter :: nl = 13, n = nl**2
+    real(rk) :: x(3,n), v(3,n), m(n), rho(n), p(n), c(n), hh(n), acc(3,n), dedt(n), drho(n), vsig(n), a, eps, rho0, &
+                s(6,n), grad(9,n), l(3,3), want(3,3)
+    real(rk), allocatable :: coef(:)
+    integer, allocatable :: pairs(:,:)
+    integer :: np, i, j, q, centre, face, cell_start(4097), order(n), cand(n + 4096)
+    a = 1e-4_rk
+    rho0 = 2700.0_rk
+    eps = 1e3_rk
+    q = 0
+    do j = 0, nl - 1
+      do i = 0, nl - 1
+        q = q + 1
+        x(:,q) = [a*i - a*(nl - 1)/2, a*j - a*(nl - 1)/2, 0.0_rk]
+        v(:,q) = -eps*x(:,q)
+      end do
+    end do
+    allocate(pairs(2,20000), coef(20000))
+    centre = (n + 1)/2
+    face = nl*((nl - 1)/2) + nl                 ! x = +max, y = 0
+    m = rho0*a**2
+    rho = rho0
+    p = 1e9_rk
+    c = 5000.0_rk
+    hh = smoothing_length(m, rho, 1.2_rk, 2)
+    call check('plane_smoothing_length', abs(hh(1)/(1.2_rk*a) - 1.0_rk) < 1e-14_rk, 'h/a '//r2s(hh(1)/a))
+    call sph_pairs(2, n, x, hh, 4096, cell_start, order, cand, pairs, np)
+    acc = 0
+    dedt = 0
+    drho = 0
+    vsig = 0
+    s = 0
+    grad = 0
+    call sph_forces(2, 0.0_rk, 0.0_rk, np, pairs, x, v, m, rho, p, c, hh, s, coef, acc, vsig)
+    call sph_rates(2, 0.0_rk, np, pairs, x, v, m, hh, coef, drho, dedt, grad)
+    call check('plane_uniform_pressure_interior_at_rest', norm2(acc(:,centre)) < 1e-10_rk*norm2(acc(:,face)), &
+               '|a| centre '//r2s(norm2(acc(:,centre)))//' m/s2, face '//r2s(norm2(acc(:,face))))
+    call check('plane_uniform_pressure_pushes_a_face_out', acc(1,face) > 0.0_rk .and. &
+               abs(acc(2,face)) + abs(acc(3,face)) < 1e-10_rk*acc(1,face), 'a_x at the +x face '//r2s(acc(1,face)))
+    print '(a)', 'MEASURED plane continuity under -eps (x, y): drho/dt '//r2s(drho(centre))//' against 2 eps rho0 = '// &
+                 r2s(2.0_rk*eps*rho0)
+    call check('plane_continuity_under_uniform_compression', abs(drho(centre)/(2.0_rk*eps*rho0) - 1.0_rk) < 0.02_rk, &
+               'ratio '//r2s(drho(centre)/(2.0_rk*eps*rho0)))
+    l = reshape(-grad(:,centre)/rho0, [3, 3])
+    want = 0
+    want(1,1) = -eps
+    want(2,2) = -eps
+    call check('plane_velocity_gradient_under_uniform_compression', all(abs(l - want) < 0.02_rk*eps), &
+               'L diagonal '//r2s(l(1,1))//' '//r2s(l(2,2))//' '//r2s(l(3,3))//' 1/s against '//r2s(-eps)//', '// &
+               r2s(-eps)//', 0')
   end subroutine
 
   !> The artificial stress (Monaghan 2000; Gray, Monaghan and Swift 2001).

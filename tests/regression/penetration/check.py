@@ -31,7 +31,9 @@ from check_geometry import deepest_inside, slave_and_master  # noqa: E402
 
 deck = sys.argv[2] if len(sys.argv) > 2 else 'penetration'
 if deck.endswith('_particles'):
-    # eroded elements become particles: their own checks (particles_check.py)
+    # eroded elements become particles: their own checks (particles_check.py;
+    # also from penetration_2d/check.py, which runs this file)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import particles_check  # noqa: E402
     particles_check.main(sys.argv[1], deck)
     checks.finish()

@@ -13,6 +13,10 @@ must keep and what the contact must hold:
   1e-6) and no rod particle deeper inside one than 0.05 of its size (the
   contact takes particles as slave nodes; measured 0.02);
 - particles are made (more than 100) and written with each field step.
+In plane strain (penetration_plane_strain_particles, triangles) masses are
+per metre of depth and momentum is along y; where the deck's contact is
+symmetric, no plate particle may be deeper inside a remaining rod element
+than 0.05 of its size either.
 Usage: called by check.py for a deck whose name ends in _particles."""
 import os
 import sys
@@ -32,11 +36,21 @@ RHO0 = 7850.0
 def main(run_dir, deck):
     out = os.path.join(run_dir, 'out')
     h = udar_results.read_history(os.path.join(out, deck + '_history.csv'))
+    with open(os.path.join(run_dir, deck + '.nml')) as nml:
+        both_ways = 'symmetric = .true.' in nml.read()
     with h5py.File(os.path.join(out, deck + '.h5'), 'r') as f:
         conn, x0, rod_nodes, plate, h_plate = slave_and_master(f, 1, 2)
-        a, b, c, d = (x0[conn[:, k]] for k in range(4))
-        el_mass = RHO0 * np.abs(np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a))) / 6.0
-        nodes_in, particles_in, last = 0.0, 0.0, None
+        h_rod = slave_and_master(f, 2, 1)[4]
+        if conn.shape[1] == 4:
+            a, b, c, d = (x0[conn[:, k]] for k in range(4))
+            el_mass = RHO0 * np.abs(np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a))) / 6.0
+            axis = 'z'
+        else:
+            # plane strain: per metre of depth
+            a, b, c = (x0[conn[:, k]] for k in range(3))
+            el_mass = RHO0 * 0.5 * np.abs((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1]))
+            axis = 'y'
+        nodes_in, particles_in, plate_particles_in, last = 0.0, 0.0, 0.0, None
         for k in sorted(f['steps'].keys()):
             g = f['steps'][k]
             x = g['coordinates'][...]
@@ -47,21 +61,28 @@ def main(run_dir, deck):
             w_nodes = deepest_inside(x[live_rod], x, conn[plate_alive])
             p = g['particles']
             n = int(p.attrs['count'])
-            w_part = 0.0
+            w_part, w_plate_part = 0.0, 0.0
             if n > 0:
                 xp = p['coordinates'][...]
                 rod_p = xp[p['part_id'][...] == 1]
                 if len(rod_p):
                     w_part = deepest_inside(rod_p, x, conn[plate_alive])
+                plate_p = xp[p['part_id'][...] == 2]
+                if len(plate_p):
+                    w_plate_part = deepest_inside(plate_p, x, conn[rod_alive])
             print(f"MEASURED t = {g.attrs['time'] * 1e6:.2f} us: {n} particles, deepest remaining rod node inside "
-                  f"the plate {w_nodes / h_plate:.3g} h, deepest rod particle {w_part / h_plate:.3g} h")
+                  f"the plate {w_nodes / h_plate:.3g} h, deepest rod particle {w_part / h_plate:.3g} h, deepest plate "
+                  f"particle inside the rod {w_plate_part / h_rod:.3g} h")
             nodes_in = max(nodes_in, w_nodes)
             particles_in = max(particles_in, w_part)
+            plate_particles_in = max(plate_particles_in, w_plate_part)
             last = (state, n, p['mass'][...] if n > 0 else np.zeros(0), p['element'][...] if n > 0 else None)
     state, n, p_mass, p_elem = last
     checks.above('particles_made', n, 100)
     checks.below('rod_nodes_inside_remaining_plate_over_h', nodes_in / h_plate, 1e-4)
     checks.below('rod_particles_inside_remaining_plate_over_h', particles_in / h_plate, 0.05)
+    if both_ways:
+        checks.below('plate_particles_inside_remaining_rod_over_h', plate_particles_in / h_rod, 0.05)
     # every eroded element became one particle, of its mass
     eroded = np.nonzero(state > 1.5)[0]
     checks.below('one_particle_per_eroded_element', abs(n - len(eroded)), 0)
@@ -70,8 +91,8 @@ def main(run_dir, deck):
     checks.compare('particle_mass_is_eroded_element_mass', p_mass.sum(), el_mass[eroded].sum(), 1e-12, 'kg')
     checks.below('mass_change', np.abs(h['mass'] - h['mass'][0]).max(), 0.0, 'kg')
     checks.compare('history_particle_mass', h['particle_mass'][-1], el_mass[eroded].sum(), 1e-12, 'kg')
-    p0 = h['momentum_z'][0]
-    checks.below('momentum_conserved_relative', np.abs(h['momentum_z'] - p0).max() / abs(p0), 1e-13)
+    p0 = h['momentum_' + axis][0]
+    checks.below('momentum_conserved_relative', np.abs(h['momentum_' + axis] - p0).max() / abs(p0), 1e-13)
     print(f"MEASURED at the end: {n} particles of {h['particle_mass'][-1] * 1e3:.4f} g, kinetic "
           f"{h['particle_kinetic'][-1]:.4g} J, internal {h['particle_internal'][-1]:.4g} J; conversion made "
           f"{h['conversion_heat'][-1]:.4g} J of kinetic energy heat; energy error {h['energy_error'][-1]:.3e}")
