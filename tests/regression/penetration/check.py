@@ -27,7 +27,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', 'tools'))
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'rod_3kms'))
 import checks  # noqa: E402
 import udar_results  # noqa: E402
-from check_geometry import deepest_inside, slave_and_master  # noqa: E402
+from check_geometry import deepest_inside, element_measures, slave_and_master  # noqa: E402
 
 deck = sys.argv[2] if len(sys.argv) > 2 else 'penetration'
 if deck.endswith('_particles'):
@@ -44,13 +44,9 @@ with h5py.File(os.path.join(out, deck + '.h5'), 'r') as f:
     axis = 2 if nc == 4 else 1          # the impact direction: z (3D) or the axis y (axisymmetric)
     # lumped masses as udar forms them: an equal share of rho0 V0 of each
     # element at each corner (axisymmetric: V0 = 2 pi rbar A, per revolution)
-    if nc == 4:
-        a, b, c, d = (x0[conn[:, k]] for k in range(4))
-        vol0 = np.abs(np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a))) / 6.0
-    else:
-        a, b, c = (x0[conn[:, k]] for k in range(3))
-        area = 0.5 * np.abs((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1]))
-        vol0 = 2.0 * np.pi * (a[:, 0] + b[:, 0] + c[:, 0]) / 3.0 * area
+    vol0 = element_measures(conn, x0)
+    if nc == 3:
+        vol0 = 2.0 * np.pi * x0[conn, 0].mean(axis=1) * vol0
     mass = np.zeros(len(x0))
     for k in range(nc):
         np.add.at(mass, conn[:, k], 7850.0 * vol0 / nc)

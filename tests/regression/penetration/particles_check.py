@@ -28,7 +28,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', 'tools'))
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'rod_3kms'))
 import checks  # noqa: E402
 import udar_results  # noqa: E402
-from check_geometry import deepest_inside, slave_and_master  # noqa: E402
+from check_geometry import deepest_inside, element_measures, slave_and_master  # noqa: E402
 
 RHO0 = 7850.0
 
@@ -36,20 +36,15 @@ RHO0 = 7850.0
 def main(run_dir, deck):
     out = os.path.join(run_dir, 'out')
     h = udar_results.read_history(os.path.join(out, deck + '_history.csv'))
-    with open(os.path.join(run_dir, deck + '.nml')) as nml:
-        both_ways = 'symmetric = .true.' in nml.read()
     with h5py.File(os.path.join(out, deck + '.h5'), 'r') as f:
+        # the run's own resolved deck (udar's canonical form) says whether the contact is both ways
+        deck_text = f.attrs['deck']
+        both_ways = 'symmetric = .true.' in (deck_text.decode() if isinstance(deck_text, bytes) else deck_text)
         conn, x0, rod_nodes, plate, h_plate = slave_and_master(f, 1, 2)
         h_rod = slave_and_master(f, 2, 1)[4]
-        if conn.shape[1] == 4:
-            a, b, c, d = (x0[conn[:, k]] for k in range(4))
-            el_mass = RHO0 * np.abs(np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a))) / 6.0
-            axis = 'z'
-        else:
-            # plane strain: per metre of depth
-            a, b, c = (x0[conn[:, k]] for k in range(3))
-            el_mass = RHO0 * 0.5 * np.abs((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1]))
-            axis = 'y'
+        # (plane strain: per metre of depth)
+        el_mass = RHO0 * element_measures(conn, x0)
+        axis = 'z' if conn.shape[1] == 4 else 'y'
         nodes_in, particles_in, plate_particles_in, last = 0.0, 0.0, 0.0, None
         for k in sorted(f['steps'].keys()):
             g = f['steps'][k]

@@ -72,6 +72,17 @@ def depths_inside(points, x, tets, in_plane=None):
     return depths
 
 
+def element_measures(conn, x0):
+    """Each element's reference measure: a tetrahedron's volume (m3), or a
+    triangle's area in the (x, y) plane (m2: per metre of depth in plane
+    strain; times 2 pi rbar for the volume per revolution)."""
+    if conn.shape[1] == 4:
+        a, b, c, d = (x0[conn[:, k]] for k in range(4))
+        return np.abs(np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a))) / 6.0
+    a, b, c = (x0[conn[:, k]] for k in range(3))
+    return 0.5 * np.abs((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1]))
+
+
 def slave_and_master(f, slave_part, master_part):
     """From an open field file: connectivity, x0, the slave part's nodes,
     the master part's element mask and its median edge length (h)."""

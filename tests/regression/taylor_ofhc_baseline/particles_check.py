@@ -29,8 +29,10 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', 'tools'))
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..', '..', 'postproc'))
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', 'rod_3kms'))
 import checks  # noqa: E402
 import udar_results  # noqa: E402
+from check_geometry import element_measures  # noqa: E402
 
 RHO0 = 8960.0
 FOOTPRINT_M = 13.56e-3       # Johnson and Cook (1983)
@@ -48,8 +50,7 @@ def measure(path):
     p = s.particles
     conn = f.connectivity
     x0 = f.x0
-    a, b, c, d = (x0[conn[:, k]] for k in range(4))
-    el_mass = RHO0 * np.abs(np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a))) / 6.0
+    el_mass = RHO0 * element_measures(conn, x0)
     state = s.fields['fracture_state'] if 'fracture_state' in s.fields.elem_fields else np.zeros(len(conn))
     converted = np.asarray(state) == 2
     n = 0 if p is None else p.count
