@@ -141,6 +141,8 @@ run_test "cli/ranks_penetration_particles" tests/cli/rank_invariance.sh bin/udar
 run_test "cli/ranks_penetration_2d" tests/cli/rank_invariance.sh bin/udar penetration_2d 2.5e-6
 run_test "cli/ranks_penetration_plane_strain_particles" tests/cli/rank_invariance.sh bin/udar penetration_2d 1.5e-6 - \
   penetration_plane_strain_particles
+run_test "cli/ranks_penetration_axisymmetric_particles" tests/cli/rank_invariance.sh bin/udar penetration_2d 1.5e-6 - \
+  penetration_axisymmetric_particles
 run_test "cli/ranks_self_contact" tests/cli/rank_invariance.sh bin/udar self_contact
 run_test "cli/ranks_self_contact_2d" tests/cli/rank_invariance.sh bin/udar self_contact_2d
 run_test "cli/ranks_crossed_edges" tests/cli/rank_invariance.sh bin/udar crossed_edges 8.0e-6
@@ -153,6 +155,7 @@ run_test "cli/restart_erosion_edges" tests/cli/restart_erosion.sh bin/udar edges
 run_test "cli/restart_erosion_particles" tests/cli/restart_erosion.sh bin/udar particles
 run_test "cli/restart_erosion_particles_strength" tests/cli/restart_erosion.sh bin/udar particles_strength
 run_test "cli/restart_erosion_plane_strain_particles" tests/cli/restart_erosion.sh bin/udar plane_strain_particles
+run_test "cli/restart_erosion_axisymmetric_particles" tests/cli/restart_erosion.sh bin/udar axisymmetric_particles
 run_test "cli/tracking_rod_3kms" tests/cli/tracking.sh bin/udar rod_3kms 0.6e-6
 run_test "cli/tracking_oblique_friction" tests/cli/tracking.sh bin/udar oblique_friction
 run_test "cli/contact_mirrored" tests/cli/contact_mirrored.sh bin/udar
@@ -213,6 +216,8 @@ run_test "regression/taylor_particles_no_art_fails" regression_fails taylor_ofhc
 run_test "regression/penetration_2d" regression penetration_2d bin/udar
 run_test "regression/penetration_plane_strain_particles" regression penetration_2d bin/udar \
   penetration_plane_strain_particles
+run_test "regression/penetration_axisymmetric_particles" regression penetration_2d bin/udar \
+  penetration_axisymmetric_particles
 run_test "regression/deep_node" regression deep_node bin/udar-debug
 run_test "regression/crossed_edges" regression crossed_edges bin/udar-debug
 run_test "regression/crossed_edges_friction" regression crossed_edges bin/udar-debug crossed_edges_friction

@@ -1248,10 +1248,6 @@ contains
         if (m%eroded == eroded_particles .and. .not. positive(m%eps_erode) .and. .not. is_bad(inst, 'eps_erode')) &
              call complain(ctx, inst, 'eroded', "'particles' is what eroded elements become: set eps_erode > 0 "// &
              '(the material does not erode)')
-        if (m%eroded == eroded_particles .and. cfg%mesh%geometry == geometry_axisymmetric) &
-             call complain(ctx, inst, 'eroded', "'particles' is 3D and plane strain only for now (geometry = "// &
-             "'solid' or 'plane_strain': axisymmetric particles need the hoop terms); axisymmetric runs erode to "// &
-             "'free_nodes'")
       end if
       call ranges('eps_convert')
       if (positive(m%eps_convert) .and. m%eroded /= eroded_particles .and. .not. is_bad(inst, 'eroded')) &

@@ -91,6 +91,7 @@ module udar_domain
     !> the symmetry planes as frictionless walls facing the body (their
     !> normals into it): what keeps particles, which are no mesh nodes, on
     !> the body's side, and across which they meet their mirror images
+    !> (axisymmetric, the axis r = 0 is the last of them)
     type(wall_t), allocatable :: sym_walls(:)
     ! ---- gauges (&gauge): a node, an element or a material point (the
     ! element it starts in and its barycentric weights); global indices,

@@ -8,14 +8,15 @@
 !> are still elements, in its list's fixed order, whatever the order of
 !> the conversions (so a restart recomputes it to the bit).
 module udar_particle_driver
-  use udar_kinds, only: rk, i8
+  use udar_kinds, only: rk, i8, pi
   use udar_domain, only: domain_t, wall_t
-  use udar_config, only: eroded_particles, strength_none, material_cfg_t, geometry_plane_strain
+  use udar_config, only: eroded_particles, strength_none, material_cfg_t, geometry_plane_strain, geometry_axisymmetric
   use udar_fracture, only: el_eroded
   use udar_ordering, only: stable_sort_permutation, find_sorted
   use udar_particle_model, only: particles_t, particles_reserve, particles_pair_room
   use udar_sph, only: element_to_particle, particle_pressure, smoothing_length, sph_pairs, sph_forces, sph_rates, &
-                      particle_update, particle_strength, wave_speed, artificial_stress, shear_switch
+                      particle_update, particle_strength, wave_speed, artificial_stress, shear_switch, hoop_forces, &
+                      axisymmetric_rates
   use udar_comms, only: comms_allgather_count, comms_allgatherv_real, comms_size
   use udar_exact_sum, only: exact_add
   implicit none
@@ -35,6 +36,11 @@ module udar_particle_driver
   !> (6), hardening, thermal factor, damage; then per corner the node's id,
   !> its mass share, position and velocity
   integer, parameter :: rec_head = 16, rec_corner = 8
+  !> axisymmetric: a particle nearer the axis than this share of its h is
+  !> weighted as if it were this far (its radial weight 2 pi r divides its
+  !> pair terms: no weight of 0 on the axis itself); every sum takes the
+  !> same weight, so the forces' work is still the rates'
+  real(rk), parameter :: axis_floor = 0.25_rk
 
 contains
 
@@ -54,8 +60,11 @@ contains
     integer :: e, n
     pt%enabled = particles_converting(dom)
     if (.not. pt%enabled) return
-    ! plane strain: the 2D kernel, with the masses and volumes per metre of depth
-    pt%dim = merge(2, 3, dom%geometry == geometry_plane_strain)
+    ! plane strain: the 2D kernel, with the masses and volumes per metre of
+    ! depth; axisymmetric: the 2D kernel on the (r, z) plane, masses per
+    ! revolution, the sums those of the area density rho 2 pi r
+    pt%axisymmetric = dom%geometry == geometry_axisymmetric
+    pt%dim = merge(2, 3, dom%geometry == geometry_plane_strain .or. pt%axisymmetric)
     call particles_reserve(pt, max(pt%n, 1))
     if (allocated(pt%converted)) deallocate(pt%converted)
     allocate(pt%converted(dom%n_elems))
@@ -158,7 +167,12 @@ contains
       pt%soft(q) = recv(first+15)
       pt%damage(q) = recv(first+16)
       pt%strong(q) = dom%mat(pt%mat(q))%strength /= strength_none .and. any(pt%s(:,q) /= 0.0_rk)
-      pt%h(q) = smoothing_length(pt%m(q), pt%rho(q), smoothing_factor, pt%dim)
+      if (pt%axisymmetric) then
+        ! (of its area in the (r, z) plane: m / (rho 2 pi r))
+        pt%h(q) = smoothing_length(pt%m(q)/(2.0_rk*pi*max(pt%x(1,q), tiny(1.0_rk))), pt%rho(q), smoothing_factor, pt%dim)
+      else
+        pt%h(q) = smoothing_length(pt%m(q), pt%rho(q), smoothing_factor, pt%dim)
+      end if
       call particle_pressure(dom%mat(pt%mat(q)), pt%rho(q), pt%e(q), pt%strong(q), pt%p(q), pt%c(q))
       pt%c(q) = wave_speed(dom%mat(pt%mat(q)), pt%strong(q), pt%rho(q), pt%c(q), pt%p(q), pt%temp(q))
       pt%vsig(q) = 2.0_rk*pt%c(q)
@@ -261,22 +275,42 @@ contains
       pt%artificial = pt%artificial .or. pt%art_eps(k) > 0.0_rk
     end do
     nt = pt%n + pt%n_ghosts
+    if (pt%axisymmetric) call radial_weights(pt, nt, pt%x, pt%v, 0.0_rk)
     pt%switch(1:nt) = 1
     if (pt%use_shear_switch) then
       ! (an image's |div v| and |curl v| are its original's)
-      call shear_switch(pt%dim, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%c, pt%h, nt, pt%grad, pt%switch)
+      if (pt%axisymmetric) then
+        call shear_switch(pt%dim, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%c, pt%h, nt, pt%grad, pt%switch, pt%w)
+      else
+        call shear_switch(pt%dim, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%c, pt%h, nt, pt%grad, pt%switch)
+      end if
       do k = 1, pt%n_ghosts
         pt%switch(pt%n+k) = pt%switch(pt%ghost_of(k))
       end do
     end if
     if (pt%artificial) then
       call artificial_stress(nt, pt%art_eps, pt%rho, pt%p, pt%s, pt%r_art)
+      ! (axisymmetric: over rho^2 w, as the stresses' pair terms)
+      if (pt%axisymmetric) then
+        do k = 1, nt
+          pt%r_art(:,k) = pt%r_art(:,k)/pt%w(k)
+        end do
+      end if
+    end if
+    if (pt%axisymmetric .and. pt%artificial) then
+      call sph_forces(pt%dim, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
+                      pt%acc, pt%vsig, pt%r_art, 1.0_rk/smoothing_factor, pt%switch, pt%w, pt%gr)
+    else if (pt%axisymmetric) then
+      call sph_forces(pt%dim, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
+                      pt%acc, pt%vsig, switch=pt%switch, w=pt%w, gr=pt%gr)
+    else if (pt%artificial) then
       call sph_forces(pt%dim, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
                       pt%acc, pt%vsig, pt%r_art, 1.0_rk/smoothing_factor, pt%switch)
     else
       call sph_forces(pt%dim, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
                       pt%acc, pt%vsig, switch=pt%switch)
     end if
+    if (pt%axisymmetric) call hoop_forces(pt%n, pt%w, pt%rho, pt%p, pt%s, pt%gr, pt%acc)
     pt%v(:,1:pt%n) = pt%v(:,1:pt%n) + dt_v*pt%acc(:,1:pt%n)
   end subroutine
 
@@ -364,6 +398,20 @@ contains
     end function
   end subroutine
 
+  !> Axisymmetric: the radial weights w = 2 pi r of particles and images
+  !> 1..nt at x + tau v (r at least axis_floor h; an image's r is its
+  !> original's), and their sums gr cleared for the pair sums.
+  subroutine radial_weights(pt, nt, x, v, tau)
+    type(particles_t), intent(inout) :: pt
+    integer, intent(in) :: nt
+    real(rk), intent(in) :: x(:,:), v(:,:), tau
+    integer :: k
+    do k = 1, nt
+      pt%w(k) = 2.0_rk*pi*max(abs(x(1,k) + tau*v(1,k)), axis_floor*pt%h(k))
+    end do
+    pt%gr(1:nt) = 0
+  end subroutine
+
   !> x(n+1) at v(n+1/2) (after the rigid walls), where the contact pass
   !> finds them; x(n) kept for particles_finish_step.
   subroutine particles_move(pt, dt)
@@ -403,16 +451,28 @@ contains
     end do
     pt%drho(1:pt%n+pt%n_ghosts) = 0
     pt%dheat(1:pt%n+pt%n_ghosts) = 0
-    if (pt%artificial) then
+    ! (axisymmetric: the weights and radial sums at the middle of the step, where the rates take the kernel)
+    if (pt%axisymmetric) call radial_weights(pt, pt%n + pt%n_ghosts, pt%x_start, pt%v, 0.5_rk*dt)
+    if (pt%artificial .and. pt%axisymmetric) then
+      pt%grad(:,1:pt%n+pt%n_ghosts) = 0
+      call sph_rates(pt%dim, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad, &
+                     pt%r_art, 1.0_rk/smoothing_factor, pt%gr)
+    else if (pt%artificial) then
       pt%grad(:,1:pt%n+pt%n_ghosts) = 0
       call sph_rates(pt%dim, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad, &
                      pt%r_art, 1.0_rk/smoothing_factor)
-    else if (any(pt%strong(1:pt%n))) then
+    else if (any(pt%strong(1:pt%n)) .or. pt%axisymmetric) then
       pt%grad(:,1:pt%n+pt%n_ghosts) = 0
-      call sph_rates(pt%dim, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad)
+      if (pt%axisymmetric) then
+        call sph_rates(pt%dim, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad, &
+                       gr=pt%gr)
+      else
+        call sph_rates(pt%dim, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad)
+      end if
     else
       call sph_rates(pt%dim, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat)
     end if
+    if (pt%axisymmetric) call axisymmetric_rates(pt%n, pt%w, pt%rho, pt%v, pt%gr, pt%drho, pt%grad)
     ! each run of particles of one material together (the kernel takes one)
     i = 1
     do while (i <= pt%n)

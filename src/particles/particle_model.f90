@@ -12,7 +12,8 @@ module udar_particle_model
 
   type :: particles_t
     logical :: enabled = .false.          !< some material's eroded elements become particles
-    integer :: dim = 3                    !< the kernel's dimension: 3, or 2 in plane strain (masses per metre)
+    integer :: dim = 3                    !< the kernel's dimension: 3, or 2 in plane strain (masses per metre) and axisymmetric
+    logical :: axisymmetric = .false.     !< x(1) = r, x(2) the axis, masses per revolution (the area density's sums)
     integer :: n = 0                      !< particles made so far
     real(rk), allocatable :: x(:,:), v(:,:)   !< (3,n) m, m/s: position x(n), velocity v(n-1/2) as the nodes'
     real(rk), allocatable :: m(:)         !< kg
@@ -40,6 +41,9 @@ module udar_particle_model
     logical :: artificial = .false.       !< some particle's material has an artificial stress
     logical :: use_shear_switch = .false. !< Balsara's switch on the artificial viscosity (&numerics sph_viscosity_switch)
     real(rk), allocatable :: switch(:)    !< (n+images) the switch's factor of the step
+    !> (n+images) axisymmetric: the radial weights 2 pi r (m) and the sums
+    !> sum_j m_j dW_ij/dr (kg/m3) of the forces, then of the rates
+    real(rk), allocatable :: w(:), gr(:)
     real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3,n) m/s: v(n-1/2), and v(n+1/2) before the contact pass
     real(rk), allocatable :: x_start(:,:) !< (3,n+images) m: x(n), for the rates after the contact pass
     integer, allocatable :: pairs(:,:), cell_start(:), order(:), cand(:)
@@ -66,6 +70,7 @@ contains
     call grow2(pt%x, 3, cap); call grow2(pt%v, 3, cap); call grow2(pt%acc, 3, cap); call grow2(pt%v_prev, 3, cap)
     call grow2(pt%v_pre, 3, cap); call grow2(pt%x_start, 3, cap); call grow2(pt%s, 6, cap); call grow2(pt%grad, 9, cap)
     call grow2(pt%r_art, 6, cap); call grow1(pt%art_eps, cap); call grow1(pt%switch, cap)
+    call grow1(pt%w, cap); call grow1(pt%gr, cap)
     call grow1(pt%hard, cap); call grow1(pt%soft, cap); call grow1(pt%damage, cap); call growl(pt%strong, cap)
     call grow1(pt%m, cap); call grow1(pt%rho, cap); call grow1(pt%e, cap); call grow1(pt%p, cap)
     call grow1(pt%c, cap); call grow1(pt%h, cap); call grow1(pt%temp, cap); call grow1(pt%eps_p, cap)

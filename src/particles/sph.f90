@@ -20,7 +20,7 @@ module udar_sph
   private
   public :: spline_w, spline_dw, sph_forces, sph_rates, particle_update, particle_pressure, element_to_particle, sph_pairs, &
             smoothing_length, sph_stable_dt, particle_strength, wave_speed, artificial_stress, symmetric_eigen3, &
-            shear_switch
+            shear_switch, hoop_forces, axisymmetric_rates
 
   !> Monaghan's viscosity's quadratic term's guard: mu = h v.r / (r^2 + eta2 h^2)
   real(rk), parameter :: eta2 = 0.01_rk
@@ -124,34 +124,51 @@ contains
   !> Added to acc (zero it first); visc(k) keeps pair k's Pi for
   !> sph_rates; vsig is raised to each particle's largest signal speed
   !> c_i + c_j - 3 min(v_ij . x_ij/|x_ij|, 0) (Monaghan 1997), for the step.
+  !> Axisymmetric (w present: each particle's radial weight 2 pi r, x(1) = r,
+  !> x(2) the axis, masses per revolution): the same sums for the area
+  !> density eta = rho w (Petschek and Libersky 1993), every rho^2 of a
+  !> particle's term times its w and rhobar the mean of rho w, and gr(i)
+  !> raised by sum_j m_j dW_ij/dr (the radial gradient of eta, for
+  !> hoop_forces); the pairs then stay equal and opposite (momentum along
+  !> the axis exact).
   pure subroutine sph_forces(dim, alpha, beta, np, pairs, x, v, m, rho, p, c, h, s, visc, acc, vsig, r_art, spacing, &
-                             switch)
+                             switch, w, gr)
     integer, intent(in) :: dim, np, pairs(:,:)
     real(rk), intent(in) :: alpha, beta
     real(rk), intent(in) :: x(:,:), v(:,:), m(:), rho(:), p(:), c(:), h(:), s(:,:)
     real(rk), intent(out) :: visc(:)
     real(rk), intent(inout) :: acc(:,:), vsig(:)
-    real(rk), intent(in), optional :: r_art(:,:), spacing, switch(:)
+    real(rk), intent(in), optional :: r_art(:,:), spacing, switch(:), w(:)
+    real(rk), intent(inout), optional :: gr(:)
     integer :: k, i, j
-    real(rk) :: g(3), vij(3), vr, d, mu, coef, speed, hij, a(6), f(3)
+    real(rk) :: g(3), vij(3), vr, d, mu, coef, speed, hij, a(6), f(3), wi, wj
+    ! (the plane and 3D weights are 1: a product by 1 is exact, the results are theirs to the bit)
+    wi = 1
+    wj = 1
     do k = 1, np
       i = pairs(1,k)
       j = pairs(2,k)
       call pair_gradient(dim, x(:,i), x(:,j), h(i), h(j), g, d, hij)
       visc(k) = 0
       if (all(g == 0.0_rk)) cycle
+      if (present(w)) then
+        wi = w(i)
+        wj = w(j)
+        gr(i) = gr(i) + m(j)*g(1)
+        gr(j) = gr(j) - m(i)*g(1)
+      end if
       vij = v(:,i) - v(:,j)
       vr = dot_product(vij, x(:,i) - x(:,j))
       if (vr < 0.0_rk) then
         mu = hij*vr/(d**2 + eta2*hij**2)
-        visc(k) = (-alpha*0.5_rk*(c(i) + c(j))*mu + beta*mu**2)/(0.5_rk*(rho(i) + rho(j)))
+        visc(k) = (-alpha*0.5_rk*(c(i) + c(j))*mu + beta*mu**2)/(0.5_rk*(rho(i)*wi + rho(j)*wj))
         if (present(switch)) visc(k) = visc(k)*0.5_rk*(switch(i) + switch(j))
       end if
-      coef = p(i)/rho(i)**2 + p(j)/rho(j)**2 + visc(k)
+      coef = p(i)/(rho(i)**2*wi) + p(j)/(rho(j)**2*wj) + visc(k)
       acc(:,i) = acc(:,i) - (m(j)*coef)*g
       acc(:,j) = acc(:,j) + (m(i)*coef)*g
       if (any(s(:,i) /= 0.0_rk) .or. any(s(:,j) /= 0.0_rk)) then
-        a = s(:,i)/rho(i)**2 + s(:,j)/rho(j)**2
+        a = s(:,i)/(rho(i)**2*wi) + s(:,j)/(rho(j)**2*wj)
         f = [a(1)*g(1) + a(4)*g(2) + a(6)*g(3), a(4)*g(1) + a(2)*g(2) + a(5)*g(3), a(6)*g(1) + a(5)*g(2) + a(3)*g(3)]
         acc(:,i) = acc(:,i) + m(j)*f
         acc(:,j) = acc(:,j) - m(i)*f
@@ -189,18 +206,26 @@ contains
   !> internal energy gains what the stresses and the viscosity take from
   !> the motion. Added to drho, heat and grad (zero them first); grad only
   !> when asked for (particles that keep their strength: no work otherwise).
-  pure subroutine sph_rates(dim, dt, np, pairs, x, v, m, h, visc, drho, heat, grad, r_art, spacing)
+  !> Axisymmetric, gr(i) is raised by sum_j m_j dW_ij/dr at the middle of
+  !> the step as well, and axisymmetric_rates then makes these sums the
+  !> area density's and adds the hoop rate.
+  pure subroutine sph_rates(dim, dt, np, pairs, x, v, m, h, visc, drho, heat, grad, r_art, spacing, gr)
     integer, intent(in) :: dim, np, pairs(:,:)
     real(rk), intent(in) :: dt, x(:,:), v(:,:), m(:), h(:), visc(:)
     real(rk), intent(inout) :: drho(:), heat(:)
     real(rk), intent(inout), optional :: grad(:,:)
     real(rk), intent(in), optional :: r_art(:,:), spacing
+    real(rk), intent(inout), optional :: gr(:)
     integer :: k, i, j
     real(rk) :: g(3), d, hij, vg, vij(3), work
     do k = 1, np
       i = pairs(1,k)
       j = pairs(2,k)
       call pair_gradient(dim, x(:,i) + (0.5_rk*dt)*v(:,i), x(:,j) + (0.5_rk*dt)*v(:,j), h(i), h(j), g, d, hij)
+      if (present(gr)) then
+        gr(i) = gr(i) + m(j)*g(1)
+        gr(j) = gr(j) - m(i)*g(1)
+      end if
       vij = v(:,i) - v(:,j)
       vg = dot_product(vij, g)
       drho(i) = drho(i) + m(j)*vg
@@ -232,6 +257,54 @@ contains
     end do
   end subroutine
 
+  !> The hoop stress's force on axisymmetric particles 1..n (after
+  !> sph_forces with w and gr): per unit mass
+  !>   a_r,i -= sigma_hoop,i gr_i / (rho_i^2 w_i),  sigma_hoop = s(3) - p,
+  !> gr_i = sum_j m_j dW_ij/dr the particles' estimate of the area
+  !> density's radial gradient, 2 pi rho inside the body: there this is
+  !> -sigma_hoop/(rho r), the hoop term of the radial equation of motion.
+  !> With gr rather than 2 pi rho it is exactly what the pair sums' own
+  !> term p_i/(rho_i^2 w_i) sum_j m_j dW_ij/dr takes off in the radial
+  !> direction at a uniform pressure, next to the axis too, where the
+  !> mirrored images make gr vanish like r (the plain hoop term would
+  !> push the particles there off the axis with p/(rho r)). Its work is
+  !> what axisymmetric_rates' hoop rate gives the internal energy.
+  pure subroutine hoop_forces(n, w, rho, p, s, gr, acc)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: w(:), rho(:), p(:), s(:,:), gr(:)
+    real(rk), intent(inout) :: acc(:,:)
+    integer :: i
+    do i = 1, n
+      acc(1,i) = acc(1,i) - (s(3,i) - p(i))*gr(i)/(rho(i)**2*w(i))
+    end do
+  end subroutine
+
+  !> sph_rates' sums of axisymmetric particles 1..n (masses per revolution:
+  !> the sums are those of the area density eta = rho w, w = 2 pi r) made
+  !> the material's: with the hoop rate d_i = gr_i v_r,i / (rho_i w_i)
+  !> (v_r/r inside the body, as hoop_forces takes gr),
+  !>   drho_i/dt = sum_j m_j v_ij . grad_i W_ij / w_i - rho_i d_i,
+  !>   grad_i    = sum_j m_j v_ij (x) grad_i W_ij / w_i, and its (3,3)
+  !>               entry -rho_i d_i (L = -grad/rho: L_33 = d_i, the hoop strain rate),
+  !> so that the internal energy gains what hoop_forces and the pair sums
+  !> take from the motion.
+  pure subroutine axisymmetric_rates(n, w, rho, v, gr, drho, grad)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: w(:), rho(:), v(:,:), gr(:)
+    real(rk), intent(inout) :: drho(:)
+    real(rk), intent(inout), optional :: grad(:,:)
+    integer :: i
+    real(rk) :: hoop
+    do i = 1, n
+      hoop = gr(i)*v(1,i)/(rho(i)*w(i))
+      drho(i) = drho(i)/w(i) - rho(i)*hoop
+      if (present(grad)) then
+        grad(:,i) = grad(:,i)/w(i)
+        grad(9,i) = -rho(i)*hoop
+      end if
+    end do
+  end subroutine
+
   !> Balsara's (1995) switch of each particle's artificial viscosity,
   !>   f_i = |div v|_i / (|div v|_i + |curl v|_i + 1e-4 c_i/h_i),
   !> 1 in compression without rotation, near 0 in shear: Monaghan's pair
@@ -240,11 +313,14 @@ contains
   !> shock. The velocity gradient is sph_rates' estimate,
   !> L_i = -(1/rho_i) sum_j m_j v_ij (x) grad_i W_ij, at x and v as given
   !> (gs(9,n): work, that sum column by column as sph_rates' grad).
-  pure subroutine shear_switch(dim, np, pairs, x, v, m, rho, c, h, n, gs, switch)
+  !> Axisymmetric (w: the radial weights of sph_forces), the in-plane
+  !> divergence and curl: the sums over rho w.
+  pure subroutine shear_switch(dim, np, pairs, x, v, m, rho, c, h, n, gs, switch, w)
     integer, intent(in) :: dim, np, pairs(:,:), n
     real(rk), intent(in) :: x(:,:), v(:,:), m(:), rho(:), c(:), h(:)
     real(rk), intent(inout) :: gs(:,:)
     real(rk), intent(out) :: switch(:)
+    real(rk), intent(in), optional :: w(:)
     real(rk) :: g(3), d, hij, dv, curl(3)
     integer :: k, i, j
     gs(:,1:n) = 0
@@ -255,6 +331,7 @@ contains
       call add_pair_gradient(g, v(:,i) - v(:,j), m(i), m(j), gs(:,i), gs(:,j))
     end do
     do i = 1, n
+      if (present(w)) gs(:,i) = gs(:,i)/w(i)
       ! L = -gs/rho (gs(a + 3(b-1)) for dv_a/dx_b): |div v| and |curl v| need no sign
       dv = abs(gs(1,i) + gs(5,i) + gs(9,i))/rho(i)
       curl = [gs(6,i) - gs(8,i), gs(7,i) - gs(3,i), gs(2,i) - gs(4,i)]/rho(i)

@@ -1077,7 +1077,8 @@ contains
     case default
       text = ''
     end select
-    n_sym = size(dom%sym_walls)
+    ! (axisymmetric, the last is the axis: no symmetry of the body)
+    n_sym = size(dom%sym_walls) - merge(1, 0, dom%geometry == geometry_axisymmetric)
     if (n_sym == 0) return
     if (len(text) == 0) then
       text = 'udar history:'

@@ -497,6 +497,10 @@ contains
       nodes = node_new(nodes)
       sym = [sym, nodes]
       symn = append_rows(symn, [1.0_rk, 0.0_rk, 0.0_rk], size(nodes))
+      ! and for the particles the last of the planes (their images across
+      ! it, no particle beyond it)
+      dom%sym_walls = [dom%sym_walls, wall_t(point=[0.0_rk, 0.0_rk, 0.0_rk], normal=[1.0_rk, 0.0_rk, 0.0_rk], &
+                                             wall_type=wall_frictionless)]
     end if
     dom%sym_nodes = sym
     dom%sym_normal = symn

@@ -3,7 +3,7 @@
 # run to 2.5 us with a checkpoint at 1.5 us, then restarted from it on 2
 # ranks, gives bitwise the history and fields of the straight run.
 #   restart_erosion.sh EXE [anti_locking | stabilised | edges | particles | particles_strength |
-#                           plane_strain_particles]
+#                           plane_strain_particles | axisymmetric_particles]
 # With anti_locking the deck runs with the nodal-averaged pressure, whose
 # reference volumes are rebased at erosion and carried by the checkpoint;
 # stabilised: the stabilised nodal element (theory.md 8.1), whose element
@@ -16,7 +16,8 @@
 # fracture (eps_convert), so particles carry their stress, hardening and
 # damage through the checkpoint, and fracture later;
 # plane_strain_particles: the plane-strain deck of penetration_2d whose
-# eroded triangles become particles (2D SPH, symmetric contact).
+# eroded triangles become particles (2D SPH, symmetric contact);
+# axisymmetric_particles: its axisymmetric deck, ring particles.
 source "$(dirname "$0")/common.sh" "$1"
 case=penetration
 if [ "${2:-}" = plane_strain_particles ]; then
@@ -24,6 +25,9 @@ if [ "${2:-}" = plane_strain_particles ]; then
   # (tests/regression/penetration_2d), run under the case's name
   cp "$ROOT/tests/regression/penetration_2d/penetration_plane_strain.msh" "$W/"
   cp "$ROOT/tests/regression/penetration_2d/penetration_plane_strain_particles.nml" "$W/$case.nml"
+elif [ "${2:-}" = axisymmetric_particles ]; then
+  cp "$ROOT/tests/regression/penetration_2d/penetration_2d.msh" "$W/"
+  cp "$ROOT/tests/regression/penetration_2d/penetration_axisymmetric_particles.nml" "$W/$case.nml"
 else
   cp "$ROOT/tests/regression/$case/$case.msh" "$ROOT/tests/regression/$case/$case.nml" "$W/"
 fi
@@ -59,7 +63,8 @@ straight_run $case
 eroded=$(grep -o '[0-9]* eroded;' "$W/straight.log" | cut -d' ' -f1)
 echo "MEASURED $eroded elements eroded in the straight run"
 [ "${eroded:-0}" -gt 0 ] && ok "elements_eroded_before_the_end" || bad "elements_eroded_before_the_end"
-if [ "${2:-}" = particles ] || [ "${2:-}" = particles_strength ] || [ "${2:-}" = plane_strain_particles ]; then
+if [ "${2:-}" = particles ] || [ "${2:-}" = particles_strength ] || [ "${2:-}" = plane_strain_particles ] || \
+   [ "${2:-}" = axisymmetric_particles ]; then
   n=$($PYTHON -c "import sys; sys.path.insert(0, sys.argv[1]); import udar_results as u; print(int(u.read_history(sys.argv[2])['particles'][-1]))" \
       "$ROOT/postproc" "$W/straight/${case}_history.csv")
   echo "MEASURED particles at the end of the straight run: $n"

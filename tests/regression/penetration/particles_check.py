@@ -14,9 +14,11 @@ must keep and what the contact must hold:
   contact takes particles as slave nodes; measured 0.02);
 - particles are made (more than 100) and written with each field step.
 In plane strain (penetration_plane_strain_particles, triangles) masses are
-per metre of depth and momentum is along y; where the deck's contact is
-symmetric, no plate particle may be deeper inside a remaining rod element
-than 0.05 of its size either.
+per metre of depth and momentum is along y; axisymmetric
+(penetration_axisymmetric_particles) per revolution (an element's 2 pi
+rbar A, rbar its corners' mean radius), momentum along the axis y; where
+the deck's contact is symmetric, no plate particle may be deeper inside a
+remaining rod element than 0.05 of its size either.
 Usage: called by check.py for a deck whose name ends in _particles."""
 import os
 import sys
@@ -39,11 +41,16 @@ def main(run_dir, deck):
     with h5py.File(os.path.join(out, deck + '.h5'), 'r') as f:
         # the run's own resolved deck (udar's canonical form) says whether the contact is both ways
         deck_text = f.attrs['deck']
-        both_ways = 'symmetric = .true.' in (deck_text.decode() if isinstance(deck_text, bytes) else deck_text)
+        deck_text = deck_text.decode() if isinstance(deck_text, bytes) else deck_text
+        both_ways = 'symmetric = .true.' in deck_text
         conn, x0, rod_nodes, plate, h_plate = slave_and_master(f, 1, 2)
         h_rod = slave_and_master(f, 2, 1)[4]
-        # (plane strain: per metre of depth)
+        # (plane strain: per metre of depth; axisymmetric: per revolution)
         el_mass = RHO0 * element_measures(conn, x0)
+        axisymmetric = "geometry = 'axisymmetric'" in deck_text
+        if axisymmetric:
+            el_mass *= 2.0 * np.pi * x0[conn, 0].mean(axis=1)
+        least_radius = 0.0
         axis = 'z' if conn.shape[1] == 4 else 'y'
         nodes_in, particles_in, plate_particles_in, last = 0.0, 0.0, 0.0, None
         for k in sorted(f['steps'].keys()):
@@ -59,6 +66,7 @@ def main(run_dir, deck):
             w_part, w_plate_part = 0.0, 0.0
             if n > 0:
                 xp = p['coordinates'][...]
+                least_radius = min(least_radius, xp[:, 0].min())
                 rod_p = xp[p['part_id'][...] == 1]
                 if len(rod_p):
                     w_part = deepest_inside(rod_p, x, conn[plate_alive])
@@ -74,6 +82,9 @@ def main(run_dir, deck):
             last = (state, n, p['mass'][...] if n > 0 else np.zeros(0), p['element'][...] if n > 0 else None)
     state, n, p_mass, p_elem = last
     checks.above('particles_made', n, 100)
+    if axisymmetric:
+        # (the axis is the images' mirror and a wall to the particles)
+        checks.below('particles_beyond_the_axis', -least_radius, 0.0, 'm')
     checks.below('rod_nodes_inside_remaining_plate_over_h', nodes_in / h_plate, 1e-4)
     checks.below('rod_particles_inside_remaining_plate_over_h', particles_in / h_plate, 0.05)
     if both_ways:
