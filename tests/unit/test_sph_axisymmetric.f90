@@ -53,15 +53,17 @@ contains
     hh = smoothing_length(m/w, rho, 1.2_rk, 2)
   end subroutine
 
-  !> The pairs of the 2n points without those of two images (the driver's rule).
-  subroutine lattice_pairs(x, hh, pairs, np)
+  !> The pairs of the first n_all points, n_real particles then their
+  !> images, without those of two images (the driver's rule).
+  subroutine pairs_with_images(n_real, n_all, x, hh, pairs, np)
+    integer, intent(in) :: n_real, n_all
     real(rk), intent(in) :: x(:,:), hh(:)
     integer, intent(out) :: pairs(:,:), np
-    integer :: cell_start(8193), order(2*n), cand(2*n + 8192), k, nt
-    call sph_pairs(2, 2*n, x, hh, 8192, cell_start, order, cand, pairs, np)
+    integer :: cell_start(8193), order(n_all), cand(n_all + 8192), k, nt
+    call sph_pairs(2, n_all, x, hh, 8192, cell_start, order, cand, pairs, np)
     nt = 0
     do k = 1, np
-      if (pairs(1,k) > n) cycle
+      if (pairs(1,k) > n_real) cycle
       nt = nt + 1
       pairs(:,nt) = pairs(:,k)
     end do
@@ -77,7 +79,7 @@ contains
     allocate(pairs(2,max_pairs), coef(max_pairs))
     call ring_lattice(x, m, rho, hh, w)
     call check('smoothing_length_of_the_area', abs(hh(1)/(1.2_rk*a) - 1.0_rk) < 1e-14_rk, 'h/a '//r2s(hh(1)/a))
-    call lattice_pairs(x, hh, pairs, np)
+    call pairs_with_images(n, 2*n, x, hh, pairs, np)
     ! the ring next to the axis and one inside, both on the middle row
     axis_ring = nr*((nz - 1)/2) + 1
     inner = axis_ring + 3
@@ -171,7 +173,7 @@ contains
                 drho(nc), dedt(nc), grad(9,nc), u(3), l(3,3), power, scale_e, mom, scale_f, gr_rates(nc)
     real(rk), allocatable :: coef(:)
     integer, allocatable :: pairs(:,:)
-    integer :: i, k, np, nt, cell_start(4097), order(nc), cand(nc + 4096)
+    integer :: i, np, nt
     character(len=:), allocatable :: tag
     allocate(pairs(2,max_pairs), coef(max_pairs))
     tag = trim(merge('_with_images', '            ', at_axis))
@@ -203,15 +205,7 @@ contains
       hh(nr+1:nc) = hh(1:nr)
     end if
     w(1:nt) = 2.0_rk*pi*abs(x(1,1:nt))
-    call sph_pairs(2, nt, x, hh, 4096, cell_start, order, cand, pairs, np)
-    ! (no pair of two images)
-    k = 0
-    do i = 1, np
-      if (pairs(1,i) > nr) cycle
-      k = k + 1
-      pairs(:,k) = pairs(:,i)
-    end do
-    np = k
+    call pairs_with_images(nr, nt, x, hh, pairs, np)
     acc = 0
     vsig = 0
     gr = 0
