@@ -12,7 +12,9 @@
 #   VELOCITIES=2000 tests/validate_long_rod.sh 2d 0.25e-3
 # 2d: the axisymmetric deck input/long_rod_2d (csv long_rod_2d_hH.csv).
 # ERODED=particles: eroded elements become particles (issue 15; csv
-# long_rod_particles[_hH].csv, 3D only), e.g.
+# long_rod_particles[_hH].csv, 2D: long_rod_2d_particles_hH.csv, whose
+# contact is then both ways, symmetric = .true., as 2D eroding contact
+# with particles needs: user-guide), e.g.
 #   VELOCITIES=2000 ERODED=particles tests/validate_long_rod.sh
 # with EPS_CONVERT=X besides, strained elements become particles that keep
 # their strength (&material eps_convert = X, both materials), and with
@@ -46,6 +48,10 @@ for v in ${VELOCITIES:-1500 2000 2500}; do
     sed -i "s|eps_erode = 2.0$|eps_erode = 2.0, eroded = 'particles'|" "$W/$run.nml"
     [ "$(grep -c "eroded = 'particles'" "$W/$run.nml")" = 2 ] || { echo "deck edit failed: eroded"; exit 1; }
     with_eps_convert "$W/$run.nml" 2
+    if [ $dim = 2d ]; then
+      sed -i "s|^&contact master = 'block', slave = 'rod' /|\&contact master = 'block', slave = 'rod', symmetric = .true. /|" "$W/$run.nml"
+      grep -q "symmetric = .true." "$W/$run.nml" || { echo "deck edit failed: symmetric"; exit 1; }
+    fi
     if [ -n "${ARTIFICIAL_STRESS:-}" ]; then
       sed -i "s|eps_convert = ${EPS_CONVERT:-}\$|eps_convert = ${EPS_CONVERT:-}, artificial_stress = $ARTIFICIAL_STRESS|" "$W/$run.nml"
       [ "$(grep -c "artificial_stress = $ARTIFICIAL_STRESS" "$W/$run.nml")" = 2 ] || { echo "deck edit failed: artificial_stress"; exit 1; }
@@ -64,10 +70,11 @@ for v in ${VELOCITIES:-1500 2000 2500}; do
 done
 printf '%s\n' "${runs[@]}" | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"
 mm=$(awk -v h=$H 'BEGIN{print h*1000}')
+tags=$([ "${ERODED:-}" = particles ] && echo _particles)$([ -n "${EPS_CONVERT:-}" ] && echo _convert$EPS_CONVERT)$([ -n "${ARTIFICIAL_STRESS:-}" ] && echo _art$ARTIFICIAL_STRESS)$([ "${SPH_SWITCH:-0}" = 1 ] && echo _switch)$([ -n "${EPS_F:-}" ] && echo _f$EPS_F)
 if [ $dim = 2d ]; then
-  csv=doc/validation/long_rod_2d_h$mm.csv
+  csv=doc/validation/long_rod_2d${tags}_h$mm.csv
 else
-  csv=doc/validation/long_rod$([ "${ERODED:-}" = particles ] && echo _particles)$([ -n "${EPS_CONVERT:-}" ] && echo _convert$EPS_CONVERT)$([ -n "${ARTIFICIAL_STRESS:-}" ] && echo _art$ARTIFICIAL_STRESS)$([ "${SPH_SWITCH:-0}" = 1 ] && echo _switch)$([ -n "${EPS_F:-}" ] && echo _f$EPS_F)$([ "$mm" = 1 ] || echo _h$mm).csv
+  csv=doc/validation/long_rod${tags}$([ "$mm" = 1 ] || echo _h$mm).csv
 fi
 echo "velocity_m_s,mesh_mm,tet_formulation,$([ $dim = 2d ] && echo triangles || echo tets),cycles,wall_s,crater_depth_mm,P_over_L,lanz_odermatt,difference_percent,energy_error" > $csv
 form=$(grep -o "tet_formulation = '[a-z_]*'" input/$name/$name.nml | cut -d"'" -f2)

@@ -32,15 +32,22 @@ contains
     logical, intent(in) :: axisymmetric
     real(rk), intent(in) :: x(ld,3,2)
     real(rk), intent(inout) :: area(nb), rbar(nb), vol(nb), grad(ld,3,2)
-    real(rk) :: two_a, r
+    !> |2A| below this share of the longest edge squared: no area (gradients 0)
+    real(rk), parameter :: collapsed = 1e-12_rk
+    real(rk) :: two_a, r, edge2
     integer :: i
     do i = 1, nb
       two_a = (x(i,2,1) - x(i,1,1))*(x(i,3,2) - x(i,1,2)) - (x(i,3,1) - x(i,1,1))*(x(i,2,2) - x(i,1,2))
       area(i) = 0.5_rk*two_a
       rbar(i) = (x(i,1,1) + x(i,2,1) + x(i,3,1))/3.0_rk
       vol(i) = merge(rbar(i)*area(i), area(i), axisymmetric)
-      ! an inverted element keeps finite numbers; a driver stops on area <= 0
-      r = 1.0_rk/merge(two_a, 1.0_rk, two_a /= 0.0_rk)
+      ! an inverted element keeps finite numbers (a driver stops on area <= 0),
+      ! and so does a collapsed one (an element gone from the calculation
+      ! whose massless corners came together: finite, and 0)
+      edge2 = max((x(i,2,1) - x(i,1,1))**2 + (x(i,2,2) - x(i,1,2))**2, (x(i,3,1) - x(i,2,1))**2 + (x(i,3,2) - x(i,2,2))**2, &
+                  (x(i,1,1) - x(i,3,1))**2 + (x(i,1,2) - x(i,3,2))**2)
+      r = 0.0_rk
+      if (abs(two_a) > collapsed*edge2) r = 1.0_rk/merge(two_a, 1.0_rk, abs(two_a) > collapsed*edge2)
       grad(i,1,1) = (x(i,2,2) - x(i,3,2))*r; grad(i,1,2) = (x(i,3,1) - x(i,2,1))*r
       grad(i,2,1) = (x(i,3,2) - x(i,1,2))*r; grad(i,2,2) = (x(i,1,1) - x(i,3,1))*r
       grad(i,3,1) = (x(i,1,2) - x(i,2,2))*r; grad(i,3,2) = (x(i,2,1) - x(i,1,1))*r
@@ -81,7 +88,10 @@ contains
       d(i,1) = lrr
       d(i,2) = lzz
       d(i,3) = 0.0_rk
-      if (axisymmetric) d(i,3) = (v(i,1,1) + v(i,2,1) + v(i,3,1))/(3.0_rk*rbar(i))
+      ! (rbar = 0 only for an element gone from the calculation whose
+      ! corners, massless once it became a particle, all lie on the axis)
+      if (axisymmetric .and. rbar(i) > 0.0_rk) &
+        d(i,3) = (v(i,1,1) + v(i,2,1) + v(i,3,1))/(3.0_rk*merge(rbar(i), 1.0_rk, rbar(i) > 0.0_rk))
       d(i,4) = 0.5_rk*(lrz + lzr)
       w(i) = 0.5_rk*(lrz - lzr)
     end do
@@ -150,7 +160,7 @@ contains
         srz = grad(i,1,1)*grad(i,1,2) + grad(i,2,1)*grad(i,2,2) + grad(i,3,1)*grad(i,3,2)
         s_max = 0.5_rk*(srr + szz) + sqrt(0.25_rk*(srr - szz)**2 + srz**2)
         eta = 0.0_rk
-        if (axisymmetric) eta = free_r(i)/(9.0_rk*rbar(i)**2)
+        if (axisymmetric .and. rbar(i) > 0.0_rk) eta = free_r(i)/(9.0_rk*merge(rbar(i), 1.0_rk, rbar(i) > 0.0_rk)**2)
         lam(i) = abs(vol(i))*(phi*max(k(i) - 2.0_rk/3.0_rk*g_el(i), 0.0_rk)*(sqrt(srr + szz) + sqrt(eta))**2 &
                               + 2.0_rk*g_el(i)*(s_max + eta))
       end do
@@ -162,7 +172,7 @@ contains
       srz = grad(i,1,1)*grad(i,1,2) + grad(i,2,1)*grad(i,2,2) + grad(i,3,1)*grad(i,3,2)
       s_max = 0.5_rk*(srr + szz) + sqrt(0.25_rk*(srr - szz)**2 + srz**2)
       eta = 0.0_rk
-      if (axisymmetric) eta = free_r(i)/(9.0_rk*rbar(i)**2)
+      if (axisymmetric .and. rbar(i) > 0.0_rk) eta = free_r(i)/(9.0_rk*merge(rbar(i), 1.0_rk, rbar(i) > 0.0_rk)**2)
       lam(i) = abs(vol(i))*(phi*max(k(i) - 2.0_rk/3.0_rk*g, 0.0_rk)*(sqrt(srr + szz) + sqrt(eta))**2 &
                             + 2.0_rk*g*(s_max + eta))
     end do

@@ -123,6 +123,12 @@ sed 's/&material name = "steel"/\&material name = "steel", fracture = "plastic_s
   "$W/good2d.nml" > "$W/particles2d.nml"
 # axisymmetric and plane strain take them (the 2D kernel; ring particles axisymmetric)
 expect particles_axisymmetric_deck_checks 0 '' "--check particles2d.nml"
+# particles that keep their strength: no artificial stress in 2D (it gained energy there)
+sed 's/eroded = "particles"/eroded = "particles", eps_convert = 1.0, artificial_stress = 0.3/' "$W/particles2d.nml" > "$W/art2d.nml"
+expect artificial_stress_in_2d 1 "art2d.nml:3: &material #1 'steel': artificial_stress = 0.3 : is 3D only: in 2D \(geometry = 'axisymmetric'\)" \
+  "--check art2d.nml"
+sed 's/eroded = "particles"/eroded = "particles", eps_convert = 1.0/' "$W/particles2d.nml" > "$W/conv2d.nml"
+expect converting_2d_deck_checks 0 '' "--check conv2d.nml"
 sed 's/geometry = "axisymmetric"/geometry = "plane_strain"/' "$W/particles2d.nml" > "$W/particles_plane.nml"
 expect particles_plane_strain_deck_checks 0 '' "--check particles_plane.nml"
 sed 's/bar2d.msh/bar.msh/' "$W/good2d.nml" > "$W/mesh3d.nml"
