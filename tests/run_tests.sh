@@ -209,6 +209,7 @@ run_test "regression/buried_particles" regression buried_particles bin/udar
 run_test "regression/buried_particles_half" regression buried_particles bin/udar buried_particles_half
 run_test "regression/oblique_particles" regression oblique_particles bin/udar
 run_test "regression/taylor_particles" regression taylor_ofhc_baseline bin/udar taylor_particles
+run_test "regression/taylor_particles_2d" regression taylor_ofhc_baseline bin/udar taylor_particles_2d
 run_test "regression/taylor_particles_strengthless_fails" regression_fails taylor_ofhc_baseline bin/udar \
   taylor_particles_strengthless particle_mass_radius_95
 run_test "regression/taylor_particles_no_art_fails" regression_fails taylor_ofhc_baseline bin/udar \
