@@ -11,7 +11,8 @@
 # (tests/validate_particles.sh), and Fig. 3's spread over five perturbed
 # runs per friction value (tests/validate_fig3_spread.sh), and the OFHC
 # Taylor bar with particles that keep their strength
-# (tests/validate_taylor_particles.sh), and with particles that keep their
+# (tests/validate_taylor_particles.sh), ring particles in 2D
+# (tests/validate_particles_2d.sh, ERODED=particles tests/validate_long_rod.sh 2d), and with particles that keep their
 # strength (EPS_CONVERT=1.0) the long rod, Fig. 4, the normal cylinder
 # and Fig. 3's spread; and the copper Taylor record with every strength
 # model of the material library (tests/validate_taylor_models.sh, with its
@@ -29,6 +30,7 @@ MESHES_ONLY=1 tests/validate_long_rod.sh
 MESHES_ONLY=1 tests/validate_long_rod.sh 2d
 MESHES_ONLY=1 tests/validate_paper.sh
 MESHES_ONLY=1 tests/validate_particles.sh
+MESHES_ONLY=1 tests/validate_particles_2d.sh
 MESHES_ONLY=1 tests/validate_fig3_spread.sh
 MESHES_ONLY=1 tests/validate_taylor_particles.sh
 MESHES_ONLY=1 tests/validate_taylor_models.sh
@@ -41,6 +43,9 @@ tests/validate_paper.sh
 tests/validate_contact.sh
 ERODED=particles tests/validate_long_rod.sh
 tests/validate_particles.sh
+# ring particles in 2D (0.9.7): the normal cylinder and the long rod axisymmetric
+tests/validate_particles_2d.sh
+ERODED=particles tests/validate_long_rod.sh 2d
 tests/validate_fig3_spread.sh
 tests/validate_taylor_particles.sh
 # particles that keep their strength (eps_convert 1.0) on the long rod, the

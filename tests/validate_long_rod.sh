@@ -70,7 +70,12 @@ for v in ${VELOCITIES:-1500 2000 2500}; do
 done
 printf '%s\n' "${runs[@]}" | xargs -P "$JOBS" -I{} sh -c "'$W/udar' '$W/{}.nml' > '$W/{}.log' 2>&1 || echo 'FAILED {}'"
 mm=$(awk -v h=$H 'BEGIN{print h*1000}')
-tags=$([ "${ERODED:-}" = particles ] && echo _particles)$([ -n "${EPS_CONVERT:-}" ] && echo _convert$EPS_CONVERT)$([ -n "${ARTIFICIAL_STRESS:-}" ] && echo _art$ARTIFICIAL_STRESS)$([ "${SPH_SWITCH:-0}" = 1 ] && echo _switch)$([ -n "${EPS_F:-}" ] && echo _f$EPS_F)
+tags=""
+[ "${ERODED:-}" = particles ] && tags+=_particles
+[ -n "${EPS_CONVERT:-}" ] && tags+=_convert$EPS_CONVERT
+[ -n "${ARTIFICIAL_STRESS:-}" ] && tags+=_art$ARTIFICIAL_STRESS
+[ "${SPH_SWITCH:-0}" = 1 ] && tags+=_switch
+[ -n "${EPS_F:-}" ] && tags+=_f$EPS_F
 if [ $dim = 2d ]; then
   csv=doc/validation/long_rod_2d${tags}_h$mm.csv
 else
