@@ -288,19 +288,9 @@ contains
         pt%switch(pt%n+k) = pt%switch(pt%ghost_of(k))
       end do
     end if
-    if (pt%artificial) then
-      call artificial_stress(nt, pt%art_eps, pt%rho, pt%p, pt%s, pt%r_art)
-      ! (axisymmetric: over rho^2 w, as the stresses' pair terms)
-      if (pt%axisymmetric) then
-        do k = 1, nt
-          pt%r_art(:,k) = pt%r_art(:,k)/pt%w(k)
-        end do
-      end if
-    end if
-    if (pt%axisymmetric .and. pt%artificial) then
-      call sph_forces(pt%dim, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
-                      pt%acc, pt%vsig, pt%r_art, 1.0_rk/smoothing_factor, pt%switch, pt%w, pt%gr)
-    else if (pt%axisymmetric) then
+    ! (2D decks take no artificial stress: the deck sets it 0, theory.md 15)
+    if (pt%artificial) call artificial_stress(nt, pt%art_eps, pt%rho, pt%p, pt%s, pt%r_art)
+    if (pt%axisymmetric) then
       call sph_forces(pt%dim, visc_alpha, visc_beta, np, pt%pairs, pt%x, pt%v, pt%m, pt%rho, pt%p, pt%c, pt%h, pt%s, pt%visc, &
                       pt%acc, pt%vsig, switch=pt%switch, w=pt%w, gr=pt%gr)
     else if (pt%artificial) then
@@ -453,11 +443,7 @@ contains
     pt%dheat(1:pt%n+pt%n_ghosts) = 0
     ! (axisymmetric: the weights and radial sums at the middle of the step, where the rates take the kernel)
     if (pt%axisymmetric) call radial_weights(pt, pt%n + pt%n_ghosts, pt%x_start, pt%v, 0.5_rk*dt)
-    if (pt%artificial .and. pt%axisymmetric) then
-      pt%grad(:,1:pt%n+pt%n_ghosts) = 0
-      call sph_rates(pt%dim, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad, &
-                     pt%r_art, 1.0_rk/smoothing_factor, pt%gr)
-    else if (pt%artificial) then
+    if (pt%artificial) then
       pt%grad(:,1:pt%n+pt%n_ghosts) = 0
       call sph_rates(pt%dim, dt, pt%n_pairs, pt%pairs, pt%x_start, pt%v, pt%m, pt%h, pt%visc, pt%drho, pt%dheat, pt%grad, &
                      pt%r_art, 1.0_rk/smoothing_factor)
