@@ -30,7 +30,7 @@ SRC := src/core/kinds.f90 src/core/vectors.f90 src/core/ordering.f90 src/core/st
        src/core/version.f90 src/core/input_errors.f90 src/model/config.f90 src/io/nml_scan.f90 \
        src/io/deck.f90 src/io/gmsh_reader.f90 src/io/field_output.f90 src/io/history.f90 \
        src/contact/contact_search.f90 src/contact/contact_kernels.f90 src/twod/segment2.f90 src/contact/contact_faces.f90 src/model/contact_model.f90 src/model/domain.f90 src/model/run_state.f90 src/particles/particle_model.f90 src/io/checkpoint.f90 src/model/eos.f90 src/model/flow_models.f90 src/model/strength.f90 src/element/tet4.f90 src/twod/tri3.f90 src/element/hydro.f90 src/element/fracture.f90 src/particles/sph.f90 src/particles/particle_driver.f90 \
-       src/element/element_shared.f90 src/element/element_driver.f90 src/twod/tri_driver.f90 src/solver/element_passes.f90 src/solver/nodal.f90 src/solver/setup.f90 src/parallel/distribution.f90 src/contact/contact_setup.f90 src/contact/contact_erosion.f90 src/contact/contact_driver.f90 src/solver/run.f90
+       src/element/element_shared.f90 src/element/element_driver.f90 src/twod/tri_driver.f90 src/solver/element_passes.f90 src/solver/nodal.f90 src/solver/setup.f90 src/parallel/distribution.f90 src/contact/contact_setup.f90 src/contact/contact_erosion.f90 src/contact/eroded_voids.f90 src/contact/contact_driver.f90 src/solver/run.f90
 OBJ := $(patsubst src/%.f90,$(BDIR)/%.o,$(SRC))
 MAIN_OBJ := $(BDIR)/main.o
 

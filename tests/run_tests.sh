@@ -138,6 +138,7 @@ run_test "cli/ranks_oblique_free" tests/cli/rank_invariance.sh bin/udar oblique_
 run_test "cli/ranks_spall" tests/cli/rank_invariance.sh bin/udar spall
 run_test "cli/ranks_penetration" tests/cli/rank_invariance.sh bin/udar penetration 2.5e-6
 run_test "cli/ranks_penetration_particles" tests/cli/rank_invariance.sh bin/udar penetration 1.5e-6 - penetration_particles
+run_test "cli/ranks_penetration_voids" tests/cli/rank_invariance.sh bin/udar penetration 2.5e-6 - penetration_voids
 run_test "cli/ranks_penetration_2d" tests/cli/rank_invariance.sh bin/udar penetration_2d 2.5e-6
 run_test "cli/ranks_penetration_plane_strain_particles" tests/cli/rank_invariance.sh bin/udar penetration_2d 1.5e-6 - \
   penetration_plane_strain_particles
@@ -202,6 +203,9 @@ run_test "regression/spall" regression spall bin/udar-debug
 run_test "regression/spall_averaged" regression spall bin/udar-debug spall_averaged
 run_test "regression/penetration" regression penetration bin/udar
 run_test "regression/penetration_particles" regression penetration bin/udar penetration_particles
+run_test "regression/penetration_voids" regression penetration bin/udar penetration_voids
+run_test "regression/penetration_voids_off_fails" regression_fails penetration bin/udar penetration_voids_off_fails \
+  voids_inside_out_over_reference_volume
 run_test "cli/fig4_depth" tests/cli/fig4_depth.sh bin/udar
 run_test "regression/long_rod_particles" regression long_rod_particles bin/udar
 run_test "regression/long_rod_energy" regression long_rod_energy bin/udar

@@ -60,6 +60,7 @@ contains
     ! a part whose eroded elements become particles: its particles are kept
     ! out of its own remaining body too (one interface, after the deck's)
     allocate(ct%part_converts(size(cfg%parts)), source=.false.)
+    allocate(ct%part_voids(size(cfg%parts)), source=.false.)
     do e = 1, glob%n_elems
       if (glob%mat(glob%el_mat(e))%eroded == eroded_particles) ct%part_converts(glob%el_part(e)) = .true.
     end do
@@ -123,6 +124,7 @@ contains
           ifc(i-1)%partner = i
           ifc(i)%slave_part = eroding_part(m_part)
         end if
+        if (c%voids) call void_parts(k, m_part, s_part)
         ! each converting part of the contact, once: its particles on its own surface
         call own_particles(m_part, master, m_body)
         call own_particles(s_part, tri_all, s_body)
@@ -301,6 +303,35 @@ contains
       allocate(it%start_inside(size(it%slave)))
       call points_inside_elements(glob%el_conn, glob%nd_x0, pack([(e, e = 1, glob%n_elems)], in_body(glob%el_part)), &
                                   glob%nd_x0(:, it%slave), it%start_inside, exclude=it%slave)
+    end subroutine
+
+    !> &contact voids of contact k (master part mp, slave part sp; 0 a
+    !> surface group): the eroding parts among them keep closed voids; an
+    !> input error where neither erodes, a part's eroded elements become
+    !> particles, or the mesh is 2D (3D tetrahedra only for now).
+    subroutine void_parts(k, mp, sp)
+      integer, intent(in) :: k, mp, sp
+      integer :: j, ip
+      if (glob%corners /= 4) then
+        call errs%add(deck_where(cfg, 'contact', k, 'voids')//': closed voids are for 3D meshes only (for now)')
+        return
+      end if
+      if (eroding_part(mp) == 0 .and. eroding_part(sp) == 0) then
+        call errs%add(deck_where(cfg, 'contact', k, 'voids')//': neither part of the contact erodes '// &
+                      '(&material eps_erode): there are no voids to keep closed')
+        return
+      end if
+      do j = 1, 2
+        ip = eroding_part(merge(mp, sp, j == 1))
+        if (ip == 0) cycle
+        if (ct%part_converts(ip)) then
+          call errs%add(deck_where(cfg, 'contact', k, 'voids')//": part '"//trim(cfg%parts(ip)%group)// &
+                        "' makes particles of its eroded elements (&material eroded = 'particles'): "// &
+                        "they fill the hole; voids are for eroded = 'free_nodes'")
+          cycle
+        end if
+        ct%part_voids(ip) = .true.
+      end do
     end subroutine
 
     !> Part ip if its material erodes (its boundary changes), else 0.

@@ -249,6 +249,7 @@ module udar_deck
        var_t('contact', 'seams', 'l', 1, 0, '', ''), &
        var_t('contact', 'sharp_edges', 'l', 1, 0, '', ''), &
        var_t('contact', 'valleys', 'l', 1, 0, '', ''), &
+       var_t('contact', 'voids', 'l', 1, 0, '', ''), &
        var_t('contact', 'weights', 'c', 1, code_len, '', ''), &
        var_t('contact', 'initial_overlap', 'c', 1, code_len, '', ''), &
        var_t('numerics', 'anti_locking', 'l', 1, 0, '', ''), &
@@ -744,7 +745,7 @@ contains
     case ('contact')
       associate(c => v%con)
         call contact_nml(c%master, c%slave, c%friction, c%iterations, c%tolerance, c%symmetric, &
-                         c%tracking, c%edges, c%seams, c%sharp_edges, c%valleys, v%weights, v%initial_overlap)
+                         c%tracking, c%edges, c%seams, c%sharp_edges, c%valleys, c%voids, v%weights, v%initial_overlap)
       end associate
     case ('numerics')
       call numerics_nml(v%num%anti_locking, v%tet_formulation, v%num%stabilisation, v%num%stabilisation_large, &
@@ -832,13 +833,13 @@ contains
     end subroutine boundary_nml
 
     subroutine contact_nml(master, slave, friction, iterations, tolerance, symmetric, tracking, edges, seams, &
-                           sharp_edges, valleys, weights, initial_overlap)
+                           sharp_edges, valleys, voids, weights, initial_overlap)
       character(len=*), intent(inout) :: master, slave, weights, initial_overlap
       real(rk), intent(inout) :: friction, tolerance
       integer, intent(inout) :: iterations
-      logical, intent(inout) :: symmetric, tracking, edges, seams, sharp_edges, valleys
+      logical, intent(inout) :: symmetric, tracking, edges, seams, sharp_edges, valleys, voids
       namelist /contact/ master, slave, friction, iterations, tolerance, symmetric, tracking, edges, seams, sharp_edges, &
-                         valleys, weights, initial_overlap
+                         valleys, voids, weights, initial_overlap
       read(text, nml=contact, iostat=ios, iomsg=msg)
     end subroutine contact_nml
 
@@ -1840,7 +1841,7 @@ contains
       associate(c => cfg%contacts(k))
         vals = [val_t(c=c%master), val_t(c=c%slave), val(c%friction), val_t(i=c%iterations), &
                 val(c%tolerance), val_t(l=c%symmetric), val_t(l=c%tracking), val_t(l=c%edges), val_t(l=c%seams), &
-                val_t(l=c%sharp_edges), val_t(l=c%valleys), &
+                val_t(l=c%sharp_edges), val_t(l=c%valleys), val_t(l=c%voids), &
                 choice_val(c%weights, weights_words, weights_codes), &
                 choice_val(c%initial_overlap, overlap_words, overlap_codes)]
       end associate

@@ -199,6 +199,7 @@ module udar_config
     logical  :: seams = .true.                   !< nodes in the seams of a dented master surface are found (theory.md 11)
     logical  :: sharp_edges = .true.             !< a node just outside a face beside a sharp convex edge is no contact of the other face (theory.md 11)
     logical  :: valleys = .false.                !< a node in a valley of the master surface is matched to both faces (theory.md 11)
+    logical  :: voids = .false.                  !< the holes erosion leaves in its eroding parts close but never turn inside out (theory.md 12)
     integer  :: weights = contact_weights_area       !< shares of the master nodes: area (a moment balance) | distance (paper eq. 12)
     integer  :: initial_overlap = overlap_report     !< slave nodes behind the master at t = 0: report | move
   end type

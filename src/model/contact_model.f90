@@ -134,6 +134,7 @@ module udar_contact_model
     integer :: n_mesh = 0
     integer, allocatable :: particle_part(:)   !< (particles) the part each particle's element belonged to
     logical, allocatable :: part_converts(:)   !< (parts) its eroded elements become particles (its free nodes have no mass)
+    logical, allocatable :: part_voids(:)      !< (parts) its eroded elements are closed voids (&contact voids; udar_eroded_voids)
     !> particles 1..particles_placed have been looked for inside the master
     !> bodies (place_new_particles); the run's count of those found inside,
     !> of those left inside (no surface face within reach) and the deepest (m)

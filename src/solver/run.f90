@@ -43,6 +43,7 @@ module udar_run
   use udar_contact, only: contact_enforce, contact_overlaps, contact_settle, contact_pressure, contact_keep_velocities, &
       contact_work, contact_extent, contact_add_particles, contact_refresh_masses
   use udar_contact_erosion, only: contact_erode
+  use udar_eroded_voids, only: voids_t, voids_setup, voids_enforce, voids_mark_stale
   use udar_files, only: rename_file, remove_if_present, make_directories
   implicit none
   private
@@ -136,6 +137,7 @@ contains
     type(wall_sums_t) :: walls
     type(run_state_t) :: st
     type(particles_t) :: pt
+    type(voids_t) :: vd
     integer(i8), allocatable :: wall_work_dummy(:), wall_impulse_dummy(:,:)   !< the walls' sums of particles off the root rank
     integer(i8), allocatable :: sym_impulse_dummy(:,:)   !< the symmetry planes' impulses on particles (not booked)
     real(rk) :: dt_conv
@@ -267,6 +269,7 @@ contains
     dom%keep_altitudes = ct%n_interfaces > 0
     pt%use_shear_switch = cfg%numerics%sph_viscosity_switch
     call particles_init(pt, dom)
+    if (allocated(ct%part_voids)) call voids_setup(vd, dom, ct%part_voids)
     ! (a restart's particles are contact nodes, and the nodes' masses without their elements)
     if (pt%n > 0) then
       call contact_refresh_masses(ct, dom)
@@ -330,6 +333,13 @@ contains
       call update_positions(dom, dt)
       elapsed = comms_wtime()
       call contact_keep_velocities(ct, dom, 2)
+      if (vd%on) then
+        ! the holes erosion left may close but not turn inside out (&contact
+        ! voids), from every local node's x(n+1) and v(n+1/2): the ghosts'
+        ! from their owners first; the contact's work takes in its changes
+        call comms_halo_exchange(halo, dom%nd_x, dom%nd_v)
+        call voids_enforce(vd, dom, halo, dt)
+      end if
       if (ct%n_interfaces > 0) call keep_constrained_positions(dom, x_constrained)
       call contact_enforce(ct, dom, dt, pt)
       ! the contact pass knows no velocity conditions: they hold again after it
@@ -365,6 +375,7 @@ contains
         end if
       end if
       if (eroded_any) then
+        call voids_mark_stale(vd)
         call nodal_reference_volumes(dom, rebase=dom%anti_locking)
         ! the nodal pressures again with the new reference volumes
         if (dom%anti_locking) call nodal_pressures(dom)
@@ -572,6 +583,8 @@ contains
         itoa(n_slave)//' slave nodes, '//fixed(1.0e9_rk*contact_seconds/(real(n_slave, rk)*max(cycles_run, 1)), 1)// &
         ' ns per slave node-cycle'
       call log_info(line)
+      if (vd%on) call log_info('         contact: closed voids: '//itoa(int(comms_sum_int(vd%held_total)))// &
+        ' held from turning inside out (eroded elements, summed over the cycles)')
       ! the slowest rank's: what a rank waits for
       line = '         contact: of which exchanges '//fixed(comms_max(ct%seconds_exchange), 3)// &
         ' s, the search for each rank''s share '//fixed(comms_max(ct%seconds_search), 3)// &

@@ -31,6 +31,11 @@ expect missing_deck 1 'missing.nml' missing.nml
 printf '%s\n&numerics stabilisation = 0.2 /\n' "$good" > "$W/bad_share.nml"
 expect share_above_the_large_share 1 "bad_share.nml:6: &numerics.*stabilisation = 0.2 : must be at most stabilisation_large = 0.1" bad_share.nml
 
+# closed voids: only where a part of the contact erodes
+printf '%s\n&contact master = "bar", slave = "impact_face", voids = .true. /\n' "$good" > "$W/voids_no_erosion.nml"
+expect voids_without_erosion 1 "voids_no_erosion.nml:6: &contact #1.*voids.*neither part of the contact erodes" \
+  "--check voids_no_erosion.nml"
+
 # gauges: one of node, element or point, each in the mesh
 printf '%s\n&gauge name = "a-b", node = 1, element = 1 /\n' "$good" > "$W/bad_gauge.nml"
 expect gauge_name_and_kind 1 "bad_gauge.nml:6: &gauge #1 'a-b': name = .a-b. : letters, digits and _ only" bad_gauge.nml
@@ -141,6 +146,8 @@ printf '%s\n&boundary kind = "symmetry", surface = "bar_side" /\n' "$good2d" > "
 expect unknown_curve_in_2d 1 "curve2d.nml:6: &boundary #1 'bar_side': surface = 'bar_side': no physical curve group of that name .*'impact_face', 'axis'" "--check curve2d.nml"
 printf '%s\n&contact master = "bar", slave = "impact_face", edges = .true. /\n' "$good2d" > "$W/edges2d.nml"
 expect edges_in_2d 1 "edges2d.nml:6: &contact #1.*edges.*edge-to-edge contact has no 2D meaning" "--check edges2d.nml"
+printf '%s\n&contact master = "bar", slave = "impact_face", voids = .true. /\n' "$good2d" > "$W/voids2d.nml"
+expect voids_in_2d 1 "voids2d.nml:6: &contact #1.*voids.*closed voids are for 3D meshes only" "--check voids2d.nml"
 printf '%s\n&contact master = "bar_side", slave = "bar" /\n' "$good2d" > "$W/contact2d.nml"
 expect unknown_contact_curve_in_2d 1 "contact2d.nml:6: &contact #1.*'bar_side' is neither a part nor a physical curve group .*curve groups: 'impact_face', 'axis'" "--check contact2d.nml"
 printf '%s\n&contact master = "axis", slave = "bar" /\n' "$good2d" > "$W/axis2d.nml"

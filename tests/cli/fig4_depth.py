@@ -7,10 +7,15 @@ Free nodes of eroded rod elements are not counted here
 (tests/tools/contact_depth.py counts them too).
 Checked over all the files: the frames at most 88 (0.9.4 gave 44 over the
 three steps of fig4_depth.sh; 0.9.3, whose master surface held the
-plate's faces in the plane, 62), and in the first 2 us the rod nodes on
-the plane at most 0.02 h deep (0.9.4: 0.0016 h; 0.9.3: 0.103 h, matched
-to the faces in the plane instead of the crater's). Over the 10 us they
-go deeper (0.9.4: 0.086 h, 0.9.3: 0.122 h): printed, issue 13.
+plate's faces in the plane, 62; 0.9.8 with the deck's &contact voids 25),
+in the first 2 us the rod nodes on the plane at most 0.02 h deep (0.9.4:
+0.0016 h; 0.9.3: 0.103 h, matched to the faces in the plane instead of
+the crater's), and over the whole 10 us at most 0.025 h (0.9.8, the deck
+with voids: 0.0034 / 0.0126 / 0.0016 h at the three steps, at most
+0.0126 h over six steps 0.33-0.37; without voids 0.086 / 0.061 / 0.070 h,
+at least 0.043 h over the six: the eroding plate folded into itself
+through the holes of its eroded elements and carried the rod nodes on
+the fold inside, validation.md 4zi).
 Before 0.9.4 the depth of a node on a face in the plane counted 0, and
 the frames limit was 28 (0.6.5: 14, 0.6.4: 43, by that measure).
 Usage: fig4_depth.py FIELDS.h5 ..."""
@@ -50,4 +55,5 @@ for path in sys.argv[1:]:
     plane_worst, plane_early = max(plane_worst, worst), max(plane_early, early)
 checks.below('frames_with_a_rod_node_deeper_than_1e-4_h_in_all_runs', total, 88)
 checks.below('rod_node_on_the_symmetry_plane_inside_the_plate_to_2_us_over_h', plane_early, 0.02)
+checks.below('rod_node_on_the_symmetry_plane_inside_the_plate_over_h', plane_worst, 0.025)
 checks.finish()

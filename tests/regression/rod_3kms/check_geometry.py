@@ -72,13 +72,15 @@ def depths_inside(points, x, tets, in_plane=None):
     return depths
 
 
-def element_measures(conn, x0):
+def element_measures(conn, x0, signed=False):
     """Each element's reference measure: a tetrahedron's volume (m3), or a
     triangle's area in the (x, y) plane (m2: per metre of depth in plane
-    strain; times 2 pi rbar for the volume per revolution)."""
+    strain; times 2 pi rbar for the volume per revolution). signed: a
+    tetrahedron's signed volume (negative when inside out)."""
     if conn.shape[1] == 4:
         a, b, c, d = (x0[conn[:, k]] for k in range(4))
-        return np.abs(np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a))) / 6.0
+        v = np.einsum('ij,ij->i', b - a, np.cross(c - a, d - a)) / 6.0
+        return v if signed else np.abs(v)
     a, b, c = (x0[conn[:, k]] for k in range(3))
     return 0.5 * np.abs((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1]))
 
