@@ -75,10 +75,10 @@ contains
     real(rk), intent(in) :: dt, d(ld,6), w(ld,3), soft(nb), temp(nb), p(nb), eta(nb)
     real(rk), intent(inout) :: hard(nb), s(ld,6), eps_p(nb)
     real(rk), intent(inout) :: w_dev(nb), w_plastic(nb)
-    real(rk), dimension(block_size) :: q_trial, rate, rot_work, trial_work, scale, d_eps, sy, g2dt, g_el
+    real(rk), dimension(block_size) :: q_trial, rate, rot_work, trial_work, scale, d_eps, sy, g2dt, g_el, rate_factor
     real(rk) :: a, b, cc, c, r11, r12, r13, r21, r22, r23, r31, r32, r33
     real(rk) :: t11, t12, t13, t21, t22, t23, t31, t32, t33, x(6), dd(6), tr3, factor, t_m, slope
-    integer :: i
+    integer :: i, n_flow, flowing(block_size)
     if (mat%strength == strength_none) then
       s(1:nb,:) = 0.0_rk; w_dev(1:nb) = 0.0_rk; w_plastic(1:nb) = 0.0_rk
       return
@@ -133,19 +133,23 @@ contains
         hard(i) = sy(i)
       end do
     case (strength_johnson_cook)
+      ! the elements that flow, listed, then returned together
+      n_flow = 0
       do i = 1, nb
         d_eps(i) = 0.0_rk
         sy(i) = soft(i)*hard(i)
+        rate_factor(i) = 1.0_rk
         if (q_trial(i) <= sy(i)) cycle          ! the rate factor is >= 1: elastic
-        if (mat%jc_rate_form == jc_rate_plastic) then
-          call jc_return(mat, dt, q_trial(i), eps_p(i), soft(i), 1.0_rk, .true., d_eps(i), sy(i), hard(i))
-        else
-          factor = jc_rate_factor(mat, rate(i))
-          sy(i) = soft(i)*factor*hard(i)
-          if (q_trial(i) > sy(i)) &
-            call jc_return(mat, dt, q_trial(i), eps_p(i), soft(i), factor, .false., d_eps(i), sy(i), hard(i))
+        if (mat%jc_rate_form /= jc_rate_plastic) then
+          rate_factor(i) = jc_rate_factor(mat, rate(i))
+          sy(i) = soft(i)*rate_factor(i)*hard(i)
+          if (q_trial(i) <= sy(i)) cycle
         end if
+        n_flow = n_flow + 1
+        flowing(n_flow) = i
       end do
+      call jc_returns(mat, dt, n_flow, flowing, q_trial, eps_p, soft, rate_factor, mat%jc_rate_form == jc_rate_plastic, &
+                      d_eps, sy, hard)
     case (strength_zerilli_armstrong, strength_steinberg_guinan, strength_steinberg_lund, strength_ptw)
       do i = 1, nb
         d_eps(i) = 0.0_rk
@@ -261,71 +265,98 @@ contains
   !> eps_p^n (1 + de/eps_p)^n needs no power for the small increments of a
   !> flowing element (power_ratio), and each later iterate's power is the
   !> last one's times (1 + step/(eps_p + de_last))^n: one power at most per
-  !> return. sy enters with the flow stress at the
-  !> start and leaves with the one at eps_p + de; hard is updated.
-  pure subroutine jc_return(mat, dt, q_trial, eps_p, soft, rate_factor, plastic_rate, de, sy, hard)
+  !> return. sy enters with the flow stress at the start and leaves with
+  !> the one at eps_p + de; hard is updated.
+  !> The n elements listed in el (block indices) iterate side by side, one
+  !> Newton step of each in turn, those that converged leaving the list:
+  !> each element's arithmetic is that of its own iteration, and the
+  !> independent iterations overlap in the processor (one after the other,
+  !> each waited on its divisions).
+  pure subroutine jc_returns(mat, dt, n, el, q_trial, eps_p, soft, rate_factor, plastic_rate, de, sy, hard)
     type(material_cfg_t), intent(in) :: mat
-    real(rk), intent(in) :: dt, q_trial, eps_p, soft, rate_factor
+    real(rk), intent(in) :: dt
+    integer, intent(in) :: n, el(n)
+    real(rk), intent(in), dimension(block_size) :: q_trial, eps_p, soft, rate_factor
     logical, intent(in) :: plastic_rate
-    real(rk), intent(inout) :: de, sy, hard
-    real(rk) :: g3, lo, hi, f, fp, e, pw, pw0, h, r, slope, de_rate1, de_pw, inv_e, inv_e_pw
-    integer :: it
+    real(rk), intent(inout), dimension(block_size) :: de, sy, hard
+    real(rk), dimension(block_size) :: lo, hi, pw, de_pw, inv_e_pw, r
+    real(rk) :: g3, f, fp, e, pw0, h, slope, de_rate1, inv_e
+    integer :: it, k, i, n_left, n_next, left(block_size)
     logical :: done
     g3 = 3.0_rk*mat%shear_modulus
-    r = rate_factor
-    if (soft <= 0.0_rk .or. (mat%jc_b <= 0.0_rk .and. .not. plastic_rate)) then
-      ! melted, or no hardening with a fixed rate factor: closed form
-      de = max(q_trial - sy, 0.0_rk)/g3
-      sy = q_trial - g3*de
-      return
-    end if
-    pw0 = 0.0_rk
-    if (mat%jc_b > 0.0_rk) pw0 = max(hard - mat%jc_a, 0.0_rk)/mat%jc_b     ! eps_p^n
     de_rate1 = dt*mat%jc_rate0          ! below this increment the plastic-rate factor is 1
-    lo = 0.0_rk
-    hi = (q_trial - soft*r*mat%jc_a)/g3
-    slope = 0.0_rk
-    ! 1/(eps_p + the increment pw belongs to): the series' argument is a
-    ! product, the one division of an iteration being Newton's step
-    inv_e_pw = 0.0_rk
-    if (eps_p > 0.0_rk) then
-      inv_e_pw = 1.0_rk/eps_p
-      slope = soft*r*mat%jc_b*mat%jc_n*pw0*inv_e_pw
-    end if
-    de = min((q_trial - sy)/(g3 + slope), hi)
-    de_pw = 0.0_rk
-    do it = 1, 80
-      e = eps_p + de
-      inv_e = 1.0_rk/e
-      if (it > 1) then
-        ! from the last iterate: Newton's steps are small, so the series serves
-        pw = pw*power_ratio((de - de_pw)*inv_e_pw, mat%jc_n)
-      else if (eps_p > 0.0_rk) then
-        pw = pw0*power_ratio(de*inv_e_pw, mat%jc_n)
+    n_left = 0
+    do k = 1, n
+      i = el(k)
+      r(i) = rate_factor(i)
+      if (soft(i) <= 0.0_rk .or. (mat%jc_b <= 0.0_rk .and. .not. plastic_rate)) then
+        ! melted, or no hardening with a fixed rate factor: closed form
+        de(i) = max(q_trial(i) - sy(i), 0.0_rk)/g3
+        sy(i) = q_trial(i) - g3*de(i)
+        cycle
+      end if
+      pw0 = 0.0_rk
+      if (mat%jc_b > 0.0_rk) pw0 = max(hard(i) - mat%jc_a, 0.0_rk)/mat%jc_b     ! eps_p^n
+      lo(i) = 0.0_rk
+      hi(i) = (q_trial(i) - soft(i)*r(i)*mat%jc_a)/g3
+      slope = 0.0_rk
+      ! 1/(eps_p + the increment pw belongs to): the series' argument is a
+      ! product, the one division of an iteration being Newton's step
+      inv_e_pw(i) = 0.0_rk
+      if (eps_p(i) > 0.0_rk) then
+        inv_e_pw(i) = 1.0_rk/eps_p(i)
+        slope = soft(i)*r(i)*mat%jc_b*mat%jc_n*pw0*inv_e_pw(i)
+      end if
+      de(i) = min((q_trial(i) - sy(i))/(g3 + slope), hi(i))
+      de_pw(i) = 0.0_rk
+      ! the first iterate's power
+      e = eps_p(i) + de(i)
+      if (eps_p(i) > 0.0_rk) then
+        pw(i) = pw0*power_ratio(de(i)*inv_e_pw(i), mat%jc_n)
       else
-        pw = e**mat%jc_n
+        pw(i) = e**mat%jc_n
       end if
-      de_pw = de          ! the increment pw belongs to
-      inv_e_pw = inv_e
-      h = mat%jc_a + mat%jc_b*pw
-      if (plastic_rate) then
-        r = 1.0_rk
-        if (de > de_rate1) r = 1.0_rk + mat%jc_c*log(de/de_rate1)
-      end if
-      f = q_trial - g3*de - soft*h*r
-      ! converged to round-off of the residual (a relative step test alone
-      ! never ends for tiny increments, whose residual noise dominates)
-      if (abs(f) <= 1.0e-13_rk*q_trial) exit
-      fp = -g3 - soft*r*mat%jc_b*mat%jc_n*pw*inv_e
-      if (plastic_rate .and. de > de_rate1) fp = fp - soft*h*mat%jc_c/de
-      call newton_step(de, f, fp, lo, hi, 1.0e-12_rk, done)
-      if (done) exit
+      n_left = n_left + 1
+      left(n_left) = i
     end do
-    ! on the yield surface by construction of the return
-    sy = q_trial - g3*de
-    ! the power of the last iteration, moved by its step if it moved de
-    if (de /= de_pw) pw = pw*power_ratio((de - de_pw)*inv_e_pw, mat%jc_n)
-    hard = mat%jc_a + mat%jc_b*pw
+    do it = 1, 80
+      if (n_left == 0) exit
+      n_next = 0
+      do k = 1, n_left
+        i = left(k)
+        e = eps_p(i) + de(i)
+        inv_e = 1.0_rk/e
+        ! from the last iterate: Newton's steps are small, so the series serves
+        if (it > 1) pw(i) = pw(i)*power_ratio((de(i) - de_pw(i))*inv_e_pw(i), mat%jc_n)
+        de_pw(i) = de(i)          ! the increment pw belongs to
+        inv_e_pw(i) = inv_e
+        h = mat%jc_a + mat%jc_b*pw(i)
+        if (plastic_rate) then
+          r(i) = 1.0_rk
+          if (de(i) > de_rate1) r(i) = 1.0_rk + mat%jc_c*log(de(i)/de_rate1)
+        end if
+        f = q_trial(i) - g3*de(i) - soft(i)*h*r(i)
+        ! converged to round-off of the residual (a relative step test alone
+        ! never ends for tiny increments, whose residual noise dominates)
+        if (abs(f) <= 1.0e-13_rk*q_trial(i)) cycle
+        fp = -g3 - soft(i)*r(i)*mat%jc_b*mat%jc_n*pw(i)*inv_e
+        if (plastic_rate .and. de(i) > de_rate1) fp = fp - soft(i)*h*mat%jc_c/de(i)
+        call newton_step(de(i), f, fp, lo(i), hi(i), 1.0e-12_rk, done)
+        if (done) cycle
+        n_next = n_next + 1
+        left(n_next) = i
+      end do
+      n_left = n_next
+    end do
+    do k = 1, n
+      i = el(k)
+      if (soft(i) <= 0.0_rk .or. (mat%jc_b <= 0.0_rk .and. .not. plastic_rate)) cycle
+      ! on the yield surface by construction of the return
+      sy(i) = q_trial(i) - g3*de(i)
+      ! the power of the last iteration, moved by its step if it moved de
+      if (de(i) /= de_pw(i)) pw(i) = pw(i)*power_ratio((de(i) - de_pw(i))*inv_e_pw(i), mat%jc_n)
+      hard(i) = mat%jc_a + mat%jc_b*pw(i)
+    end do
   end subroutine
 
   !> (1 + x)^n for x > -1: the binomial series to x^6 where |x| < 0.02
