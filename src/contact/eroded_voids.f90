@@ -17,10 +17,11 @@
 !> before) and each owned node sums its voids' changes in ascending
 !> element id, so results are bitwise independent of the partition.
 module udar_eroded_voids
-  use udar_kinds, only: rk
+  use udar_kinds, only: rk, i8
   use udar_domain, only: domain_t
   use udar_fracture, only: el_eroded
   use udar_vectors, only: cross
+  use udar_contact_search, only: ensure
   use udar_comms, only: halo_t, comms_halo_exchange, comms_halo_exchange_scalar
   implicit none
   private
@@ -35,14 +36,14 @@ module udar_eroded_voids
     integer, allocatable :: list(:)          !< local eroded elements of those parts, ascending (1:n_list)
     integer :: n_list = 0
     real(rk), allocatable :: proj(:,:,:)     !< (3,3,local nodes) the velocity conditions' projector
-    real(rk), allocatable :: dv(:,:,:)       !< (3,4,voids) work: each held void's corner velocity changes
+    real(rk), allocatable :: dv(:)           !< work: each held void's corner velocity changes, 12 a void
     integer, allocatable :: slot(:)          !< (local elements) work: the void's row in dv, 0 none
     logical, allocatable :: touched(:)       !< (local nodes) work
     integer, allocatable :: nodes(:)         !< work: the owned nodes touched
     integer, allocatable :: held(:)          !< work: the voids held in a sweep
     real(rk), allocatable :: share(:)        !< (local nodes) work: the held voids at each node
     integer :: held_cycle = 0                !< voids held this cycle (on this rank, owned elements)
-    integer(kind=8) :: held_total = 0        !< over the run
+    integer(i8) :: held_total = 0            !< over the run
   end type
 
 contains
@@ -62,8 +63,8 @@ contains
     vd%part_on = parts
     vd%stale = .true.
     ! the list's room: every local element of those parts; the work rows
-    ! grow by doubling as voids are held (a few times a run)
-    allocate(vd%list(count(parts(dom%el_part(1:dom%n_elems)))), vd%dv(3,4,16), vd%nodes(64), vd%held(16), &
+    ! grow by half again as voids are held (ensure: a few times a run)
+    allocate(vd%list(count(parts(dom%el_part(1:dom%n_elems)))), vd%dv(12*16), vd%nodes(64), vd%held(16), &
              vd%share(dom%n_nodes))
     vd%n_list = 0
     allocate(vd%proj(3,3,dom%n_nodes), vd%slot(dom%n_elems), vd%touched(dom%n_nodes))
@@ -176,11 +177,11 @@ contains
       nv = 0
       do k = 1, vd%n_list
         e = vd%list(k)
-        call gather(e, 1.0_rk)
+        call gather(e, .false.)
         call void_changes(xe, ve, me, pe, dv, held)
         if (.not. held) cycle
         nv = nv + 1
-        if (nv > size(vd%held)) call grow(vd%held)
+        call ensure(vd%held, nv, keep=.true.)
         vd%held(nv) = e
         do c = 1, 4
           n = dom%el_conn(e,c)
@@ -193,17 +194,17 @@ contains
       nn = 0
       do k = 1, nv
         e = vd%held(k)
-        call gather(e, 0.0_rk)
+        call gather(e, .true.)
         call void_changes(xe, ve, me, pe, dv, held)
-        if (k > size(vd%dv, 3)) call grow_rows()
-        vd%dv(:,:,k) = dv
+        call ensure(vd%dv, 12*k, keep=.true.)
+        vd%dv(12*k-11:12*k) = reshape(dv, [12])
         vd%slot(e) = k
         do c = 1, 4
           n = dom%el_conn(e,c)
           if (n > dom%n_owned_nodes .or. vd%touched(n)) cycle
           vd%touched(n) = .true.
           nn = nn + 1
-          if (nn > size(vd%nodes)) call grow(vd%nodes)
+          call ensure(vd%nodes, nn, keep=.true.)
           vd%nodes(nn) = n
         end do
       end do
@@ -215,7 +216,8 @@ contains
           e = dom%nd_el(k)
           s = vd%slot(e)
           if (s == 0) cycle
-          acc = acc + vd%dv(:, dom%nd_el_corner(k), s)
+          c = 12*(s - 1) + 3*(dom%nd_el_corner(k) - 1)
+          acc = acc + vd%dv(c+1:c+3)
         end do
         acc = acc/vd%share(n)
         dom%nd_v(:,n) = dom%nd_v(:,n) + acc
@@ -230,17 +232,17 @@ contains
 
   contains
 
-    !> Void e's corners; whole masses (split = 1) or their shares m_a / n_a.
-    subroutine gather(e, whole)
+    !> Void e's corners: their whole masses, or (shares) their shares m_a / n_a.
+    subroutine gather(e, shares)
       integer, intent(in) :: e
-      real(rk), intent(in) :: whole      !< 1: the whole masses; 0: the shares
+      logical, intent(in) :: shares
       integer :: cc, nc
       do cc = 1, 4
         nc = dom%el_conn(e,cc)
         xe(:,cc) = dom%nd_x(:,nc)
         ve(:,cc) = dom%nd_v(:,nc)
         me(cc) = dom%nd_mass(nc)
-        if (whole == 0.0_rk) me(cc) = me(cc)/vd%share(nc)
+        if (shares) me(cc) = me(cc)/vd%share(nc)
         pe(:,:,cc) = vd%proj(:,:,nc)
       end do
     end subroutine
@@ -255,21 +257,6 @@ contains
         vd%list(vd%n_list) = ee
       end do
       vd%stale = .false.
-    end subroutine
-
-    subroutine grow_rows()
-      real(rk), allocatable :: b(:,:,:)
-      allocate(b(3,4,2*size(vd%dv, 3)))
-      b(:,:,1:size(vd%dv, 3)) = vd%dv
-      call move_alloc(b, vd%dv)
-    end subroutine
-
-    subroutine grow(a)
-      integer, allocatable, intent(inout) :: a(:)
-      integer, allocatable :: b(:)
-      allocate(b(2*size(a)))
-      b(1:size(a)) = a
-      call move_alloc(b, a)
     end subroutine
   end subroutine
 end module udar_eroded_voids
