@@ -13,7 +13,7 @@ module udar_contact
   use udar_particle_model, only: particles_t
   use udar_contact_model, only: contact_t, interface_t, neighbour_across, contact_grow_nodes
   use udar_contact_search, only: grid_build, grid_cell, ensure
-  use udar_contact_kernels, only: match_velocities, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
+  use udar_contact_kernels, only: corner_angle, match_velocities, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
                                   edge_crossing, behind_not, behind_face, behind_seam
   use udar_contact_faces, only: face_projection, face_shares, closest_on_face, element_coordinates, face_behind_surface, &
                                 face_beside_sharp_edge, points_inside_elements
@@ -976,6 +976,7 @@ contains
           if (best == 0 .or. room <= 0.0_rk) exit
           call put_back(ps, -best_dist*best_n, room)
         end do
+        call leave_element_under(ps, it%slot(k), room)
         if (all(ct%x(:,ps) == x_new)) cycle
         ct%rec_send(n_rec+1:n_rec+rec_moved) = [real(ps, rk), ct%x(:,ps)]
         n_rec = n_rec + rec_moved
@@ -1314,6 +1315,83 @@ contains
       if (it%apex(t) == 0 .or. dt <= 0.0_rk) return
       call element_coordinates(xa(:,1:nf), ct%x(:,it%apex(t)), ct%x(:,ps), lam)
       inside_element_under = all(lam(1:nf+1) > edge_tolerance)
+    end function
+
+    !> Slave node ps, still inside the master body after the returns onto
+    !> planes, goes to the nearest point of its candidate triangles, as far
+    !> as room allows: at a vertex or an edge where the faces of a jagged
+    !> crater meet, behind several of their planes, no plane's return takes
+    !> it out (validation.md 4zj). Inside: strictly inside the element under
+    !> one of those triangles, or, within return_fraction of the mean master
+    !> edge from a vertex or an edge nearest to it, behind the vertex's
+    !> angle-weighted normal (the edge's faces' mean normal; Baerentzen and
+    !> Aanaes 2005), which also sees the elements at a vertex that have no
+    !> face on the surface. Inside the body, the nearest point of its
+    !> surface is out of it.
+    subroutine leave_element_under(ps, slot, room)
+      integer, intent(in) :: ps, slot
+      real(rk), intent(inout) :: room
+      real(rk) :: xa(3,3), lam(4), c(3), g(3), c_best(3), g_best(3), d, d_best, n(3), dist, wn(3)
+      integer :: s, t, t_best, a, b, corner, n_feature
+      logical :: inside, at_feature
+      if (room <= 0.0_rk) return
+      inside = .false.
+      d_best = huge(1.0_rk)
+      t_best = 0
+      do s = it%cand_start(slot), it%cand_start(slot+1) - 1
+        t = it%cand(s)
+        if (.not. near_candidate(ps, t)) cycle
+        call gather_columns(xa, ct%x, it%tri(:,t))
+        if (.not. inside .and. it%apex(t) > 0 .and. it%apex(t) /= ps) then
+          call element_coordinates(xa(:,1:nf), ct%x(:,it%apex(t)), ct%x(:,ps), lam)
+          inside = all(lam(1:nf+1) > 0.0_rk)
+        end if
+        call closest_on_face(xa(:,1:nf), ct%x(:,ps), c, g)
+        d = norm2(c - ct%x(:,ps))
+        if (d < d_best) then
+          d_best = d
+          c_best = c
+          g_best = g
+          t_best = t
+        end if
+      end do
+      if (t_best == 0) return
+      n_feature = count(g_best(1:nf) > 0.0_rk)
+      if (.not. inside .and. n_feature < nf .and. d_best > 0.0_rk .and. d_best <= return_fraction*it%h_mean) then
+        ! the normal of the nearest vertex or edge: the faces that have it
+        wn = 0.0_rk
+        do s = it%cand_start(slot), it%cand_start(slot+1) - 1
+          t = it%cand(s)
+          if (.not. near_candidate(ps, t)) cycle
+          corner = 0
+          at_feature = .true.
+          do b = 1, nf
+            if (g_best(b) <= 0.0_rk) cycle
+            at_feature = at_feature .and. any(it%tri(1:nf,t) == it%tri(b,t_best))
+            do a = 1, nf
+              if (it%tri(a,t) == it%tri(b,t_best)) corner = a
+            end do
+          end do
+          if (.not. at_feature) cycle
+          call gather_columns(xa, ct%x, it%tri(:,t))
+          call face_projection(xa(:,1:nf), ct%x(:,ps), n, dist, g)
+          if (n_feature == 1 .and. nf == 3) n = corner_angle(xa, corner)*n
+          wn = wn + n
+        end do
+        inside = dot_product(ct%x(:,ps) - c_best, wn) < 0.0_rk
+      end if
+      if (inside) call put_back(ps, c_best - ct%x(:,ps), room)
+    end subroutine
+
+    !> Candidate triangle t of a slave node at ps can hold it: ps in its box,
+    !> its nodes' states current, ps not one of its nodes.
+    logical function near_candidate(ps, t)
+      integer, intent(in) :: ps, t
+      near_candidate = .false.
+      if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) return
+      if (.not. known(t)) return
+      if (any(it%tri(:,t) == ps)) return
+      near_candidate = .true.
     end function
 
     !> Whether slave node ps lies on the symmetry plane (2D: line or axis)

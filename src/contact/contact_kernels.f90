@@ -9,7 +9,7 @@ module udar_contact_kernels
   private
   public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_crossing, edge_shares, &
             closest_on_triangle, behind_not, behind_face, behind_seam, &
-            solve_normal_lcp, normal_rows_matrix, contact_point
+            solve_normal_lcp, normal_rows_matrix, contact_point, corner_angle
 
   !> udar_contact_faces' face_behind_surface's verdicts: not behind the
   !> surface; behind this face; behind the surface beyond one of its concave
@@ -71,6 +71,20 @@ contains
       end if
     end do
   end subroutine
+
+  !> The angle (rad) of triangle xa at its corner a: the weight of its
+  !> normal in the angle-weighted normal of a vertex, whose side tells
+  !> inside from outside a closed surface for a point whose nearest surface
+  !> point is that vertex (Baerentzen and Aanaes 2005).
+  pure real(rk) function corner_angle(xa, a) result(angle)
+    real(rk), intent(in) :: xa(3,3)
+    integer, intent(in) :: a
+    real(rk) :: e1(3), e2(3)
+    e1 = xa(:,mod(a,3)+1) - xa(:,a)
+    e2 = xa(:,mod(a+1,3)+1) - xa(:,a)
+    ! atan2 of |e1 x e2| and e1.e2: accurate at small and large angles alike
+    angle = atan2(norm2(cross(e1, e2)), dot_product(e1, e2))
+  end function
 
   !> Barycentric coordinates lam of point p in the tetrahedron of master
   !> triangle xa and its fourth corner xd (the element under the face):

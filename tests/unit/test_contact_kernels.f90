@@ -10,7 +10,7 @@ program test_contact_kernels
   use udar_vectors, only: cross
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, edge_crossing, edge_shares, &
                                   tetrahedron_coordinates, closest_on_triangle, behind_not, behind_face, &
-                                  behind_seam, solve_normal_lcp, normal_rows_matrix
+                                  behind_seam, solve_normal_lcp, normal_rows_matrix, corner_angle
   use udar_contact_faces, only: face_behind_surface, face_beside_sharp_edge
   use udar_contact_model, only: interface_t, surface_neighbours, neighbour_across
   use unit_checks, only: check, check_summary, logicals
@@ -62,6 +62,41 @@ program test_contact_kernels
   call check_summary()
 contains
 
+  !> corner_angle by hand, and the angle-weighted normal of a cube's corner
+  !> (the leave-the-body test of contact_driver's returns): its three faces
+  !> cut into five triangles at the corner (two of 45 degrees on x = 0 and
+  !> on y = 0, one of 90 on z = 0) give the diagonal direction, as the
+  !> faces' equal angles do; the plain sum of the five normals does not.
+  subroutine test_corner_normal()
+    real(rk) :: o(3), ex(3), ey(3), ez(3), d(3), xa(3,3), wn(3), plain(3), n(3), dist, g(3), err
+    integer :: k
+    o = 0.0_rk
+    ex = [1.0_rk, 0.0_rk, 0.0_rk]; ey = [0.0_rk, 1.0_rk, 0.0_rk]; ez = [0.0_rk, 0.0_rk, 1.0_rk]
+    xa = reshape([o, ex, [0.5_rk, sqrt(0.75_rk), 0.0_rk]], [3, 3])
+    err = abs(corner_angle(xa, 1) - acos(-1.0_rk)/3) + abs(corner_angle(xa, 3) - acos(-1.0_rk)/3)
+    xa = reshape([o, ex, ey], [3, 3])
+    err = err + abs(corner_angle(xa, 1) - acos(-1.0_rk)/2) + abs(corner_angle(xa, 2) - acos(-1.0_rk)/4)
+    call check('corner_angle_by_hand', err < 1.0e-15_rk, 'summed error '//s(err))
+    ! the solid x, y, z >= 0: outward normals -x, -y, -z (counter-clockwise seen from outside)
+    wn = 0.0_rk
+    plain = 0.0_rk
+    do k = 1, 5
+      select case (k)
+      case (1); d = ey + ez; xa = reshape([o, d, ey], [3, 3])     ! x = 0, two halves
+      case (2); xa = reshape([o, ez, d], [3, 3])
+      case (3); d = ex + ez; xa = reshape([o, ex, d], [3, 3])     ! y = 0, two halves
+      case (4); xa = reshape([o, d, ez], [3, 3])
+      case (5); xa = reshape([o, ey, ex], [3, 3])                 ! z = 0, one triangle
+      end select
+      call triangle_projection(xa, [0.1_rk, 0.1_rk, 0.1_rk], n, dist, g)
+      wn = wn + corner_angle(xa, 1)*n
+      plain = plain + n
+    end do
+    err = maxval(abs(wn/norm2(wn) + [1.0_rk, 1.0_rk, 1.0_rk]/sqrt(3.0_rk)))
+    call check('corner_normal_of_a_cube', err < 1.0e-15_rk .and. maxval(abs(plain/norm2(plain) &
+               + [1.0_rk, 1.0_rk, 1.0_rk]/sqrt(3.0_rk))) > 0.05_rk, 'angle-weighted off the diagonal by '//s(err))
+  end subroutine
+
   !> The surface beyond a triangle's edges (face_behind_surface,
   !> closest_on_triangle, neighbour_across), by hand. Triangle T =
   !> (0,0,0), (1,0.5,0), (0,1,0) in the plane z = 0, outward +z; the edge
@@ -110,6 +145,7 @@ contains
     call closest_on_triangle(xa, [0.2_rk, 0.5_rk, -1.0_rk], c, g)
     err = err + maxval(abs(c - [0.2_rk, 0.5_rk, 0.0_rk])) + maxval(abs(g - [0.4_rk, 0.2_rk, 0.4_rk]))
     call check('closest_on_triangle_by_hand', err < 1.0e-15_rk, 'summed error '//s(err))
+    call test_corner_normal()
     ! neighbours of a strip of three triangles (nodes 1..5) and of two
     ! wedges touching along the edge 6-7 only (z from 0 to 1; faces to
     ! nodes 8..11 at 0, 60, 180, 240 degrees about it, each wedge's faces
