@@ -1188,10 +1188,7 @@ contains
       last = it%cand_start(slot+1) - 1
       do s = first, last
         t = it%cand(s)
-        ! (the box first: most candidates fail it, and it reads one array)
-        if (any(ct%x(:,ps) < it%box_lo(:,t)) .or. any(ct%x(:,ps) > it%box_hi(:,t))) cycle
-        if (.not. known(t)) cycle
-        if (any(it%tri(:,t) == ps)) cycle
+        if (.not. near_candidate(ps, t)) cycle
         if (it%self) then
           own = .false.
           do a = 1, nf
@@ -1312,9 +1309,21 @@ contains
       real(rk), intent(in) :: xa(3,3)
       real(rk) :: lam(4)
       inside_element_under = .false.
-      if (it%apex(t) == 0 .or. dt <= 0.0_rk) return
+      if (dt <= 0.0_rk) return
+      inside_element_under = in_element_under(ps, t, xa, edge_tolerance)
+    end function
+
+    !> Whether slave node ps is inside the element under face t (corners xa)
+    !> by more than tolerance in every barycentric coordinate (false where
+    !> the face's apex is not known).
+    logical function in_element_under(ps, t, xa, tolerance)
+      integer, intent(in) :: ps, t
+      real(rk), intent(in) :: xa(3,3), tolerance
+      real(rk) :: lam(4)
+      in_element_under = .false.
+      if (it%apex(t) == 0) return
       call element_coordinates(xa(:,1:nf), ct%x(:,it%apex(t)), ct%x(:,ps), lam)
-      inside_element_under = all(lam(1:nf+1) > edge_tolerance)
+      in_element_under = all(lam(1:nf+1) > tolerance)
     end function
 
     !> Slave node ps, still inside the master body after the returns onto
@@ -1331,7 +1340,7 @@ contains
     subroutine leave_element_under(ps, slot, room)
       integer, intent(in) :: ps, slot
       real(rk), intent(inout) :: room
-      real(rk) :: xa(3,3), lam(4), c(3), g(3), c_best(3), g_best(3), d, d_best, n(3), dist, wn(3)
+      real(rk) :: xa(3,3), c(3), g(3), c_best(3), g_best(3), d, d_best, n(3), dist, wn(3)
       integer :: s, t, t_best, a, b, corner, n_feature
       logical :: inside, at_feature
       if (room <= 0.0_rk) return
@@ -1342,10 +1351,8 @@ contains
         t = it%cand(s)
         if (.not. near_candidate(ps, t)) cycle
         call gather_columns(xa, ct%x, it%tri(:,t))
-        if (.not. inside .and. it%apex(t) > 0 .and. it%apex(t) /= ps) then
-          call element_coordinates(xa(:,1:nf), ct%x(:,it%apex(t)), ct%x(:,ps), lam)
-          inside = all(lam(1:nf+1) > 0.0_rk)
-        end if
+        ! (strictly: the apex itself has a coordinate 0)
+        if (.not. inside) inside = in_element_under(ps, t, xa, 0.0_rk)
         call closest_on_face(xa(:,1:nf), ct%x(:,ps), c, g)
         d = norm2(c - ct%x(:,ps))
         if (d < d_best) then
@@ -1384,7 +1391,8 @@ contains
     end subroutine
 
     !> Candidate triangle t of a slave node at ps can hold it: ps in its box,
-    !> its nodes' states current, ps not one of its nodes.
+    !> its nodes' states current, ps not one of its nodes (the box first:
+    !> most candidates fail it, and it reads one array).
     logical function near_candidate(ps, t)
       integer, intent(in) :: ps, t
       near_candidate = .false.
