@@ -19,7 +19,7 @@ ifeq ($(BUILD),debug)
   FFLAGS := -O0 -g -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace -Wall -Wno-maybe-uninitialized
   EXE    := bin/udar-debug
 else
-  FFLAGS := -O3 -march=$(ARCH) -g -fno-math-errno -flto=auto
+  FFLAGS := -O3 -march=$(ARCH) -g -fno-math-errno -fno-trapping-math -flto=auto
   EXE    := bin/udar
 endif
 FFLAGS += -std=f2018 -ffree-line-length-none $(HDF5_INC)
@@ -46,7 +46,7 @@ DEB_PKGS := gfortran make pkg-config openmpi-bin libopenmpi-dev libhdf5-openmpi-
             libmetis-dev gmsh python3-numpy python3-h5py python3-matplotlib slurm-wlm munge
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
-.PHONY: all deps run check check-unit check-regression bench validate clean help meshes debug
+.PHONY: all deps run check check-unit check-regression bench validate clean help meshes debug FORCE
 
 all: deps-quiet $(EXE)
 
@@ -76,7 +76,15 @@ deps-quiet:
 	  && [ -f /usr/include/metis.h ] && [ -d /usr/include/hdf5/openmpi ] || $(MAKE) --no-print-directory deps
 
 # ---- build
-$(BDIR)/%.o: src/%.f90
+# objects are rebuilt when the compiler or its flags change: a link-time
+# optimized binary of objects built with different flags is a silent mix
+FLAGS_STAMP := $(BDIR)/flags.stamp
+$(FLAGS_STAMP): FORCE
+	@mkdir -p $(BDIR)
+	@echo '$(FC) $(FFLAGS)' | cmp -s - $@ || echo '$(FC) $(FFLAGS)' > $@
+FORCE:
+
+$(BDIR)/%.o: src/%.f90 $(FLAGS_STAMP)
 	@mkdir -p $(dir $@) $(BDIR)/mod
 	$(FC) $(FFLAGS) -J$(BDIR)/mod -I$(BDIR)/mod -c $< -o $@
 

@@ -5,7 +5,7 @@ module udar_hydro
   use udar_kinds, only: rk, block_size
   use udar_config, only: material_cfg_t, eos_mie_gruneisen, strength_none, shear_constant
   use udar_flow_models, only: shear_modulus_at
-  use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2
+  use udar_eos, only: eos_linear_ab, eos_linear_c2, eos_mie_gruneisen_ab, eos_mie_gruneisen_c2_block
   implicit none
   private
   real(rk), parameter :: near_one = 0.1_rk   !< |je/jbar - 1| up to which the blend needs no log or exp
@@ -47,7 +47,8 @@ contains
     logical, intent(in) :: no_tension(nb)
     real(rk), intent(inout) :: e(nb), p(nb), q(nb)
     real(rk), intent(out) :: bulk_tan(nb), visc(nb)
-    real(rk) :: c2(block_size), a(block_size), b(block_size), rho, c, eq, dv, e_star, g43
+    real(rk) :: c2(block_size), a(block_size), b(block_size), rho, c, eq, dv, e_star, e_new, p_new, q_c, eq_c, g43
+    logical :: compressing, clipped
     integer :: i
     call dilatational_speed2(mat, nb, j_old, p, mass, vol, c2)
     g43 = 4.0_rk/3.0_rk*step_shear_modulus(mat)
@@ -60,6 +61,7 @@ contains
         call eos_linear_ab(mat%bulk_modulus, j_new(i), a(i), b(i))
       end do
     end if
+    ! both sides of each choice computed, then merged: so the loop vectorizes
     do i = 1, nb
       rho = mass(i)/vol(i)
       c = sqrt(c2(i))
@@ -67,21 +69,18 @@ contains
       ! sound transit): the sign of noise would switch the linear term's
       ! stiffening of the step on and off (visc) on a body at rest or in
       ! rigid motion, and with it the step, by the numbering
-      if (trd(i)*h(i) < -compression_noise*c) then
-        q(i) = rho*h(i)*(q_quad*h(i)*trd(i)**2 - q_lin*c*trd(i))
-        eq = q_lin*c - q_quad*h(i)*trd(i)
-      else
-        q(i) = 0.0_rk
-        eq = 0.0_rk
-      end if
+      compressing = trd(i)*h(i) < -compression_noise*c
+      q_c = rho*h(i)*(q_quad*h(i)*trd(i)**2 - q_lin*c*trd(i))
+      eq_c = q_lin*c - q_quad*h(i)*trd(i)
+      q(i) = merge(q_c, 0.0_rk, compressing)
+      eq = merge(eq_c, 0.0_rk, compressing)
       dv = (j_new(i) - j_old(i))/mat%rho0
       e_star = e(i) + (w_dev(i) - q(i)*trd(i)*dt)*vol(i)/mass(i) - 0.5_rk*p(i)*dv
-      e(i) = (e_star - 0.5_rk*dv*a(i))/(1.0_rk + 0.5_rk*dv*b(i))
-      p(i) = a(i) + b(i)*e(i)
-      if (no_tension(i) .and. p(i) < 0.0_rk) then
-        e(i) = e_star
-        p(i) = 0.0_rk
-      end if
+      e_new = (e_star - 0.5_rk*dv*a(i))/(1.0_rk + 0.5_rk*dv*b(i))
+      p_new = a(i) + b(i)*e_new
+      clipped = no_tension(i) .and. p_new < 0.0_rk
+      e(i) = merge(e_star, e_new, clipped)
+      p(i) = merge(0.0_rk, p_new, clipped)
       bulk_tan(i) = tangent_bulk_modulus(c2(i), rho, g43)
       visc(i) = ((eq + sqrt(eq*eq + c2(i)))/c)**2
     end do
@@ -272,9 +271,7 @@ contains
     real(rk) :: g43
     integer :: i
     if (mat%eos == eos_mie_gruneisen) then
-      do i = 1, nb
-        c2(i) = eos_mie_gruneisen_c2(mat%rho0, mat%c0, mat%s, mat%gamma0, j(i), p(i))
-      end do
+      call eos_mie_gruneisen_c2_block(mat%rho0, mat%c0, mat%s, mat%gamma0, nb, j, p, c2)
     else
       do i = 1, nb
         c2(i) = eos_linear_c2(mat%bulk_modulus, mat%rho0)

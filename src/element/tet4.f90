@@ -75,17 +75,22 @@ contains
     integer, intent(in) :: ld, nb
     real(rk), intent(in) :: v(ld,4,3), grad(ld,4,3)
     real(rk), intent(inout) :: d(ld,6), w(ld,3)
-    real(rk) :: l(3,3)
-    integer :: i, k, m
+    real(rk) :: l11, l12, l13, l21, l22, l23, l31, l32, l33
+    integer :: i
+    ! L_km written out: a local l(3,3) kept the block loop from vectorizing
     do i = 1, nb
-      do m = 1, 3
-        do k = 1, 3
-          l(k,m) = v(i,1,k)*grad(i,1,m) + v(i,2,k)*grad(i,2,m) + v(i,3,k)*grad(i,3,m) + v(i,4,k)*grad(i,4,m)
-        end do
-      end do
-      d(i,1) = l(1,1); d(i,2) = l(2,2); d(i,3) = l(3,3)
-      d(i,4) = 0.5_rk*(l(1,2) + l(2,1)); d(i,5) = 0.5_rk*(l(2,3) + l(3,2)); d(i,6) = 0.5_rk*(l(3,1) + l(1,3))
-      w(i,1) = 0.5_rk*(l(1,2) - l(2,1)); w(i,2) = 0.5_rk*(l(2,3) - l(3,2)); w(i,3) = 0.5_rk*(l(3,1) - l(1,3))
+      l11 = v(i,1,1)*grad(i,1,1) + v(i,2,1)*grad(i,2,1) + v(i,3,1)*grad(i,3,1) + v(i,4,1)*grad(i,4,1)
+      l12 = v(i,1,1)*grad(i,1,2) + v(i,2,1)*grad(i,2,2) + v(i,3,1)*grad(i,3,2) + v(i,4,1)*grad(i,4,2)
+      l13 = v(i,1,1)*grad(i,1,3) + v(i,2,1)*grad(i,2,3) + v(i,3,1)*grad(i,3,3) + v(i,4,1)*grad(i,4,3)
+      l21 = v(i,1,2)*grad(i,1,1) + v(i,2,2)*grad(i,2,1) + v(i,3,2)*grad(i,3,1) + v(i,4,2)*grad(i,4,1)
+      l22 = v(i,1,2)*grad(i,1,2) + v(i,2,2)*grad(i,2,2) + v(i,3,2)*grad(i,3,2) + v(i,4,2)*grad(i,4,2)
+      l23 = v(i,1,2)*grad(i,1,3) + v(i,2,2)*grad(i,2,3) + v(i,3,2)*grad(i,3,3) + v(i,4,2)*grad(i,4,3)
+      l31 = v(i,1,3)*grad(i,1,1) + v(i,2,3)*grad(i,2,1) + v(i,3,3)*grad(i,3,1) + v(i,4,3)*grad(i,4,1)
+      l32 = v(i,1,3)*grad(i,1,2) + v(i,2,3)*grad(i,2,2) + v(i,3,3)*grad(i,3,2) + v(i,4,3)*grad(i,4,2)
+      l33 = v(i,1,3)*grad(i,1,3) + v(i,2,3)*grad(i,2,3) + v(i,3,3)*grad(i,3,3) + v(i,4,3)*grad(i,4,3)
+      d(i,1) = l11; d(i,2) = l22; d(i,3) = l33
+      d(i,4) = 0.5_rk*(l12 + l21); d(i,5) = 0.5_rk*(l23 + l32); d(i,6) = 0.5_rk*(l31 + l13)
+      w(i,1) = 0.5_rk*(l12 - l21); w(i,2) = 0.5_rk*(l23 - l32); w(i,3) = 0.5_rk*(l31 - l13)
     end do
   end subroutine
 
