@@ -961,7 +961,7 @@ contains
       ! no master node here (self-contact has no such step), so the nodes'
       ! returns do not depend on each other
       if (it%self) return
-      call ensure(ct%rec_send, rec_moved*it%n_pass)
+      call ensure(ct%rec_send, rec_moved*(it%n_pass + size(it%slave)))
       n_rec = 0
       do k = 1, it%n_pass
         ps = it%active(k)
@@ -977,6 +977,24 @@ contains
           call put_back(ps, -best_dist*best_n, room)
         end do
         call leave_element_under(ps, it%slot(k), room)
+        it%exited(it%slot(k)) = .true.
+        if (all(ct%x(:,ps) == x_new)) cycle
+        ct%rec_send(n_rec+1:n_rec+rec_moved) = [real(ps, rk), ct%x(:,ps)]
+        n_rec = n_rec + rec_moved
+      end do
+      ! and the nodes not found: past the tip of a crack that an eroded
+      ! element opened, inside the body beyond an edge and behind no face
+      ! within its outline, a node is found by no plane (validation.md 4zj)
+      do k = 1, size(it%slave)
+        if (.not. it%mine(k)) cycle
+        if (it%exited(k)) then
+          it%exited(k) = .false.
+          cycle
+        end if
+        ps = it%slave(k)
+        x_new = ct%x(:,ps)
+        room = return_room(ct%h(ps))
+        call leave_element_under(ps, k, room)
         if (all(ct%x(:,ps) == x_new)) cycle
         ct%rec_send(n_rec+1:n_rec+rec_moved) = [real(ps, rk), ct%x(:,ps)]
         n_rec = n_rec + rec_moved
@@ -1331,8 +1349,9 @@ contains
     !> as room allows: at a vertex or an edge where the faces of a jagged
     !> crater meet, behind several of their planes, no plane's return takes
     !> it out (validation.md 4zj). Inside: strictly inside the element under
-    !> one of those triangles, or, within return_fraction of the mean master
-    !> edge from a vertex or an edge nearest to it, behind the vertex's
+    !> one of those triangles, or, within the search depth (every face that
+    !> near is a candidate, so the nearest point is the surface's) from a
+    !> vertex or an edge nearest to it, behind the vertex's
     !> angle-weighted normal (the edge's faces' mean normal; Baerentzen and
     !> Aanaes 2005), which also sees the elements at a vertex that have no
     !> face on the surface. Inside the body, the nearest point of its
@@ -1364,7 +1383,7 @@ contains
       end do
       if (t_best == 0) return
       n_feature = count(g_best(1:nf) > 0.0_rk)
-      if (.not. inside .and. n_feature < nf .and. d_best > 0.0_rk .and. d_best <= return_fraction*it%h_mean) then
+      if (.not. inside .and. n_feature < nf .and. d_best > 0.0_rk .and. d_best <= depth_limit) then
         ! the normal of the nearest vertex or edge: the faces that have it
         wn = 0.0_rk
         do s = it%cand_start(slot), it%cand_start(slot+1) - 1

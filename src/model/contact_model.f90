@@ -45,6 +45,7 @@ module udar_contact_model
     logical, allocatable :: near(:)        !< (contact nodes) work: the current slave node's ring
     logical, allocatable :: touched(:)     !< (slave nodes) in contact in the last pass (self-contact)
     logical, allocatable :: mine(:)        !< (slave nodes) this rank searches for it (assign_slaves)
+    logical, allocatable :: exited(:)      !< (slave nodes) work array of the exit step: tested this pass
     integer, allocatable :: searcher(:)    !< (slave nodes) the rank that searches for it
     ! triangles whose nodes (and apex) are all on this rank: their size at
     ! the start of the step bounds how far a triangle reaches (rebuilt with
@@ -304,8 +305,10 @@ contains
     integer :: ns, first, last, q
     ns = size(it%slave)
     if (allocated(it%mine)) deallocate(it%mine)
+    if (allocated(it%exited)) deallocate(it%exited)
     if (allocated(it%searcher)) deallocate(it%searcher)
     allocate(it%mine(ns), source=.false.)
+    allocate(it%exited(ns), source=.false.)
     allocate(it%searcher(ns), source=0)
     it%local_tri_valid = .false.
     if (ns == 0) return
