@@ -103,7 +103,7 @@ debug:
 	@$(MAKE) --no-print-directory BUILD=debug bin/udar-debug
 
 TEST_SUPPORT := $(BDIR)/tests/unit_checks.o $(BDIR)/tests/unit_domains.o
-$(BDIR)/tests/unit_checks.o: tests/unit/support/unit_checks.f90
+$(BDIR)/tests/unit_checks.o: tests/unit/support/unit_checks.f90 $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(FC) $(FFLAGS) -J$(BDIR)/tests -c $< -o $@
 $(BDIR)/tests/unit_domains.o: tests/unit/support/unit_domains.f90 $(OBJ)

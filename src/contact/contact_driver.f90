@@ -976,11 +976,8 @@ contains
           if (best == 0 .or. room <= 0.0_rk) exit
           call put_back(ps, -best_dist*best_n, room)
         end do
-        call leave_element_under(ps, it%slot(k), room)
         it%exited(it%slot(k)) = .true.
-        if (all(ct%x(:,ps) == x_new)) cycle
-        ct%rec_send(n_rec+1:n_rec+rec_moved) = [real(ps, rk), ct%x(:,ps)]
-        n_rec = n_rec + rec_moved
+        call exit_and_record(ps, it%slot(k), room, x_new)
       end do
       ! and the nodes not found: past the tip of a crack that an eroded
       ! element opened, inside the body beyond an edge and behind no face
@@ -994,12 +991,22 @@ contains
         ps = it%slave(k)
         x_new = ct%x(:,ps)
         room = return_room(ct%h(ps))
-        call leave_element_under(ps, k, room)
-        if (all(ct%x(:,ps) == x_new)) cycle
-        ct%rec_send(n_rec+1:n_rec+rec_moved) = [real(ps, rk), ct%x(:,ps)]
-        n_rec = n_rec + rec_moved
+        call exit_and_record(ps, k, room, x_new)
       end do
       call share_positions(ct, n_rec)
+    end subroutine
+
+    !> The exit step (leave_element_under) of slave node ps in its slot, and
+    !> its position queued for the other ranks if the pass moved it from
+    !> x_before.
+    subroutine exit_and_record(ps, slot, room, x_before)
+      integer, intent(in) :: ps, slot
+      real(rk), intent(inout) :: room
+      real(rk), intent(in) :: x_before(3)
+      call leave_element_under(ps, slot, room)
+      if (all(ct%x(:,ps) == x_before)) return
+      ct%rec_send(n_rec+1:n_rec+rec_moved) = [real(ps, rk), ct%x(:,ps)]
+      n_rec = n_rec + rec_moved
     end subroutine
 
     !> Marks (or unmarks) slave node k's own neighbourhood, the nodes
