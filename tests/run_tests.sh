@@ -206,6 +206,7 @@ run_test "regression/penetration_particles" regression penetration bin/udar pene
 run_test "regression/penetration_voids" regression penetration bin/udar penetration_voids
 run_test "regression/penetration_voids_fine" regression penetration bin/udar penetration_voids_fine
 run_test "regression/penetration_voids_fine_038" regression penetration bin/udar penetration_voids_fine_038
+run_test "regression/penetration_voids_fine_07" regression penetration bin/udar penetration_voids_fine_07
 run_test "regression/penetration_voids_off_fails" regression_fails penetration bin/udar penetration_voids_off_fails \
   voids_inside_out_over_reference_volume
 run_test "cli/fig4_depth" tests/cli/fig4_depth.sh bin/udar

@@ -31,6 +31,9 @@ module udar_contact
   !> a projection this far outside a triangle (in area coordinates) still
   !> counts as on it: no slave node slips through the seam of two triangles
   real(rk), parameter :: edge_tolerance = 1.0e-3_rk
+  !> a point this far inside a master element (in its area coordinates)
+  !> is inside it, not on its boundary up to rounding
+  real(rk), parameter :: overlap_tolerance = 1.0e-12_rk
   !> penetration beyond one step's approach still taken as crossed (of the
   !> mean master edge): rounding and the master triangle's own motion
   real(rk), parameter :: residual_tolerance = 1.0e-3_rk
@@ -1324,6 +1327,8 @@ contains
         best = sep; best_dist = sep_dist; best_n = sep_n
         separating = .true.
       end if
+      if (best == 0 .and. .not. geometric .and. dt > 0.0_rk) &
+        call inside_at_feature(ps, slot, best, best_dist, best_n, best_g, separating)
     end subroutine
 
     !> Whether slave node ps is strictly inside the element under face t
@@ -1390,6 +1395,12 @@ contains
       end do
       if (t_best == 0) return
       n_feature = count(g_best(1:nf) > 0.0_rk)
+      ! an element at the nearest feature's nodes can reach past the faces
+      ! there (a tangled vertex of a fractured crater wall), with no face on the surface
+      ! (not for a node on a symmetry plane: its way out is in the plane,
+      ! which the nearest point of the faces on one side need not be)
+      if (.not. inside .and. d_best <= depth_limit .and. ct%sym_planes(ps) == 0) &
+        inside = in_element_at(t_best, g_best, ct%x(:,ps))
       if (.not. inside .and. n_feature < nf .and. d_best > 0.0_rk .and. d_best <= depth_limit) then
         ! the normal of the nearest vertex or edge: the faces that have it
         wn = 0.0_rk
@@ -1413,7 +1424,131 @@ contains
         end do
         inside = dot_product(ct%x(:,ps) - c_best, wn) < 0.0_rk
       end if
-      if (inside) call put_back(ps, c_best - ct%x(:,ps), room)
+      if (.not. inside) return
+      ! where master elements overlap (debris of the target hinged on an
+      ! edge and turned into each other), the nearest face point can lie
+      ! inside another element: the nearest one that is outside all of them
+      if (in_candidate_element(slot, c_best) .or. in_element_at(t_best, g_best, c_best)) &
+        call nearest_point(ps, slot, .true., t_best, g_best, c_best, t, g, d)
+      call put_back(ps, c_best - ct%x(:,ps), room)
+    end subroutine
+
+    !> Point p strictly inside (beyond rounding) an element of the eroding
+    !> master part at a node of triangle t where g > 0 (the feature nearest
+    !> to it); only elements whose nodes' states are current here.
+    logical function in_element_at(t, g, p)
+      integer, intent(in) :: t
+      real(rk), intent(in) :: g(3), p(3)
+      real(rk) :: xa(3,3), xd(3), lam(4)
+      integer :: a, k, e, c
+      logical :: current
+      in_element_at = .false.
+      if (it%master_part == 0) return
+      do a = 1, nf
+        if (g(a) <= 0.0_rk) cycle
+        do k = ct%node_tet_ptr(it%tri(a,t)), ct%node_tet_ptr(it%tri(a,t)+1) - 1
+          e = ct%node_tet(k)
+          if (.not. ct%tet_alive(e) .or. ct%tet_part(e) /= it%master_part) cycle
+          current = .true.
+          do c = 1, nf + 1
+            current = current .and. ct%fresh(ct%tet(c,e)) == ct%stamp
+          end do
+          if (.not. current) cycle
+          call gather_columns(xa(:,1:nf), ct%x, ct%tet(1:nf,e))
+          xd = ct%x(:,ct%tet(nf+1,e))
+          call element_coordinates(xa(:,1:nf), xd, p, lam)
+          in_element_at = all(lam(1:nf+1) > overlap_tolerance)
+          if (in_element_at) return
+        end do
+      end do
+    end function
+
+    !> Point p strictly inside (beyond rounding of the area coordinates) an
+    !> element under one of slot's candidate triangles.
+    logical function in_candidate_element(slot, p)
+      integer, intent(in) :: slot
+      real(rk), intent(in) :: p(3)
+      real(rk) :: xa(3,3), lam(4)
+      integer :: s, t
+      in_candidate_element = .true.
+      do s = it%cand_start(slot), it%cand_start(slot+1) - 1
+        t = it%cand(s)
+        if (it%apex(t) == 0 .or. .not. known(t)) cycle
+        call gather_columns(xa, ct%x, it%tri(:,t))
+        call element_coordinates(xa(:,1:nf), ct%x(:,it%apex(t)), p, lam)
+        if (all(lam(1:nf+1) > overlap_tolerance)) return
+      end do
+      in_candidate_element = .false.
+    end function
+
+    !> The nearest point c to slave node ps of its candidate triangles, on
+    !> triangle t_out at its area coordinates g_out, d its distance; with
+    !> outside, the nearest that is in no element under them nor at the
+    !> nodes of feature g_near of triangle t_near (in_element_at). t_out =
+    !> 0 (c unchanged) if there is none.
+    subroutine nearest_point(ps, slot, outside, t_near, g_near, c, t_out, g_out, d_out)
+      integer, intent(in) :: ps, slot, t_near
+      logical, intent(in) :: outside
+      real(rk), intent(in) :: g_near(3)
+      real(rk), intent(inout) :: c(3)
+      integer, intent(out) :: t_out
+      real(rk), intent(out) :: g_out(3), d_out
+      real(rk) :: xa(3,3), q(3), g(3), d
+      integer :: s, t
+      d_out = huge(1.0_rk)
+      t_out = 0
+      g_out = 0
+      do s = it%cand_start(slot), it%cand_start(slot+1) - 1
+        t = it%cand(s)
+        if (.not. near_candidate(ps, t)) cycle
+        call gather_columns(xa, ct%x, it%tri(:,t))
+        call closest_on_face(xa(:,1:nf), ct%x(:,ps), q, g)
+        d = norm2(q - ct%x(:,ps))
+        if (d >= d_out) cycle
+        if (outside) then
+          if (in_candidate_element(slot, q) .or. in_element_at(t_near, g_near, q)) cycle
+        end if
+        d_out = d
+        c = q
+        t_out = t
+        g_out = g
+      end do
+    end subroutine
+
+    !> Slave node ps behind no face the search takes, yet inside an element
+    !> of the master body at the vertex or edge of the surface nearest to
+    !> it (within the search depth): where the faces at a vertex of a
+    !> crushed crater wall leave it beyond every outline, or an element
+    !> there reaches past them, no plane finds it and only the bounded exit
+    !> step acts, which the node's velocity outruns. Matched instead at the
+    !> nearest surface point out of the body (t, area coordinates g), along
+    !> the way to it (n), as a seam node is; moving out, only put back. Not
+    !> for a node on a symmetry plane (leave_element_under).
+    subroutine inside_at_feature(ps, slot, t, dist, n, g, separating)
+      integer, intent(in) :: ps, slot
+      integer, intent(out) :: t
+      real(rk), intent(out) :: dist, n(3), g(3)
+      logical, intent(out) :: separating
+      real(rk), parameter :: no_feature(3) = 0.0_rk
+      real(rk) :: c(3), d, g_near(3)
+      integer :: t_near
+      t = 0; dist = 0; n = 0; g = 0
+      separating = .false.
+      if (it%master_part == 0 .or. it%self .or. ct%sym_planes(ps) /= 0) return
+      call nearest_point(ps, slot, .false., 0, no_feature, c, t_near, g_near, d)
+      if (t_near == 0 .or. d <= 0.0_rk .or. d > depth_limit) return
+      if (.not. in_element_at(t_near, g_near, ct%x(:,ps))) return
+      t = t_near
+      g = g_near
+      if (in_candidate_element(slot, c) .or. in_element_at(t_near, g_near, c)) &
+        call nearest_point(ps, slot, .true., t_near, g_near, c, t, g, d)
+      if (t == 0 .or. d <= 0.0_rk) then
+        t = 0
+        return
+      end if
+      dist = -d
+      n = (c - ct%x(:,ps))/d
+      separating = approach(ps, t, n, g) <= 0.0_rk
     end subroutine
 
     !> Candidate triangle t of a slave node at ps can hold it: ps in its box,
@@ -1637,13 +1772,14 @@ contains
   !> The largest distance between two nodes of a triangle of the surfaces
   !> (or its node and the element's fourth corner) over the triangles whose
   !> nodes are all on this rank (every triangle is whole on the rank of its
-  !> element), at the nodes' current positions: ct%size_local, what
+  !> element), and of an eroding body's element whose nodes are all on this
+  !> rank, at the nodes' current positions: ct%size_local, what
   !> exchange_neighbourhood widens by. Called at the start of the step,
   !> when every node here (ghosts too) is current.
   subroutine contact_extent(ct, dom)
     type(contact_t), intent(inout) :: ct
     type(domain_t), intent(in) :: dom
-    integer :: i, k, t, a, b, c(4), nc
+    integer :: i, k, t, a, c(4), nc
     real(rk) :: e
     if (ct%n_interfaces == 0 .or. ct%full_state .or. comms_size() == 1) return
     e = 0
@@ -1662,15 +1798,37 @@ contains
             nc = nc + 1
             c(nc) = ct%local(it%apex(t))
           end if
-          do a = 1, nc - 1
-            do b = a + 1, nc
-              e = max(e, sum((dom%nd_x(:,c(a)) - dom%nd_x(:,c(b)))**2))
-            end do
-          end do
+          e = max(e, widest(c(1:nc)))
         end do
       end associate
     end do
+    ! and the eroding bodies' elements whole here: the exit step and the
+    ! search test a node against every element at a surface vertex
+    ! (in_element_at), which reach as far from the node as they are large
+    do t = 1, ct%n_tets
+      if (.not. ct%tet_alive(t)) cycle
+      nc = size(ct%tet, 1)
+      do a = 1, nc
+        c(a) = ct%local(ct%tet(a,t))
+      end do
+      if (any(c(1:nc) == 0)) cycle
+      e = max(e, widest(c(1:nc)))
+    end do
     ct%size_local = sqrt(e)
+
+  contains
+
+    !> The largest squared distance between two of the local nodes c.
+    real(rk) function widest(c) result(e2)
+      integer, intent(in) :: c(:)
+      integer :: a, b
+      e2 = 0
+      do a = 1, size(c) - 1
+        do b = a + 1, size(c)
+          e2 = max(e2, sum((dom%nd_x(:,c(a)) - dom%nd_x(:,c(b)))**2))
+        end do
+      end do
+    end function
   end subroutine
 
   !> Work of the contact impulses of the pass on this rank's own nodes into

@@ -418,7 +418,7 @@ contains
     logical, intent(in) :: part_erodes(:)
     integer, intent(in) :: cn_of(:)
     type(contact_t), intent(inout) :: ct
-    integer, allocatable :: tet_of(:)
+    integer, allocatable :: tet_of(:), fill(:)
     integer :: e, t, f, k, e2, a, b, c, nc, fn(3)
     nc = glob%corners
     ct%tet_gidx = pack([(e, e = 1, glob%n_elems)], part_erodes(glob%el_part))
@@ -447,6 +447,23 @@ contains
             exit
           end if
         end do
+      end do
+    end do
+    ! the tetrahedra at each contact node, ascending
+    allocate(ct%node_tet_ptr(ct%n_nodes+1), source=0)
+    do t = 1, ct%n_tets
+      ct%node_tet_ptr(ct%tet(:,t)+1) = ct%node_tet_ptr(ct%tet(:,t)+1) + 1
+    end do
+    ct%node_tet_ptr(1) = 1
+    do k = 1, ct%n_nodes
+      ct%node_tet_ptr(k+1) = ct%node_tet_ptr(k+1) + ct%node_tet_ptr(k)
+    end do
+    allocate(ct%node_tet(nc*ct%n_tets), fill(ct%n_nodes))
+    fill = ct%node_tet_ptr(1:ct%n_nodes)
+    do t = 1, ct%n_tets
+      do a = 1, nc
+        ct%node_tet(fill(ct%tet(a,t))) = t
+        fill(ct%tet(a,t)) = fill(ct%tet(a,t)) + 1
       end do
     end do
   end subroutine

@@ -164,6 +164,9 @@ module udar_contact_model
     integer, allocatable :: tet_part(:), tet_gidx(:)   !< part, global element index (ascending)
     integer, allocatable :: tet_nbr(:,:)   !< (4, n_tets) tetrahedron across the face opposite each corner, 0 = none
     logical, allocatable :: tet_alive(:)
+    !> CSR over contact nodes: the eroding parts' tetrahedra at each node
+    !> (the exit step tests a node against every element at a vertex)
+    integer, allocatable :: node_tet_ptr(:), node_tet(:)
     integer, allocatable :: fixed_faces(:,:)   !< (3, n) faces of the surfaces that do not erode
     integer, allocatable :: alive_count(:) !< work: alive tetrahedra at each contact node
     ! this rank's share
