@@ -1340,19 +1340,20 @@ contains
       real(rk) :: lam(4)
       inside_element_under = .false.
       if (dt <= 0.0_rk) return
-      inside_element_under = in_element_under(ps, t, xa, edge_tolerance)
+      inside_element_under = in_element_under(ct%x(:,ps), t, xa, edge_tolerance)
     end function
 
-    !> Whether slave node ps is inside the element under face t (corners xa)
+    !> Whether point p is inside the element under face t (corners xa)
     !> by more than tolerance in every barycentric coordinate (false where
     !> the face's apex is not known).
-    logical function in_element_under(ps, t, xa, tolerance)
-      integer, intent(in) :: ps, t
+    logical function in_element_under(p, t, xa, tolerance)
+      real(rk), intent(in) :: p(3)
+      integer, intent(in) :: t
       real(rk), intent(in) :: xa(3,3), tolerance
       real(rk) :: lam(4)
       in_element_under = .false.
       if (it%apex(t) == 0) return
-      call element_coordinates(xa(:,1:nf), ct%x(:,it%apex(t)), ct%x(:,ps), lam)
+      call element_coordinates(xa(:,1:nf), ct%x(:,it%apex(t)), p, lam)
       in_element_under = all(lam(1:nf+1) > tolerance)
     end function
 
@@ -1383,7 +1384,7 @@ contains
         if (.not. near_candidate(ps, t)) cycle
         call gather_columns(xa, ct%x, it%tri(:,t))
         ! (strictly: the apex itself has a coordinate 0)
-        if (.not. inside) inside = in_element_under(ps, t, xa, 0.0_rk)
+        if (.not. inside) inside = in_element_under(ct%x(:,ps), t, xa, 0.0_rk)
         call closest_on_face(xa(:,1:nf), ct%x(:,ps), c, g)
         d = norm2(c - ct%x(:,ps))
         if (d < d_best) then
@@ -1468,15 +1469,14 @@ contains
     logical function in_candidate_element(slot, p)
       integer, intent(in) :: slot
       real(rk), intent(in) :: p(3)
-      real(rk) :: xa(3,3), lam(4)
+      real(rk) :: xa(3,3)
       integer :: s, t
       in_candidate_element = .true.
       do s = it%cand_start(slot), it%cand_start(slot+1) - 1
         t = it%cand(s)
         if (it%apex(t) == 0 .or. .not. known(t)) cycle
         call gather_columns(xa, ct%x, it%tri(:,t))
-        call element_coordinates(xa(:,1:nf), ct%x(:,it%apex(t)), p, lam)
-        if (all(lam(1:nf+1) > overlap_tolerance)) return
+        if (in_element_under(p, t, xa, overlap_tolerance)) return
       end do
       in_candidate_element = .false.
     end function
