@@ -11,15 +11,15 @@ module udar_contact
   use udar_exact_sum, only: exact_limbs, exact_add
   use udar_domain, only: domain_t
   use udar_particle_model, only: particles_t
-  use udar_contact_model, only: contact_t, interface_t, neighbour_across, contact_grow_nodes
+  use udar_contact_model, only: contact_t, interface_t, neighbour_across, contact_grow_nodes, joint_solve_rows
   use udar_contact_search, only: grid_build, grid_cell, ensure
-  use udar_contact_kernels, only: corner_angle, match_velocities, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
+  use udar_contact_kernels, only: corner_angle, match_velocities, solve_friction_rows, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
                                   edge_crossing, behind_not, behind_face, behind_seam
   use udar_contact_faces, only: face_projection, face_shares, closest_on_face, element_coordinates, face_behind_surface, &
                                 face_beside_sharp_edge, points_inside_elements
   use udar_fracture, only: el_eroded
   use udar_ordering, only: find_sorted
-  use udar_vectors, only: gather_columns
+  use udar_vectors, only: gather_columns, tangent_basis
   use udar_config, only: geometry_axisymmetric
   use udar_comms, only: comms_size, comms_rank, comms_allgather_count, comms_allgatherv_int, comms_allgatherv_real, &
                         comms_max, comms_alltoall_counts, comms_alltoallv_real, comms_wtime
@@ -41,9 +41,9 @@ module udar_contact
   !> largest change a pass makes is this share of the first pass's: to
   !> round-off, so that the answer does not depend on the order of the nodes
   real(rk), parameter :: contact_relative_tolerance = 1.0e-10_rk
-  !> A joint pass (symmetric pair, self-contact) with at most this many
-  !> rows has its normal rows solved together before the sweeps
-  integer, parameter :: joint_solve_rows = 64
+  !> Sweeps of a joint pass with friction after which it is solved
+  !> together (match_passes)
+  integer, parameter :: friction_solve_after = 8
   !> Cycle passes without a change of the surfaces after which the
   !> candidate lists are built with the skin again (full_search).
   integer, parameter :: quiet_passes_for_skin = 4
@@ -626,9 +626,9 @@ contains
     type(contact_t), intent(inout) :: ct
     integer, intent(in) :: first, last
     real(rk), intent(in) :: dt
-    real(rk) :: dvs(3), dvm(3,3), dn, dtan(3), mismatch, first_change, vm(3,3), mm(3), limit
+    real(rk) :: dvs(3), dvm(3,3), dn, dtan(3), mismatch, first_change, vm(3,3), mm(3), limit, resolve_change
     integer :: i, k, ps, t, a, pa, iter, nf
-    logical :: closing, joint
+    logical :: closing, joint, held, solved
     if (dt <= 0.0_rk) return
     first_change = 0
     ! both directions of a gap in one pass: rows that constrain one gap
@@ -636,11 +636,27 @@ contains
     ! a pass of up to joint_solve_rows rows is solved together first; as
     ! those rows then trade impulse without changing a velocity, its sweeps
     ! stop on the nodes' net velocity change (theory.md 11)
+    ! With friction a joint pass alternates: sweeps of friction alone with
+    ! the normals held at the joint solve's, then the normals solved again
+    ! for the velocities friction left, to a fixed point. (Sweeps of both
+    ! let two rows on one gap trade their normal changes along the solve's
+    ! null space while their friction limits grow with them, validation.md
+    ! 4zl.) Where that is slow (two rows on one gap have nearly the same
+    ! friction too), every friction_solve_after sweeps the pass is solved
+    ! together, normals and friction (solve_joint_friction), from where
+    ! the alternation got, and ordinary sweeps take what rounding left.
     joint = .false.
     if (last > first .or. ct%ifc(first)%self) call solve_joint_normals(ct, first, last, dt, first_change, joint)
+    held = joint .and. any(ct%ifc(first:last)%friction > 0.0_rk)
     do iter = 1, ct%ifc(first)%iterations
       mismatch = 0
       if (joint) call keep_row_velocities()
+      if (held .and. mod(iter, friction_solve_after) == 1 .and. iter > 1) then
+        call solve_joint_friction(ct, first, last, dt, resolve_change, solved)
+        held = .not. solved
+      end if
+      ! unsolved: the sweeps take the normals over from the last solve
+      if (held .and. iter > 1) call solve_joint_normals(ct, first, last, dt, resolve_change, held)
       do i = first, last
         associate (it => ct%ifc(i))
           ! a face's nodes: 3 (a triangle) or 2 (a 2D segment, its third
@@ -656,7 +672,8 @@ contains
               mm(a) = ct%m(it%tri(a,t))
             end do
             call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), mm, vm, it%area(:,k), &
-                                  it%share(:,k), it%friction, it%dn_sum(k), it%t_sum(:,k), dvs, dvm, closing, dn, dtan)
+                                  it%share(:,k), it%friction, it%dn_sum(k), it%t_sum(:,k), dvs, dvm, closing, dn, dtan, &
+                                  held)
             if (.not. closing) cycle
             it%dn_sum(k) = it%dn_sum(k) + dn
             it%t_sum(:,k) = it%t_sum(:,k) + dtan
@@ -718,34 +735,25 @@ contains
     end function
   end subroutine
 
-  !> The normal rows of a joint pass (at most joint_solve_rows) solved
-  !> together (solve_normal_lcp, normal_rows_matrix): row r is slave node
-  !> s_r against its triangle's nodes at weights gc_r (contact_point, as
-  !> match_velocities takes them) with shares R_r (momentum exact). The accumulated
-  !> changes so far (dn_sum) count: the solve is for the totals (>= 0).
-  !> The changes are applied as the sweeps apply theirs (velocities, and
-  !> positions by dt times them); the sweeps then add friction and what
-  !> rounding left. A pass the solve cannot settle is left to the sweeps.
-  !> change: the largest normal velocity change the solve made; solved:
-  !> whether it did (the pass had rows, not too many, and a solution).
-  subroutine solve_joint_normals(ct, first, last, dt, change, solved)
-    type(contact_t), intent(inout) :: ct
+  !> The rows of a joint pass (n; 0 when it has none or more than
+  !> joint_solve_rows): row r is slave node node(0,r) against its
+  !> triangle's nodes node(1:3,r) at weights w(1:3,r) (contact_point, as
+  !> match_velocities takes them; w(0,r) = -1) with shares R (a change lam of
+  !> the slave's velocity changes node p's by coef(p,r) lam: 1 for the slave,
+  !> -R_a m_s/m_a for master node a, momentum exact), along unit normal
+  !> nrm(:,r); row r is active(row_k(r)) of interface row_ifc(r).
+  subroutine joint_rows(ct, first, last, n, node, w, coef, nrm, row_ifc, row_k)
+    type(contact_t), intent(in) :: ct
     integer, intent(in) :: first, last
-    real(rk), intent(in) :: dt
-    real(rk), intent(out) :: change
-    logical, intent(out) :: solved
-    integer, parameter :: nr = joint_solve_rows
-    integer :: node(0:3,nr), row_ifc(nr), row_k(nr), n, i, k, t, q, a, p, nf
-    real(rk) :: w(0:3,nr), coef(0:3,nr), nrm(3,nr), m(nr,nr), b(nr), lam(nr), lam0(nr), work(nr,nr+1), &
-                gc(3), v_master(3), dl
-    logical :: free(nr)
-    change = 0
-    solved = .false.
+    integer, intent(out) :: n, node(0:3,joint_solve_rows), row_ifc(joint_solve_rows), row_k(joint_solve_rows)
+    real(rk), intent(out) :: w(0:3,joint_solve_rows), coef(0:3,joint_solve_rows), nrm(3,joint_solve_rows)
+    integer :: i, k, t, a, nf
     n = 0
     do i = first, last
       n = n + ct%ifc(i)%n_pass
     end do
-    if (n == 0 .or. n > nr) return
+    if (n > joint_solve_rows) n = 0
+    if (n == 0) return
     n = 0
     do i = first, last
       associate (it => ct%ifc(i))
@@ -759,19 +767,64 @@ contains
           node(1:nf,n) = it%tri(:,t)
           ! a 2D segment's third slot: its second node again, of weight and share 0
           node(nf+1:3,n) = node(nf,n)
-          gc = contact_point(it%area(:,k))
           w(0,n) = -1.0_rk
-          w(1:3,n) = gc
+          w(1:3,n) = contact_point(it%area(:,k))
           coef(0,n) = 1.0_rk
           do a = 1, 3
             coef(a,n) = -it%share(a,k)*ct%m(node(0,n))/ct%m(node(a,n))
           end do
           nrm(:,n) = it%normal(:,k)
-          lam0(n) = it%dn_sum(k)
-          v_master = gc(1)*ct%v(:,node(1,n)) + gc(2)*ct%v(:,node(2,n)) + gc(3)*ct%v(:,node(3,n))
-          b(n) = -dot_product(nrm(:,n), v_master - ct%v(:,node(0,n)))
         end do
       end associate
+    end do
+  end subroutine
+
+  !> Row r's relative velocity d . (v_slave - v_master) along d (w(0) = -1).
+  pure real(rk) function row_rate(v, node, w, d) result(rate)
+    real(rk), intent(in) :: v(:,:), w(0:3), d(3)
+    integer, intent(in) :: node(0:3)
+    rate = -dot_product(d, w(1)*v(:,node(1)) + w(2)*v(:,node(2)) + w(3)*v(:,node(3)) - v(:,node(0)))
+  end function
+
+  !> A change lam along d of row r's slave node, with its masters' share:
+  !> the velocities, and the positions by dt times them.
+  subroutine apply_row_change(ct, node, coef, d, lam, dt)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: node(0:3)
+    real(rk), intent(in) :: coef(0:3), d(3), lam, dt
+    integer :: p
+    if (lam == 0.0_rk) return
+    do p = 0, 3
+      ct%v(:,node(p)) = ct%v(:,node(p)) + (coef(p)*lam)*d
+      ct%x(:,node(p)) = ct%x(:,node(p)) + dt*(coef(p)*lam)*d
+    end do
+  end subroutine
+
+  !> The normal rows of a joint pass (joint_rows) solved together
+  !> (solve_normal_lcp, normal_rows_matrix). The accumulated changes so far
+  !> (dn_sum) count: the solve is for the totals (>= 0). The changes are
+  !> applied as the sweeps apply theirs (velocities, and positions by dt
+  !> times them); the sweeps then add friction and what rounding left. A
+  !> pass the solve cannot settle is left to the sweeps. change: the
+  !> largest normal velocity change the solve made; solved: whether it did
+  !> (the pass had rows, not too many, and a solution).
+  subroutine solve_joint_normals(ct, first, last, dt, change, solved)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: first, last
+    real(rk), intent(in) :: dt
+    real(rk), intent(out) :: change
+    logical, intent(out) :: solved
+    integer, parameter :: nr = joint_solve_rows
+    integer :: node(0:3,nr), row_ifc(nr), row_k(nr), n, q
+    real(rk) :: w(0:3,nr), coef(0:3,nr), nrm(3,nr), m(nr,nr), b(nr), lam(nr), lam0(nr), work(nr,nr+1), dl
+    logical :: free(nr)
+    change = 0
+    solved = .false.
+    call joint_rows(ct, first, last, n, node, w, coef, nrm, row_ifc, row_k)
+    if (n == 0) return
+    do q = 1, n
+      lam0(q) = ct%ifc(row_ifc(q))%dn_sum(row_k(q))
+      b(q) = row_rate(ct%v, node(:,q), w(:,q), nrm(:,q))
     end do
     call normal_rows_matrix(n, nr, node(:,1:n), w(:,1:n), coef(:,1:n), nrm(:,1:n), m)
     ! for the totals: s = (b - M lam0) + M lam
@@ -780,13 +833,63 @@ contains
     if (.not. solved) return
     do q = 1, n
       dl = lam(q) - lam0(q)
-      if (dl == 0.0_rk) cycle
       change = max(change, abs(dl))
-      do p = 0, 3
-        ct%v(:,node(p,q)) = ct%v(:,node(p,q)) + (coef(p,q)*dl)*nrm(:,q)
-        ct%x(:,node(p,q)) = ct%x(:,node(p,q)) + dt*(coef(p,q)*dl)*nrm(:,q)
-      end do
+      call apply_row_change(ct, node(:,q), coef(:,q), nrm(:,q), dl, dt)
       ct%ifc(row_ifc(q))%dn_sum(row_k(q)) = lam(q)
+    end do
+  end subroutine
+
+  !> A joint pass with friction solved together, normals and friction
+  !> (solve_friction_rows): each row (joint_rows) has its normal and two
+  !> tangential velocities, the changes so far (dn_sum, t_sum) count (the
+  !> solve is for the totals), and the changes are applied as the sweeps
+  !> apply theirs. change and solved as solve_joint_normals; unsolved,
+  !> nothing is changed.
+  subroutine solve_joint_friction(ct, first, last, dt, change, solved)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: first, last
+    real(rk), intent(in) :: dt
+    real(rk), intent(out) :: change
+    logical, intent(out) :: solved
+    integer, parameter :: nr = joint_solve_rows, ne = 3*joint_solve_rows
+    integer :: node(0:3,nr), row_ifc(nr), row_k(nr), n, q, j, ie, e_node(0:3,ne)
+    real(rk) :: w(0:3,nr), coef(0:3,nr), nrm(3,nr), mu(nr), e_w(0:3,ne), e_coef(0:3,ne), e_dir(3,ne), &
+                b(ne), x(ne), x0(ne), t1(3), t2(3)
+    change = 0
+    solved = .false.
+    call joint_rows(ct, first, last, n, node, w, coef, nrm, row_ifc, row_k)
+    if (n == 0) return
+    do q = 1, n
+      associate (it => ct%ifc(row_ifc(q)))
+        mu(q) = it%friction
+        call tangent_basis(nrm(:,q), t1, t2)
+        ie = 3*q - 2
+        e_dir(:,ie) = nrm(:,q)
+        e_dir(:,ie+1) = t1
+        e_dir(:,ie+2) = t2
+        x0(ie) = it%dn_sum(row_k(q))
+        x0(ie+1) = dot_product(t1, it%t_sum(:,row_k(q)))
+        x0(ie+2) = dot_product(t2, it%t_sum(:,row_k(q)))
+        do j = 0, 2
+          e_node(:,ie+j) = node(:,q)
+          e_w(:,ie+j) = w(:,q)
+          e_coef(:,ie+j) = coef(:,q)
+          b(ie+j) = row_rate(ct%v, node(:,q), w(:,q), e_dir(:,ie+j))
+        end do
+      end associate
+    end do
+    call normal_rows_matrix(3*n, ne, e_node(:,1:3*n), e_w(:,1:3*n), e_coef(:,1:3*n), e_dir(:,1:3*n), ct%joint_m)
+    call solve_friction_rows(n, ne, ct%joint_m, b(1:3*n), x0(1:3*n), mu(1:n), x(1:3*n), solved, ct%joint_work)
+    if (.not. solved) return
+    do q = 1, n
+      ie = 3*q - 2
+      x(ie) = max(x(ie), 0.0_rk)
+      do j = 0, 2
+        call apply_row_change(ct, node(:,q), coef(:,q), e_dir(:,ie+j), x(ie+j) - x0(ie+j), dt)
+        change = max(change, abs(x(ie+j) - x0(ie+j)))
+      end do
+      ct%ifc(row_ifc(q))%dn_sum(row_k(q)) = x(ie)
+      ct%ifc(row_ifc(q))%t_sum(:,row_k(q)) = x(ie+1)*e_dir(:,ie+1) + x(ie+2)*e_dir(:,ie+2)
     end do
   end subroutine
 

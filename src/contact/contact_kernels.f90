@@ -7,7 +7,7 @@ module udar_contact_kernels
   use udar_vectors, only: cross
   implicit none
   private
-  public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, edge_crossing, edge_shares, &
+  public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, solve_friction_rows, edge_crossing, edge_shares, &
             closest_on_triangle, behind_not, behind_face, behind_seam, &
             solve_normal_lcp, normal_rows_matrix, contact_point, corner_angle
 
@@ -169,12 +169,16 @@ contains
   !> left alone (separation). Momentum is conserved: ms dvs + sum_a mm(a)
   !> dvm(:,a) = 0. Returns the velocity changes, whether anything changed
   !> (acted), and this pass's normal change dn (signed) and tangential
-  !> change dtv of the slave node.
+  !> change dtv of the slave node. With normal_held (a joint pass's
+  !> friction sweeps, whose normal changes the joint solve sets) the normal
+  !> change is 0 and only a node that has received a normal change gets
+  !> friction.
   pure subroutine match_velocities(n, ms, vs, mm, vm, g, r_share, friction, dn_before, t_before, dvs, dvm, &
-                                   acted, dn, dtv)
+                                   acted, dn, dtv, normal_held)
     real(rk), intent(in) :: n(3), ms, vs(3), mm(3), vm(3,3), g(3), r_share(3), friction, dn_before, t_before(3)
     real(rk), intent(out) :: dvs(3), dvm(3,3), dn, dtv(3)
     logical, intent(out) :: acted
+    logical, intent(in), optional :: normal_held
     real(rk) :: v_master(3), denom, vr(3), t_new(3), t_mag, limit, gc(3)
     integer :: a
     dvs = 0.0_rk
@@ -187,6 +191,9 @@ contains
     ! eq. 17: the denominator that makes the normal velocities equal afterwards
     denom = 1.0_rk + ms*(gc(1)*r_share(1)/mm(1) + gc(2)*r_share(2)/mm(2) + gc(3)*r_share(3)/mm(3))
     dn = dot_product(n, v_master - vs)/denom
+    if (present(normal_held)) then
+      if (normal_held) dn = 0.0_rk
+    end if
     if (dn <= 0.0_rk .and. dn_before <= 0.0_rk) then
       dn = 0.0_rk                          ! separating: released
       return
@@ -258,8 +265,8 @@ contains
     logical, intent(out) :: ok
     real(rk), intent(inout) :: work(ld,ld+1)
     logical, intent(inout) :: free(ld)
-    real(rk) :: s(n), tol, reg, piv
-    integer :: it, r, q, na, i, j, k, p
+    real(rk) :: s(n), tol, reg, sol(n)
+    integer :: it, r, q, na, i, j
     integer :: idx(n)
     lam = 0.0_rk
     ok = .true.
@@ -284,21 +291,9 @@ contains
           work(i,i) = work(i,i) + reg
           work(i,na+1) = -b(idx(i))
         end do
-        do k = 1, na
-          p = k - 1 + maxloc(abs(work(k:na,k)), dim=1)
-          if (p /= k) work([k,p],1:na+1) = work([p,k],1:na+1)
-          piv = work(k,k)
-          if (piv == 0.0_rk) then
-            ok = .false.
-            return
-          end if
-          do i = k + 1, na
-            work(i,k+1:na+1) = work(i,k+1:na+1) - (work(i,k)/piv)*work(k,k+1:na+1)
-          end do
-        end do
-        do k = na, 1, -1
-          lam(idx(k)) = (work(k,na+1) - dot_product(work(k,k+1:na), lam(idx(k+1:na))))/work(k,k)
-        end do
+        call solve_dense(na, ld, work, sol, ok)
+        if (.not. ok) return
+        lam(idx(1:na)) = sol(1:na)
       end if
       s = b + matmul(m(1:n,1:n), lam)
       ! complementary within rounding: done
@@ -316,6 +311,159 @@ contains
       end do
     end do
     lam = max(lam, 0.0_rk)
+  end subroutine
+
+  !> a(1:n,1:n) x = a(1:n,n+1) by Gaussian elimination with partial
+  !> pivoting (a is overwritten); ok = .false. at a zero pivot.
+  pure subroutine solve_dense(n, ld, a, x, ok)
+    integer, intent(in) :: n, ld
+    real(rk), intent(inout) :: a(ld,ld+1)
+    real(rk), intent(out) :: x(n)
+    logical, intent(out) :: ok
+    real(rk) :: piv
+    integer :: i, k, p
+    ok = .false.
+    do k = 1, n
+      p = k - 1 + maxloc(abs(a(k:n,k)), dim=1)
+      if (p /= k) a([k,p],k:n+1) = a([p,k],k:n+1)
+      piv = a(k,k)
+      if (piv == 0.0_rk) return
+      do i = k + 1, n
+        a(i,k+1:n+1) = a(i,k+1:n+1) - (a(i,k)/piv)*a(k,k+1:n+1)
+      end do
+    end do
+    do k = n, 1, -1
+      x(k) = (a(k,n+1) - dot_product(a(k,k+1:n), x(k+1:n)))/a(k,k)
+    end do
+    ok = .true.
+  end subroutine
+
+  !> The rows of a contact pass with Coulomb friction solved together: the
+  !> fixed point of match_velocities' sweeps. Contact q has unknowns
+  !> x(3q-2) (its slave node's accumulated normal velocity change, >= 0)
+  !> and x(3q-1:3q) (its accumulated tangential change in a tangent basis),
+  !> rates s = b + M (x - x0) (s(3q-2) the separation rate, s(3q-1:3q) the
+  !> slave's slip against its master point; b the rates at x0, M(i,j) the
+  !> rate i per unit change j). The conditions, in Alart and Curnier's
+  !> (1991) form with r = 1/M(3q-2,3q-2) (then 0.3 and 3 times it, if the
+  !> first fails):
+  !>   lam = max(0, lam - r s_n),  T = P(T - r u),
+  !> P the projection on the disc of radius mu_q max(0, lam - r s_n)
+  !> (stick: u = 0 inside it; slip: T = mu lam against u on its edge),
+  !> solved by the semi-smooth Newton method (its generalised Jacobian)
+  !> until every residual is within 1e-13 of the scale of b and x0.
+  !> Rows that constrain one gap from both sides make M nearly singular
+  !> where projected Gauss-Seidel converges only slowly; Newton's steps do
+  !> not care. Each step is halved until the residual falls (a step's
+  !> Jacobian holds only on its piece of the conditions), its diagonal
+  !> shifted more after short steps; ok = .false. (x = x0) when no r
+  !> converges in max_newton steps. jac: leading dimension ld >= 3 n (work).
+  pure subroutine solve_friction_rows(n, ld, m, b, x0, mu, x, ok, jac)
+    integer, intent(in) :: n, ld
+    real(rk), intent(in) :: m(ld,ld), b(3*n), x0(3*n), mu(n)
+    real(rk), intent(out) :: x(3*n)
+    logical, intent(out) :: ok
+    real(rk), intent(inout) :: jac(ld,ld+1)
+    integer, parameter :: max_newton = 60, max_halvings = 20
+    ! the scale of the conditions' augmentation (r of 1/M_ii times these):
+    ! another changes where their pieces meet, so a start that stalls on
+    ! one may not on the next
+    real(rk), parameter :: r_factors(3) = [1.0_rk, 0.3_rk, 3.0_rk]
+    real(rk) :: f(3*n), dx(3*n), x_try(3*n), f_try(3*n), tol, size_f, step, reg, shift, rf
+    integer :: it, k, nn, attempt
+    nn = 3*n
+    x = x0
+    ok = .true.
+    if (n == 0) return
+    tol = 1.0e-13_rk*max(maxval(abs(b)), maxval(abs(x0)), tiny(1.0_rk))
+    do attempt = 1, size(r_factors)
+      rf = r_factors(attempt)
+      shift = 1.0e-10_rk
+      x = x0
+      call residual(x, f, .true., jac)
+      do it = 1, max_newton
+        size_f = norm2(f)
+        if (maxval(abs(f)) <= tol) return
+        jac(1:nn,nn+1) = -f
+        ! two rows on one gap make the Jacobian singular where they stick
+        ! (any split of their change serves): regularised, as in solve_normal_lcp
+        reg = shift*maxval([(abs(jac(k,k)), k = 1, nn)])
+        do k = 1, nn
+          jac(k,k) = jac(k,k) + reg
+        end do
+        call solve_dense(nn, ld, jac, dx, ok)
+        if (.not. ok) exit
+        ! the full step, or halved until the residual falls (the conditions
+        ! are only piecewise smooth: a full step can cycle between pieces)
+        step = 1.0_rk
+        do k = 1, max_halvings
+          x_try = x + step*dx
+          call residual(x_try, f_try, .false., jac)
+          if (norm2(f_try) < (1.0_rk - 1.0e-4_rk*step)*size_f) exit
+          step = 0.5_rk*step
+        end do
+        ! short steps: the next one leans towards the residual's own direction
+        ! (a larger shift of the Jacobian's diagonal), full ones away from it
+        if (step < 0.125_rk) then
+          shift = min(100.0_rk*shift, 1.0_rk)
+        else if (step >= 0.5_rk) then
+          shift = max(0.1_rk*shift, 1.0e-10_rk)
+        end if
+        x = x_try
+        call residual(x, f, .true., jac)
+      end do
+      if (maxval(abs(f)) <= tol) return
+    end do
+    x = x0
+    ok = .false.
+  contains
+    !> The residuals at y and, if asked, their generalised Jacobian in jac.
+    pure subroutine residual(y, fy, with_jac, jm)
+      real(rk), intent(in) :: y(3*n)
+      real(rk), intent(out) :: fy(3*n)
+      logical, intent(in) :: with_jac
+      real(rk), intent(inout) :: jm(ld,ld+1)
+      real(rk) :: s(3*n), r, an, z(2), zm, lim, zh(2), dz(2), dl
+      integer :: q, i, j
+      s = b + matmul(m(1:nn,1:nn), y - x0)
+      do q = 1, n
+        i = 3*q - 2
+        r = rf/m(i,i)
+        an = y(i) - r*s(i)
+        if (an > 0.0_rk) then
+          fy(i) = r*s(i)                        ! in contact: closed
+          if (with_jac) jm(i,1:nn) = r*m(i,1:nn)
+        else
+          fy(i) = y(i)                          ! released
+          if (with_jac) then
+            jm(i,1:nn) = 0.0_rk
+            jm(i,i) = 1.0_rk
+          end if
+        end if
+        lim = mu(q)*max(an, 0.0_rk)
+        z = y(i+1:i+2) - r*s(i+1:i+2)
+        zm = norm2(z)
+        if (zm <= lim) then
+          fy(i+1:i+2) = r*s(i+1:i+2)            ! sticking
+          if (with_jac) jm(i+1:i+2,1:nn) = r*m(i+1:i+2,1:nn)
+        else
+          zh = z/zm                             ! sliding against the slip
+          fy(i+1:i+2) = y(i+1:i+2) - lim*zh
+          if (.not. with_jac) cycle
+          do j = 1, nn
+            dz = -r*m(i+1:i+2,j)
+            if (j == i + 1) dz(1) = dz(1) + 1.0_rk
+            if (j == i + 2) dz(2) = dz(2) + 1.0_rk
+            dl = 0.0_rk
+            if (an > 0.0_rk) dl = -mu(q)*r*m(i,j)
+            if (an > 0.0_rk .and. j == i) dl = dl + mu(q)
+            jm(i+1:i+2,j) = -(zh*dl + (lim/zm)*(dz - zh*dot_product(zh, dz)))
+            if (j == i + 1) jm(i+1,j) = jm(i+1,j) + 1.0_rk
+            if (j == i + 2) jm(i+2,j) = jm(i+2,j) + 1.0_rk
+          end do
+        end if
+      end do
+    end subroutine
   end subroutine
 
   !> The contact point's weights on the triangle's nodes: the area

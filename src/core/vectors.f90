@@ -3,7 +3,7 @@ module udar_vectors
   use udar_kinds, only: rk
   implicit none
   private
-  public :: cross, gather_columns
+  public :: cross, gather_columns, tangent_basis
 
 contains
 
@@ -25,5 +25,18 @@ contains
     do j = 1, size(idx)
       b(:,j) = a(:,idx(j))
     end do
+  end subroutine
+
+  !> Unit vectors t1, t2 with (t1, t2, n) right-handed and orthonormal, for
+  !> a unit n: t1 across the axis n is furthest from.
+  pure subroutine tangent_basis(n, t1, t2)
+    real(rk), intent(in) :: n(3)
+    real(rk), intent(out) :: t1(3), t2(3)
+    real(rk) :: e(3)
+    e = 0.0_rk
+    e(minloc(abs(n), dim=1)) = 1.0_rk
+    t1 = cross(e, n)
+    t1 = t1/norm2(t1)
+    t2 = cross(n, t1)
   end subroutine
 end module udar_vectors

@@ -16,6 +16,10 @@ module udar_contact_model
   public :: contact_grow_nodes, size_interface_work, on_symmetry_plane, any_eroding, self_neighbourhoods, feature_edges, assign_slaves, mark_returns, &
             surface_neighbours, neighbour_across
 
+  !> A joint pass (symmetric pair, self-contact) with at most this many
+  !> rows has its rows solved together before the sweeps
+  integer, parameter, public :: joint_solve_rows = 64
+
   !> One direction of an interface: slave nodes against master triangles.
   type, public :: interface_t
     character(len=2*max_name_len+8) :: name = ''  !< 'slave_on_master', for the log and the history
@@ -156,6 +160,8 @@ module udar_contact_model
     real(rk), allocatable :: pressure(:)   !< Pa, work array: contact pressure of each contact node
     real(rk), allocatable :: work_area(:)  !< m2, work array of contact_pressure
     real(rk), allocatable :: v_sweep(:,:)  !< (3,n) m/s, work array: velocities at the start of a joint pass's sweep
+    !> work arrays of a joint pass's solve with friction (3 joint_solve_rows square, and one column more)
+    real(rk), allocatable :: joint_m(:,:), joint_work(:,:)
     real(rk) :: dt_last = 0                !< s, the step of the last pass
     ! eroding surfaces: every tetrahedron of the parts whose boundary changes
     ! as elements erode (all their nodes are contact nodes)

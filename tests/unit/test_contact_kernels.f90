@@ -10,16 +10,21 @@ program test_contact_kernels
   use udar_vectors, only: cross
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, edge_crossing, edge_shares, &
                                   tetrahedron_coordinates, closest_on_triangle, behind_not, behind_face, &
-                                  behind_seam, solve_normal_lcp, normal_rows_matrix, corner_angle
+                                  behind_seam, solve_normal_lcp, normal_rows_matrix, corner_angle, solve_friction_rows
   use udar_contact_faces, only: face_behind_surface, face_beside_sharp_edge
   use udar_contact_model, only: interface_t, surface_neighbours, neighbour_across
   use unit_checks, only: check, check_summary, logicals
+  use udar_vectors, only: tangent_basis
   implicit none
   integer, parameter :: ns = 4
   real(rk) :: xm(3,3), gs(3,ns), v_fwd(3,ns+3), v_rev(3,ns+3), dn_fwd(ns), dn_rev(ns), p0(3), worst, gap
   real(rk) :: one_pass(3,ns+3), ten_passes(3,ns+3)
   integer :: order(ns)
   character(len=200) :: detail
+  ! test_friction_rows' pair of rows on one gap: nodes, masses, rows
+  integer, parameter :: nn = 6
+  real(rk) :: vp(3,nn), mp(nn), wp(0:3,2), cp(0:3,2), np(3,2), dnp(2), tp(3,2), mup(2)
+  integer :: npn(0:3,2)
   ! master triangle in the plane z = 0, outward normal +z, at rest;
   ! slave nodes above it, at area coordinates gs, striking at 1 m/s
   xm = reshape([0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk], [3, 3])
@@ -52,6 +57,7 @@ program test_contact_kernels
   write(detail, '(a,es9.2,a)') 'friction 0.3: largest velocity difference between the orders ', worst, ' m/s (bound 1e-9)'
   call check('contact_friction_order_independent', worst < 1.0e-9_rk, trim(detail))
   call test_normal_lcp()
+  call test_friction_rows()
   call test_single_correction()
   call test_moving_correction()
   call test_moving_edges()
@@ -424,8 +430,8 @@ contains
   !> strike (normal_rows_matrix from its rows): the same normal changes as
   !> the converged sweeps.
   subroutine test_normal_lcp()
-    real(rk) :: m(ns,ns), b(ns), lam(ns), work(ns,ns+1), sep(2), v(3,ns+3), dn_sum(ns), xs(3), n(3), dist, &
-                g(3), share(3), w(0:3,ns), coef(0:3,ns), nrm(3,ns), err
+    real(rk) :: m(ns,ns), b(ns), lam(ns), work(ns,ns+1), sep(2), v(3,ns+3), dn_sum(ns), w(0:3,ns), coef(0:3,ns), &
+                nrm(3,ns), err
     integer :: node(0:3,ns), k
     logical :: free(ns), ok
     ! one row in contact, one not: lam = (0.5, 0), s = (0, 1.5)
@@ -448,6 +454,184 @@ contains
                'separation rates '//s(sep(1))//' '//s(sep(2)))
     ! the four-node strike: rows 1-4, the triangle's nodes 5-7, unit masses
     call strike([1, 2, 3, 4], 400, 0.0_rk, v, dn_sum)
+    call strike_rows(node, w, coef, nrm)
+    do k = 1, ns
+      b(k) = -dot_product(nrm(:,k), -[0.0_rk, 0.0_rk, -1.0_rk])     ! the slave nodes strike at 1 m/s, the master at rest
+    end do
+    call normal_rows_matrix(ns, ns, node, w, coef, nrm, m)
+    call solve_normal_lcp(ns, ns, m, b, lam, ok, work, free)
+    err = maxval(abs(lam - dn_sum))
+    call check('normal_lcp_equals_converged_sweeps', ok .and. err < 1.0e-9_rk, &
+               'largest difference from 400 sweeps '//s(err)//' m/s')
+  end subroutine
+
+  !> solve_friction_rows against the sweeps: the four-node strike with
+  !> friction 0.3 (the answer of 400 sweeps), and two rows on one gap (a
+  !> symmetric pair: rod node 1 on plate face (2,3,4), plate node 2 on rod
+  !> face (1,5,6), sliding) where the sweeps converge slowly: the solve's
+  !> answer is their fixed point (one more sweep changes nothing), Coulomb
+  !> holds on both rows, and momentum is exact.
+  subroutine test_friction_rows()
+    real(rk) :: v(3,ns+3), dn_sum(ns), v_sw(3,ns+3), err
+    real(rk) :: w(0:3,ns), coef(0:3,ns), nrm(3,ns), t_sum(3,ns), p_before(3), change, first_change
+    real(rk) :: slip, worst_coulomb
+    integer :: node(0:3,ns), k, it
+    logical :: ok
+    ! the four-node strike: rows 1-4 on the triangle of nodes 5-7, unit masses
+    call strike([1, 2, 3, 4], 400, 0.3_rk, v_sw, dn_sum)
+    call strike_rows(node, w, coef, nrm)
+    do k = 1, ns
+      v(:,k) = [0.2_rk*(k - 2), 0.1_rk, -1.0_rk]
+    end do
+    v(:,ns+1:) = 0.0_rk
+    dn_sum = 0.0_rk
+    t_sum = 0.0_rk
+    call friction_solve(ns, node, w, coef, nrm, spread(0.3_rk, 1, ns), v, dn_sum, t_sum, ok)
+    err = maxval(abs(v - v_sw))
+    call check('friction_rows_equal_converged_sweeps', ok .and. err < 1.0e-9_rk, &
+               'largest velocity difference from 400 sweeps '//s(err)//' m/s')
+    ! two rows on one gap, both pushed and sliding
+    npn(:,1) = [1, 2, 3, 4]
+    npn(:,2) = [2, 1, 5, 6]
+    np(:,1) = [0.0_rk, 0.0_rk, 1.0_rk]
+    np(:,2) = [0.0_rk, 0.0_rk, -1.0_rk]
+    mup = 0.3_rk
+    call pair_start()
+    ! the sweeps: 50 (the default iterations) leave them changing
+    do it = 1, 50
+      call pair_sweep(change)
+      if (it == 1) first_change = change
+    end do
+    call check('friction_pair_sweeps_slow', change > 1.0e-6_rk*first_change, &
+               'the 50th sweep still changes '//s(change)//' m/s (the first '//s(first_change)//')')
+    call pair_start()
+    p_before = matmul(vp, mp)
+    call friction_solve(2, npn, wp, cp, np, mup, vp, dnp, tp, ok)
+    call pair_sweep(change)
+    worst_coulomb = 0.0_rk
+    do k = 1, 2
+      ! both pushed (dn > 0): matched normally, and sliding at the limit
+      ! against the slip or sticking within it
+      worst_coulomb = max(worst_coulomb, abs(dot_product(np(:,k), pair_rel(k))))
+      slip = norm2(pair_rel(k) - dot_product(pair_rel(k), np(:,k))*np(:,k))
+      if (slip > 1.0e-12_rk) then
+        worst_coulomb = max(worst_coulomb, abs(norm2(tp(:,k)) - mup(k)*dnp(k)), &
+          norm2(tp(:,k)/norm2(tp(:,k)) + (pair_rel(k) - dot_product(pair_rel(k), np(:,k))*np(:,k))/slip))
+      else
+        worst_coulomb = max(worst_coulomb, norm2(tp(:,k)) - mup(k)*dnp(k))
+      end if
+    end do
+    call check('friction_pair_fixed_point', ok .and. change < 1.0e-12_rk .and. all(dnp > 0.0_rk) .and. &
+               worst_coulomb < 1.0e-10_rk .and. maxval(abs(matmul(vp, mp) - p_before)) < 1.0e-14_rk, &
+               'one sweep after it changes '//s(change)//' m/s; Coulomb off by '//s(worst_coulomb)// &
+               '; momentum change '//s(maxval(abs(matmul(vp, mp) - p_before)))//' N s')
+  end subroutine
+
+  !> test_friction_rows' pair at the start of its pass
+  subroutine pair_start()
+    ! a case of a random search for slow sweeps (rod moving down at about
+    ! 1 m/s, the plate's nodes slower, uneven masses and contact points)
+    real(rk), parameter :: r(27) = [0.5594_rk, 0.4286_rk, 0.6159_rk, 0.4661_rk, 0.9717_rk, 0.2943_rk, 0.4366_rk, &
+      0.6375_rk, 0.0378_rk, 0.1974_rk, 0.1562_rk, 0.3949_rk, 0.9005_rk, 0.3674_rk, 0.7639_rk, 0.2776_rk, 0.8830_rk, &
+      0.7524_rk, 0.8196_rk, 0.6117_rk, 0.2382_rk, 0.7144_rk, 0.2859_rk, 0.9268_rk, 0.6117_rk, 0.0534_rk, 0.4918_rk]
+    integer :: k
+    vp(:,1) = [r(1) - 0.5_rk, r(2) - 0.5_rk, -1.0_rk]
+    vp(:,5) = vp(:,1) + 0.3_rk*(r(3:5) - 0.5_rk)
+    vp(:,6) = vp(:,1) + 0.3_rk*(r(6:8) - 0.5_rk)
+    vp(:,3) = 0.3_rk*(r(9:11) - 0.5_rk)
+    vp(:,4) = 0.3_rk*(r(12:14) - 0.5_rk)
+    vp(:,2) = 0.3_rk*(r(15:17) - 0.5_rk)
+    wp(:,1) = [-1.0_rk, 0.6_rk + 0.4_rk*r(18), 0.0_rk, 0.0_rk]
+    wp(2,1) = (1.0_rk - wp(1,1))*r(19)
+    wp(3,1) = 1.0_rk - wp(1,1) - wp(2,1)
+    wp(:,2) = [-1.0_rk, 0.6_rk + 0.4_rk*r(20), 0.0_rk, 0.0_rk]
+    wp(2,2) = (1.0_rk - wp(1,2))*r(21)
+    wp(3,2) = 1.0_rk - wp(1,2) - wp(2,2)
+    mp = 0.5_rk + r(22:27)
+    do k = 1, 2
+      cp(0,k) = 1.0_rk
+      cp(1:3,k) = -wp(1:3,k)*mp(npn(0,k))/mp(npn(1:3,k))      ! shares = the contact point's weights
+    end do
+    dnp = 0.0_rk
+    tp = 0.0_rk
+  end subroutine
+  !> one sweep of match_velocities over the pair; change: the largest velocity change
+  subroutine pair_sweep(change)
+    real(rk), intent(out) :: change
+    real(rk) :: dvs(3), dvm(3,3), dn, dtv(3), v_old(3,nn)
+    logical :: acted
+    integer :: r, a
+    v_old = vp
+    do r = 1, 2
+      call match_velocities(np(:,r), mp(npn(0,r)), vp(:,npn(0,r)), mp(npn(1:3,r)), vp(:,npn(1:3,r)), wp(1:3,r), &
+                            wp(1:3,r), mup(r), dnp(r), tp(:,r), dvs, dvm, acted, dn, dtv)
+      if (.not. acted) cycle
+      dnp(r) = dnp(r) + dn
+      tp(:,r) = tp(:,r) + dtv
+      vp(:,npn(0,r)) = vp(:,npn(0,r)) + dvs
+      do a = 1, 3
+        vp(:,npn(a,r)) = vp(:,npn(a,r)) + dvm(:,a)
+      end do
+    end do
+    change = maxval(abs(vp - v_old))
+  end subroutine
+  !> row k's slave velocity relative to its master point
+  function pair_rel(k) result(u)
+    integer, intent(in) :: k
+    real(rk) :: u(3)
+    u = vp(:,npn(0,k)) - matmul(vp(:,npn(1:3,k)), wp(1:3,k))
+  end function
+
+  !> The rows' normal and tangential changes solved together, as the
+  !> contact driver's joint pass does (solve_friction_rows on
+  !> normal_rows_matrix of each row's normal and tangent basis), applied to
+  !> the velocities v (coef holds the masses).
+  subroutine friction_solve(nr, node, w, coef, nrm, mu, v, dn_sum, t_sum, ok)
+    integer, intent(in) :: nr, node(0:3,nr)
+    real(rk), intent(in) :: w(0:3,nr), coef(0:3,nr), nrm(3,nr), mu(nr)
+    real(rk), intent(inout) :: v(:,:), dn_sum(nr), t_sum(3,nr)
+    logical, intent(out) :: ok
+    integer :: e_node(0:3,3*nr), q, j, ie, p
+    real(rk) :: e_w(0:3,3*nr), e_coef(0:3,3*nr), dir(3,3*nr), b(3*nr), x0(3*nr), x(3*nr), m(3*nr,3*nr), &
+                jac(3*nr,3*nr+1), t1(3), t2(3)
+    do q = 1, nr
+      call tangent_basis(nrm(:,q), t1, t2)
+      ie = 3*q - 2
+      dir(:,ie) = nrm(:,q)
+      dir(:,ie+1) = t1
+      dir(:,ie+2) = t2
+      x0(ie) = dn_sum(q)
+      x0(ie+1) = dot_product(t1, t_sum(:,q))
+      x0(ie+2) = dot_product(t2, t_sum(:,q))
+      do j = 0, 2
+        e_node(:,ie+j) = node(:,q)
+        e_w(:,ie+j) = w(:,q)
+        e_coef(:,ie+j) = coef(:,q)
+        b(ie+j) = -dot_product(dir(:,ie+j), matmul(v(:,node(1:3,q)), w(1:3,q)) - v(:,node(0,q)))
+      end do
+    end do
+    call normal_rows_matrix(3*nr, 3*nr, e_node, e_w, e_coef, dir, m)
+    call solve_friction_rows(nr, 3*nr, m, b, x0, mu, x, ok, jac)
+    if (.not. ok) return
+    do ie = 1, 3*nr
+      q = (ie + 2)/3
+      do p = 0, 3
+        v(:,node(p,q)) = v(:,node(p,q)) + (coef(p,q)*(x(ie) - x0(ie)))*dir(:,ie)
+      end do
+    end do
+    do q = 1, nr
+      dn_sum(q) = x(3*q-2)
+      t_sum(:,q) = x(3*q-1)*dir(:,3*q-1) + x(3*q)*dir(:,3*q)
+    end do
+  end subroutine
+
+  !> The four-node strike's rows as the joint solves take them: slave
+  !> node k against the triangle's nodes ns+1..ns+3 (unit masses).
+  subroutine strike_rows(node, w, coef, nrm)
+    integer, intent(out) :: node(0:3,ns)
+    real(rk), intent(out) :: w(0:3,ns), coef(0:3,ns), nrm(3,ns)
+    real(rk) :: xs(3), n(3), dist, g(3), share(3)
+    integer :: k
     do k = 1, ns
       xs = matmul(xm, gs(:,k)) + [0.0_rk, 0.0_rk, -1.0e-6_rk]
       call triangle_projection(xm, xs, n, dist, g)
@@ -456,13 +640,7 @@ contains
       w(:,k) = [-1.0_rk, max(g, 0.0_rk)/sum(max(g, 0.0_rk))]
       coef(:,k) = [1.0_rk, -share]
       nrm(:,k) = n
-      b(k) = -dot_product(n, -[0.0_rk, 0.0_rk, -1.0_rk])     ! the slave nodes strike at 1 m/s, the master at rest
     end do
-    call normal_rows_matrix(ns, ns, node, w, coef, nrm, m)
-    call solve_normal_lcp(ns, ns, m, b, lam, ok, work, free)
-    err = maxval(abs(lam - dn_sum))
-    call check('normal_lcp_equals_converged_sweeps', ok .and. err < 1.0e-9_rk, &
-               'largest difference from 400 sweeps '//s(err)//' m/s')
   end subroutine
 
   subroutine strike(order, passes, friction, v, dn_sum)
