@@ -13,7 +13,7 @@ module udar_contact
   use udar_particle_model, only: particles_t
   use udar_contact_model, only: contact_t, interface_t, neighbour_across, contact_grow_nodes, joint_solve_rows
   use udar_contact_search, only: grid_build, grid_cell, ensure
-  use udar_contact_kernels, only: corner_angle, match_velocities, solve_friction_rows, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
+  use udar_contact_kernels, only: corner_angle, match_velocities, solve_friction_rows, row_components, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
                                   edge_crossing, behind_not, behind_face, behind_seam
   use udar_contact_faces, only: face_projection, face_shares, closest_on_face, element_coordinates, face_behind_surface, &
                                 face_beside_sharp_edge, points_inside_elements
@@ -840,11 +840,12 @@ contains
   end subroutine
 
   !> A joint pass with friction solved together, normals and friction
-  !> (solve_friction_rows): each row (joint_rows) has its normal and two
-  !> tangential velocities, the changes so far (dn_sum, t_sum) count (the
-  !> solve is for the totals), and the changes are applied as the sweeps
-  !> apply theirs. change and solved as solve_joint_normals; unsolved,
-  !> nothing is changed.
+  !> (solve_friction_rows), each set of rows joined by shared nodes
+  !> (row_components) on its own: each row (joint_rows) has its normal and
+  !> two tangential velocities, the changes so far (dn_sum, t_sum) count
+  !> (the solve is for the totals), and the changes are applied as the
+  !> sweeps apply theirs. change as solve_joint_normals; solved: every set
+  !> was (a set that is not is left unchanged).
   subroutine solve_joint_friction(ct, first, last, dt, change, solved)
     type(contact_t), intent(inout) :: ct
     integer, intent(in) :: first, last
@@ -852,44 +853,58 @@ contains
     real(rk), intent(out) :: change
     logical, intent(out) :: solved
     integer, parameter :: nr = joint_solve_rows, ne = 3*joint_solve_rows
-    integer :: node(0:3,nr), row_ifc(nr), row_k(nr), n, q, j, ie, e_node(0:3,ne)
+    integer :: node(0:3,nr), row_ifc(nr), row_k(nr), comp(nr), set(nr), n, n_comp, c, k, q, j, ie, le, &
+               e_node(0:3,ne)
     real(rk) :: w(0:3,nr), coef(0:3,nr), nrm(3,nr), mu(nr), e_w(0:3,ne), e_coef(0:3,ne), e_dir(3,ne), &
-                b(ne), x(ne), x0(ne), t1(3), t2(3)
+                b(ne), x(ne), x0(ne), t1(3), t2(3), dir(3,ne)
+    logical :: ok
     change = 0
     solved = .false.
     call joint_rows(ct, first, last, n, node, w, coef, nrm, row_ifc, row_k)
     if (n == 0) return
-    do q = 1, n
-      associate (it => ct%ifc(row_ifc(q)))
-        mu(q) = it%friction
-        call tangent_basis(nrm(:,q), t1, t2)
-        ie = 3*q - 2
-        e_dir(:,ie) = nrm(:,q)
-        e_dir(:,ie+1) = t1
-        e_dir(:,ie+2) = t2
-        x0(ie) = it%dn_sum(row_k(q))
-        x0(ie+1) = dot_product(t1, it%t_sum(:,row_k(q)))
-        x0(ie+2) = dot_product(t2, it%t_sum(:,row_k(q)))
-        do j = 0, 2
-          e_node(:,ie+j) = node(:,q)
-          e_w(:,ie+j) = w(:,q)
-          e_coef(:,ie+j) = coef(:,q)
-          b(ie+j) = row_rate(ct%v, node(:,q), w(:,q), e_dir(:,ie+j))
-        end do
-      end associate
-    end do
-    call normal_rows_matrix(3*n, ne, e_node(:,1:3*n), e_w(:,1:3*n), e_coef(:,1:3*n), e_dir(:,1:3*n), ct%joint_m)
-    call solve_friction_rows(n, ne, ct%joint_m, b(1:3*n), x0(1:3*n), mu(1:n), x(1:3*n), solved, ct%joint_work)
-    if (.not. solved) return
-    do q = 1, n
-      ie = 3*q - 2
-      x(ie) = max(x(ie), 0.0_rk)
-      do j = 0, 2
-        call apply_row_change(ct, node(:,q), coef(:,q), e_dir(:,ie+j), x(ie+j) - x0(ie+j), dt)
-        change = max(change, abs(x(ie+j) - x0(ie+j)))
+    call row_components(n, node(:,1:n), comp(1:n), n_comp)
+    solved = .true.
+    do c = 1, n_comp
+      ! the set's rows in ascending order, three entries each
+      k = 0
+      do q = 1, n
+        if (comp(q) /= c) cycle
+        k = k + 1
+        set(k) = q
+        associate (it => ct%ifc(row_ifc(q)))
+          mu(k) = it%friction
+          call tangent_basis(nrm(:,q), t1, t2)
+          le = 3*k - 2
+          dir(:,le) = nrm(:,q)
+          dir(:,le+1) = t1
+          dir(:,le+2) = t2
+          x0(le) = it%dn_sum(row_k(q))
+          x0(le+1) = dot_product(t1, it%t_sum(:,row_k(q)))
+          x0(le+2) = dot_product(t2, it%t_sum(:,row_k(q)))
+          do j = 0, 2
+            e_node(:,le+j) = node(:,q)
+            e_w(:,le+j) = w(:,q)
+            e_coef(:,le+j) = coef(:,q)
+            e_dir(:,le+j) = dir(:,le+j)
+            b(le+j) = row_rate(ct%v, node(:,q), w(:,q), dir(:,le+j))
+          end do
+        end associate
       end do
-      ct%ifc(row_ifc(q))%dn_sum(row_k(q)) = x(ie)
-      ct%ifc(row_ifc(q))%t_sum(:,row_k(q)) = x(ie+1)*e_dir(:,ie+1) + x(ie+2)*e_dir(:,ie+2)
+      call normal_rows_matrix(3*k, ne, e_node(:,1:3*k), e_w(:,1:3*k), e_coef(:,1:3*k), e_dir(:,1:3*k), ct%joint_m)
+      call solve_friction_rows(k, ne, ct%joint_m, b(1:3*k), x0(1:3*k), mu(1:k), x(1:3*k), ok, ct%joint_work)
+      solved = solved .and. ok
+      if (.not. ok) cycle
+      do j = 1, k
+        q = set(j)
+        ie = 3*j - 2
+        x(ie) = max(x(ie), 0.0_rk)
+        do le = ie, ie + 2
+          call apply_row_change(ct, node(:,q), coef(:,q), dir(:,le), x(le) - x0(le), dt)
+          change = max(change, abs(x(le) - x0(le)))
+        end do
+        ct%ifc(row_ifc(q))%dn_sum(row_k(q)) = x(ie)
+        ct%ifc(row_ifc(q))%t_sum(:,row_k(q)) = x(ie+1)*dir(:,ie+1) + x(ie+2)*dir(:,ie+2)
+      end do
     end do
   end subroutine
 

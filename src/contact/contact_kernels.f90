@@ -7,7 +7,7 @@ module udar_contact_kernels
   use udar_vectors, only: cross
   implicit none
   private
-  public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, solve_friction_rows, edge_crossing, edge_shares, &
+  public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, solve_friction_rows, row_components, edge_crossing, edge_shares, &
             closest_on_triangle, behind_not, behind_face, behind_seam, &
             solve_normal_lcp, normal_rows_matrix, contact_point, corner_angle
 
@@ -311,6 +311,49 @@ contains
       end do
     end do
     lam = max(lam, 0.0_rk)
+  end subroutine
+
+  !> The sets of rows joined by shared nodes (directly or through other
+  !> rows): comp(r) in 1..n_comp, numbered in the order of their first
+  !> rows. Rows of different sets do not change each other's rates, so
+  !> each set can be solved on its own.
+  pure subroutine row_components(n, node, comp, n_comp)
+    integer, intent(in) :: n, node(0:3,n)
+    integer, intent(out) :: comp(n), n_comp
+    integer :: r, q, label(n), relabel(n)
+    logical :: changed
+    label = [(r, r = 1, n)]
+    changed = .true.
+    do while (changed)
+      changed = .false.
+      do q = 2, n
+        do r = 1, q - 1
+          if (label(r) == label(q)) cycle
+          if (.not. share_a_node(node(:,r), node(:,q))) cycle
+          label(r) = min(label(r), label(q))
+          label(q) = label(r)
+          changed = .true.
+        end do
+      end do
+    end do
+    relabel = 0
+    n_comp = 0
+    do r = 1, n
+      if (relabel(label(r)) == 0) then
+        n_comp = n_comp + 1
+        relabel(label(r)) = n_comp
+      end if
+      comp(r) = relabel(label(r))
+    end do
+  contains
+    pure logical function share_a_node(a, b)
+      integer, intent(in) :: a(0:3), b(0:3)
+      integer :: i
+      share_a_node = .false.
+      do i = 0, 3
+        if (any(b == a(i))) share_a_node = .true.
+      end do
+    end function
   end subroutine
 
   !> a(1:n,1:n) x = a(1:n,n+1) by Gaussian elimination with partial

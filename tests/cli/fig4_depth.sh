@@ -33,7 +33,7 @@ $PYTHON "$ROOT/tests/cli/fig4_depth.py" "${files[@]}" || fails=$((fails+1))
 # the velocity matching ends converged: with friction, the symmetric deck's
 # joint passes ended unconverged at iterations = 50 in 0.9.13 (148 at 0.35,
 # 524 over the three runs); since 0.9.14 a pass the alternation
-# does not settle is solved together, normals and friction (0.9.14: 1)
+# does not settle is solved together, normals and friction (0.9.14: 0)
 unconv=0
 for dts in 0.33 0.35 0.37; do
   n=$(grep -o '[0-9]* passes ended at iterations = [0-9]* unconverged' "$W/$dts/run.log" | awk '{print $1}' | sort -n | tail -1)

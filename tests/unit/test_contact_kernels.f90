@@ -10,7 +10,7 @@ program test_contact_kernels
   use udar_vectors, only: cross
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, edge_crossing, edge_shares, &
                                   tetrahedron_coordinates, closest_on_triangle, behind_not, behind_face, &
-                                  behind_seam, solve_normal_lcp, normal_rows_matrix, corner_angle, solve_friction_rows
+                                  behind_seam, solve_normal_lcp, normal_rows_matrix, corner_angle, solve_friction_rows, row_components
   use udar_contact_faces, only: face_behind_surface, face_beside_sharp_edge
   use udar_contact_model, only: interface_t, surface_neighbours, neighbour_across
   use unit_checks, only: check, check_summary, logicals
@@ -521,6 +521,14 @@ contains
         worst_coulomb = max(worst_coulomb, norm2(tp(:,k)) - mup(k)*dnp(k))
       end if
     end do
+    ! sets of rows joined by shared nodes: rows 1 and 3 share node 7, row 4
+    ! joins them through node 14 (row 3's), row 2 is alone
+    block
+      integer :: comp(4), n_comp
+      call row_components(4, reshape([1, 7, 8, 9, 2, 10, 11, 12, 3, 7, 13, 14, 4, 15, 16, 14], [4, 4]), comp, n_comp)
+      call check('row_components_by_hand', n_comp == 2 .and. all(comp == [1, 2, 1, 1]), &
+                 'sets '//trim(ints(comp)))
+    end block
     call check('friction_pair_fixed_point', ok .and. change < 1.0e-12_rk .and. all(dnp > 0.0_rk) .and. &
                worst_coulomb < 1.0e-10_rk .and. maxval(abs(matmul(vp, mp) - p_before)) < 1.0e-14_rk, &
                'one sweep after it changes '//s(change)//' m/s; Coulomb off by '//s(worst_coulomb)// &
