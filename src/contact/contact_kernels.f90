@@ -320,38 +320,33 @@ contains
   pure subroutine row_components(n, node, comp, n_comp)
     integer, intent(in) :: n, node(0:3,n)
     integer, intent(out) :: comp(n), n_comp
-    integer :: r, q, label(n), relabel(n)
-    logical :: changed
-    label = [(r, r = 1, n)]
-    changed = .true.
-    do while (changed)
-      changed = .false.
-      do q = 2, n
-        do r = 1, q - 1
-          if (label(r) == label(q)) cycle
-          if (.not. share_a_node(node(:,r), node(:,q))) cycle
-          label(r) = min(label(r), label(q))
-          label(q) = label(r)
-          changed = .true.
-        end do
+    integer :: r, q, i, parent(n), relabel(n), root_r, root_q
+    ! union-find over the pairs of rows that share a node
+    parent = [(r, r = 1, n)]
+    do q = 2, n
+      do r = 1, q - 1
+        if (.not. any([(any(node(:,q) == node(i,r)), i = 0, 3)])) cycle
+        root_r = root(r)
+        root_q = root(q)
+        if (root_r /= root_q) parent(max(root_r, root_q)) = min(root_r, root_q)
       end do
     end do
     relabel = 0
     n_comp = 0
     do r = 1, n
-      if (relabel(label(r)) == 0) then
+      root_r = root(r)
+      if (relabel(root_r) == 0) then
         n_comp = n_comp + 1
-        relabel(label(r)) = n_comp
+        relabel(root_r) = n_comp
       end if
-      comp(r) = relabel(label(r))
+      comp(r) = relabel(root_r)
     end do
   contains
-    pure logical function share_a_node(a, b)
-      integer, intent(in) :: a(0:3), b(0:3)
-      integer :: i
-      share_a_node = .false.
-      do i = 0, 3
-        if (any(b == a(i))) share_a_node = .true.
+    pure integer function root(j)
+      integer, intent(in) :: j
+      root = j
+      do while (parent(root) /= root)
+        root = parent(root)
       end do
     end function
   end subroutine
