@@ -452,6 +452,19 @@ contains
     sep = [-1.0_rk, -1.0_rk] + matmul(m(1:2,1:2), lam(1:2))
     call check('normal_lcp_one_gap_twice', ok .and. all(lam(1:2) >= 0.0_rk) .and. maxval(abs(sep)) < 1.0e-9_rk, &
                'separation rates '//s(sep(1))//' '//s(sep(2)))
+    ! a positive definite problem on which flipping every infeasible row
+    ! cycles (found by random search; the old solve gave up after 19
+    ! guesses): the safeguard's single flips end it, lam = (0, 0.36989, 0)
+    m(1:3,1:3) = reshape([2.32720916_rk, 1.86466862_rk, -0.82147258_rk, 1.86466862_rk, 1.72237984_rk, -0.89653433_rk, &
+                          -0.82147258_rk, -0.89653433_rk, 0.56902804_rk], [3, 3])
+    b(1:3) = [-0.05157_rk, -0.63708579_rk, 0.58890262_rk]
+    call solve_normal_lcp(3, ns, m, b(1:3), lam(1:3), ok, work, free)
+    sep = 0
+    if (ok) sep(1) = minval(b(1:3) + matmul(m(1:3,1:3), lam(1:3)))
+    call check('normal_lcp_block_flips_cycle', ok .and. all(lam(1:3) >= 0.0_rk) .and. sep(1) > -1.0e-9_rk .and. &
+               maxval(abs(lam(1:3) - [0.0_rk, 0.36988693_rk, 0.0_rk])) < 1.0e-7_rk, &
+               'solved '//merge('yes', 'no ', ok)//', lam '//s(lam(1))//' '//s(lam(2))//' '//s(lam(3))// &
+               ', smallest separation rate '//s(sep(1)))
     ! the four-node strike: rows 1-4, the triangle's nodes 5-7, unit masses
     call strike([1, 2, 3, 4], 400, 0.0_rk, v, dn_sum)
     call strike_rows(node, w, coef, nrm)
