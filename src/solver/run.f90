@@ -507,7 +507,9 @@ contains
       ! and a field step after the checkpoint (a restart drops them and goes on
       ! as if never stopped)
       if (stopping) then
-        ! (stops are decided on balance cycles: bal is this cycle's)
+        ! (stops are decided on balance cycles: bal is this cycle's, whole
+        ! once the energies alone are completed: the same energies, bitwise)
+        if (.not. full_balance) call compute_balance(dom, walls, ct, pt, bal)
         if (.not. history_due) call history_row(dt)
         if (.not. fields_due) call write_fields(fw, dom, st%t, st%cycle, work_svm, work_rho)
       end if
