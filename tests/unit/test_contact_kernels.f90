@@ -453,12 +453,16 @@ contains
     call check('normal_lcp_one_gap_twice', ok .and. all(lam(1:2) >= 0.0_rk) .and. maxval(abs(sep)) < 1.0e-9_rk, &
                'separation rates '//s(sep(1))//' '//s(sep(2)))
     ! a positive definite problem on which flipping every infeasible row
-    ! cycles (found by random search; the old solve gave up after 19
-    ! guesses): the safeguard's single flips end it, lam = (0, 0.36989, 0)
+    ! cycles (found by random search): without the safeguard the solve
+    ! gives up after 19 guesses, with it single flips end the cycle,
+    ! lam = (0, 0.36989, 0)
     m(1:3,1:3) = reshape([2.32720916_rk, 1.86466862_rk, -0.82147258_rk, 1.86466862_rk, 1.72237984_rk, -0.89653433_rk, &
                           -0.82147258_rk, -0.89653433_rk, 0.56902804_rk], [3, 3])
     b(1:3) = [-0.05157_rk, -0.63708579_rk, 0.58890262_rk]
     call solve_normal_lcp(3, ns, m, b(1:3), lam(1:3), ok, work, free)
+    call check('normal_lcp_block_flips_cycle_without_the_safeguard', .not. ok, &
+               'solved '//merge('yes', 'no ', ok)//' (the block flips must cycle here, or this case shows nothing)')
+    call solve_normal_lcp(3, ns, m, b(1:3), lam(1:3), ok, work, free, safeguarded=.true.)
     sep = 0
     if (ok) sep(1) = minval(b(1:3) + matmul(m(1:3,1:3), lam(1:3)))
     call check('normal_lcp_block_flips_cycle', ok .and. all(lam(1:3) >= 0.0_rk) .and. sep(1) > -1.0e-9_rk .and. &
