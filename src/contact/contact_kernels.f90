@@ -314,8 +314,8 @@ contains
         lam(idx(1:na)) = sol(1:na)
       end if
       s = b + matmul(m(1:n,1:n), lam)
-      ! complementary within rounding: done
-      bad = merge(lam < 0.0_rk, s < -tol, free(1:n))
+      ! complementary within rounding: done (a NaN counts as infeasible)
+      bad = merge(.not. lam >= 0.0_rk, .not. s >= -tol, free(1:n))
       n_bad = count(bad)
       if (n_bad == 0) exit
       if (it == 3*n + 10) then
