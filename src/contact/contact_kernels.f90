@@ -264,7 +264,9 @@ contains
   !> regularisation) it can settle on another of the equally valid splits
   !> of their impulse, and on the Fig. 4 deck (dt_safety 0.37, 10 us) it
   !> moved a plate node from 0.0012 to 0.030 of the rod's h inside the rod
-  !> (cli/fig4_depth's limit is 0.01): not yet understood.
+  !> (cli/fig4_depth's limit is 0.01); that was with an exit test that let
+  !> a NaN pass, and with today's test the safeguard on leaves that deck's
+  !> history unchanged (theory.md 11).
   !> M_AA regularised by 1e-10 of its largest diagonal (two rows on one gap
   !> make it singular: any split of their impulse serves), Gaussian
   !> elimination with partial pivoting. m, work and free: leading dimension
