@@ -11,7 +11,8 @@ module udar_contact
   use udar_exact_sum, only: exact_limbs, exact_add
   use udar_domain, only: domain_t
   use udar_particle_model, only: particles_t
-  use udar_contact_model, only: contact_t, interface_t, neighbour_across, contact_grow_nodes, joint_solve_rows
+  use udar_contact_model, only: contact_t, interface_t, neighbour_across, contact_grow_nodes, joint_solve_rows, &
+      joint_collect_rows, joint_dense_rows
   use udar_contact_search, only: grid_build, grid_cell, ensure
   use udar_contact_kernels, only: corner_angle, match_velocities, solve_friction_rows, row_components, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
                                   edge_crossing, behind_not, behind_face, behind_seam
@@ -736,23 +737,23 @@ contains
   end subroutine
 
   !> The rows of a joint pass (n; 0 when it has none or more than
-  !> joint_solve_rows): row r is slave node node(0,r) against its
+  !> cap): row r is slave node node(0,r) against its
   !> triangle's nodes node(1:3,r) at weights w(1:3,r) (contact_point, as
   !> match_velocities takes them; w(0,r) = -1) with shares R (a change lam of
   !> the slave's velocity changes node p's by coef(p,r) lam: 1 for the slave,
   !> -R_a m_s/m_a for master node a, momentum exact), along unit normal
   !> nrm(:,r); row r is active(row_k(r)) of interface row_ifc(r).
-  subroutine joint_rows(ct, first, last, n, node, w, coef, nrm, row_ifc, row_k)
+  subroutine joint_rows(ct, first, last, cap, n, node, w, coef, nrm, row_ifc, row_k)
     type(contact_t), intent(in) :: ct
-    integer, intent(in) :: first, last
-    integer, intent(out) :: n, node(0:3,joint_solve_rows), row_ifc(joint_solve_rows), row_k(joint_solve_rows)
-    real(rk), intent(out) :: w(0:3,joint_solve_rows), coef(0:3,joint_solve_rows), nrm(3,joint_solve_rows)
+    integer, intent(in) :: first, last, cap
+    integer, intent(out) :: n, node(0:3,cap), row_ifc(cap), row_k(cap)
+    real(rk), intent(out) :: w(0:3,cap), coef(0:3,cap), nrm(3,cap)
     integer :: i, k, t, a, nf
     n = 0
     do i = first, last
       n = n + ct%ifc(i)%n_pass
     end do
-    if (n > joint_solve_rows) n = 0
+    if (n > cap) n = 0
     if (n == 0) return
     n = 0
     do i = first, last
@@ -805,9 +806,11 @@ contains
   !> (dn_sum) count: the solve is for the totals (>= 0). The changes are
   !> applied as the sweeps apply theirs (velocities, and positions by dt
   !> times them); the sweeps then add friction and what rounding left. A
-  !> pass the solve cannot settle is left to the sweeps. change: the
-  !> largest normal velocity change the solve made; solved: whether it did
-  !> (the pass had rows, not too many, and a solution).
+  !> pass the solve cannot settle is left to the sweeps. A pass of more
+  !> than joint_solve_rows rows without friction goes set by set
+  !> (solve_large_pass_normals). change: the largest normal velocity
+  !> change the solve made; solved: whether it did (the pass had rows, not
+  !> too many, and a solution).
   subroutine solve_joint_normals(ct, first, last, dt, change, solved)
     type(contact_t), intent(inout) :: ct
     integer, intent(in) :: first, last
@@ -820,7 +823,13 @@ contains
     logical :: free(nr)
     change = 0
     solved = .false.
-    call joint_rows(ct, first, last, n, node, w, coef, nrm, row_ifc, row_k)
+    if (sum(ct%ifc(first:last)%n_pass) > nr) then
+      ! with friction a larger pass is left to the sweeps: its alternation
+      ! needs the joint friction solve, whose sets stop at joint_solve_rows
+      if (all(ct%ifc(first:last)%friction == 0.0_rk)) call solve_large_pass_normals(ct, first, last, dt, change, solved)
+      return
+    end if
+    call joint_rows(ct, first, last, nr, n, node, w, coef, nrm, row_ifc, row_k)
     if (n == 0) return
     do q = 1, n
       lam0(q) = ct%ifc(row_ifc(q))%dn_sum(row_k(q))
@@ -836,6 +845,92 @@ contains
       change = max(change, abs(dl))
       call apply_row_change(ct, node(:,q), coef(:,q), nrm(:,q), dl, dt)
       ct%ifc(row_ifc(q))%dn_sum(row_k(q)) = lam(q)
+    end do
+  end subroutine
+
+  !> The rows of a joint pass (joint_rows, at most cap) and their sets
+  !> joined by shared nodes (row_components): row q is in set comp(q) of
+  !> n_comp.
+  subroutine joint_row_sets(ct, first, last, cap, n, node, w, coef, nrm, row_ifc, row_k, comp, n_comp)
+    type(contact_t), intent(inout) :: ct   !< (its node_row: row_components' work)
+    integer, intent(in) :: first, last, cap
+    integer, intent(out) :: n, node(0:3,cap), row_ifc(cap), row_k(cap), comp(cap), n_comp
+    real(rk), intent(out) :: w(0:3,cap), coef(0:3,cap), nrm(3,cap)
+    n_comp = 0
+    call joint_rows(ct, first, last, cap, n, node, w, coef, nrm, row_ifc, row_k)
+    if (n == 0) return
+    call row_components(n, node(:,1:n), ct%node_row, comp(1:n), n_comp)
+  end subroutine
+
+  !> The rows of set c (comp as joint_row_sets gives it) in ascending order: set(1:k).
+  pure subroutine rows_of_set(comp, c, set, k)
+    integer, intent(in) :: comp(:), c
+    integer, intent(inout) :: set(:)
+    integer, intent(out) :: k
+    integer :: q
+    k = 0
+    do q = 1, size(comp)
+      if (comp(q) /= c) cycle
+      k = k + 1
+      set(k) = q
+    end do
+  end subroutine
+
+  !> A frictionless joint pass of more than joint_solve_rows rows (up to
+  !> joint_collect_rows; a self-contact clamp's passes have up to 340, where
+  !> the sweeps alone left 38 of its 92 passes unconverged), solved as
+  !> solve_joint_normals solves a small one, set by set: each set of rows
+  !> joined by shared nodes (row_components) of up to joint_dense_rows
+  !> rows, in ascending order, with the safeguard and at most
+  !> large_set_guesses guesses (each a dense solve of O(k^3)). A set the
+  !> solve does not settle is left to the sweeps; solved: every set was.
+  subroutine solve_large_pass_normals(ct, first, last, dt, change, solved)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: first, last
+    real(rk), intent(in) :: dt
+    real(rk), intent(out) :: change
+    logical, intent(out) :: solved
+    integer, parameter :: nr = joint_collect_rows, nd = joint_dense_rows, large_set_guesses = 20
+    integer :: node(0:3,nr), row_ifc(nr), row_k(nr), comp(nr), set(nr), n, n_comp, c, k, j, q, set_node(0:3,nd)
+    real(rk) :: w(0:3,nr), coef(0:3,nr), nrm(3,nr), b(nd), lam(nd), lam0(nd), dl, set_w(0:3,nd), set_coef(0:3,nd), &
+                set_nrm(3,nd)
+    logical :: ok
+    change = 0
+    solved = .false.
+    call joint_row_sets(ct, first, last, nr, n, node, w, coef, nrm, row_ifc, row_k, comp, n_comp)
+    if (n == 0) return
+    solved = .true.
+    do c = 1, n_comp
+      call rows_of_set(comp(1:n), c, set, k)
+      if (k > nd) then
+        solved = .false.
+        cycle
+      end if
+      do j = 1, k
+        q = set(j)
+        set_node(:,j) = node(:,q)
+        set_w(:,j) = w(:,q)
+        set_coef(:,j) = coef(:,q)
+        set_nrm(:,j) = nrm(:,q)
+        lam0(j) = ct%ifc(row_ifc(q))%dn_sum(row_k(q))
+        b(j) = row_rate(ct%v, node(:,q), w(:,q), nrm(:,q))
+      end do
+      call normal_rows_matrix(k, nd, set_node(:,1:k), set_w(:,1:k), set_coef(:,1:k), set_nrm(:,1:k), ct%lcp_m)
+      ! for the totals: s = (b - M lam0) + M lam
+      b(1:k) = b(1:k) - matmul(ct%lcp_m(1:k,1:k), lam0(1:k))
+      call solve_normal_lcp(k, nd, ct%lcp_m, b(1:k), lam(1:k), ok, ct%lcp_work, ct%lcp_free, safeguarded=.true., &
+                            max_guesses=large_set_guesses)
+      if (.not. ok) then
+        solved = .false.
+        cycle
+      end if
+      do j = 1, k
+        q = set(j)
+        dl = lam(j) - lam0(j)
+        change = max(change, abs(dl))
+        call apply_row_change(ct, node(:,q), coef(:,q), nrm(:,q), dl, dt)
+        ct%ifc(row_ifc(q))%dn_sum(row_k(q)) = lam(j)
+      end do
     end do
   end subroutine
 
@@ -860,33 +955,30 @@ contains
     logical :: ok
     change = 0
     solved = .false.
-    call joint_rows(ct, first, last, n, node, w, coef, nrm, row_ifc, row_k)
+    call joint_row_sets(ct, first, last, nr, n, node, w, coef, nrm, row_ifc, row_k, comp, n_comp)
     if (n == 0) return
-    call row_components(n, node(:,1:n), comp(1:n), n_comp)
     solved = .true.
     do c = 1, n_comp
       ! the set's rows in ascending order, three entries each
-      k = 0
-      do q = 1, n
-        if (comp(q) /= c) cycle
-        k = k + 1
-        set(k) = q
+      call rows_of_set(comp(1:n), c, set, k)
+      do j = 1, k
+        q = set(j)
         associate (it => ct%ifc(row_ifc(q)))
-          mu(k) = it%friction
+          mu(j) = it%friction
           call tangent_basis(nrm(:,q), t1, t2)
-          le = 3*k - 2
+          le = 3*j - 2
           dir(:,le) = nrm(:,q)
           dir(:,le+1) = t1
           dir(:,le+2) = t2
           x0(le) = it%dn_sum(row_k(q))
           x0(le+1) = dot_product(t1, it%t_sum(:,row_k(q)))
           x0(le+2) = dot_product(t2, it%t_sum(:,row_k(q)))
-          do j = 0, 2
-            e_node(:,le+j) = node(:,q)
-            e_w(:,le+j) = w(:,q)
-            e_coef(:,le+j) = coef(:,q)
-            e_dir(:,le+j) = dir(:,le+j)
-            b(le+j) = row_rate(ct%v, node(:,q), w(:,q), dir(:,le+j))
+          do ie = 0, 2
+            e_node(:,le+ie) = node(:,q)
+            e_w(:,le+ie) = w(:,q)
+            e_coef(:,le+ie) = coef(:,q)
+            e_dir(:,le+ie) = dir(:,le+ie)
+            b(le+ie) = row_rate(ct%v, node(:,q), w(:,q), dir(:,le+ie))
           end do
         end associate
       end do
@@ -1394,7 +1486,11 @@ contains
           if (it%self .or. dist < -depth_limit) cycle
           call closest_on_face(xa(:,1:nf), ct%x(:,ps), c_near, g)
           dist = -norm2(c_near - ct%x(:,ps))
-          if (dist >= 0.0_rk .or. dist <= seam_dist) cycle
+          ! (the way to the closest point is longer than to the plane: it
+          ! too is no deeper than an approach over a step can reach, or a
+          ! node beyond the edge of a face leaning over it is sent far
+          ! across: theory.md 11)
+          if (dist >= 0.0_rk .or. dist <= seam_dist .or. dist < -depth_limit) cycle
           seam = t; seam_dist = dist; seam_n = (ct%x(:,ps) - c_near)/dist; seam_g = g
           cycle
         end if

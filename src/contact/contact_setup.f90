@@ -11,7 +11,7 @@ module udar_contact_setup
   use udar_setup, only: find_group, group_list
   use udar_strings, only: itoa, to_lower
   use udar_comms, only: comms_rank, comms_size
-  use udar_contact_model, only: joint_solve_rows, feature_edges, contact_t, interface_t, size_interface_work, surface_neighbours, self_neighbourhoods, on_symmetry_plane, &
+  use udar_contact_model, only: joint_solve_rows, joint_dense_rows, feature_edges, contact_t, interface_t, size_interface_work, surface_neighbours, self_neighbourhoods, on_symmetry_plane, &
                                 assign_slaves, mark_returns
   use udar_contact_faces, only: points_inside_elements
   implicit none
@@ -190,6 +190,9 @@ contains
     ct%m = glob%nd_mass(ct%gidx)
     allocate(ct%x(3, ct%n_nodes), ct%v(3, ct%n_nodes), ct%v_sweep(3, ct%n_nodes))
     allocate(ct%joint_m(3*joint_solve_rows, 3*joint_solve_rows), ct%joint_work(3*joint_solve_rows, 3*joint_solve_rows+1))
+    allocate(ct%lcp_m(joint_dense_rows, joint_dense_rows), ct%lcp_work(joint_dense_rows, joint_dense_rows+1), source=0.0_rk)
+    allocate(ct%lcp_free(joint_dense_rows), source=.false.)
+    allocate(ct%node_row(ct%n_nodes), source=0)
     allocate(ct%h(ct%n_nodes), source=huge(1.0_rk))
     ct%x = glob%nd_x0(:, ct%gidx)
     ct%x0 = ct%x

@@ -3,5 +3,5 @@ module udar_version
   implicit none
   private
   public :: program_version
-  character(len=*), parameter :: program_version = '0.9.15'
+  character(len=*), parameter :: program_version = '0.9.16'
 end module udar_version

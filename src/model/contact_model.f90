@@ -19,6 +19,9 @@ module udar_contact_model
   !> A joint pass (symmetric pair, self-contact) with at most this many
   !> rows has its rows solved together before the sweeps
   integer, parameter, public :: joint_solve_rows = 64
+  !> a joint pass's normal rows: collected up to joint_collect_rows, each set
+  !> joined by shared nodes solved densely up to joint_dense_rows
+  integer, parameter, public :: joint_collect_rows = 2048, joint_dense_rows = 512
 
   !> One direction of an interface: slave nodes against master triangles.
   type, public :: interface_t
@@ -162,6 +165,10 @@ module udar_contact_model
     real(rk), allocatable :: v_sweep(:,:)  !< (3,n) m/s, work array: velocities at the start of a joint pass's sweep
     !> work arrays of a joint pass's solve with friction (3 joint_solve_rows square, and one column more)
     real(rk), allocatable :: joint_m(:,:), joint_work(:,:)
+    !> work arrays of a joint pass's normal solve (joint_dense_rows square, and one column more)
+    real(rk), allocatable :: lcp_m(:,:), lcp_work(:,:)
+    logical, allocatable :: lcp_free(:)
+    integer, allocatable :: node_row(:)    !< work array of row_components: 0 for every contact node between uses
     real(rk) :: dt_last = 0                !< s, the step of the last pass
     ! eroding surfaces: every tetrahedron of the parts whose boundary changes
     ! as elements erode (all their nodes are contact nodes)
@@ -241,7 +248,7 @@ contains
     call grow1(ct%m); call grow1(ct%h, huge(1.0_rk)); call grow1(ct%impulse); call grow1(ct%pressure)
     call grow1(ct%work_area)
     call growi(ct%gidx); call growi(ct%sym_planes); call growi(ct%alive_count); call growi(ct%local)
-    call growi(ct%fresh)
+    call growi(ct%fresh); call growi(ct%node_row)
     call growl(ct%returns)
     do i = 1, ct%n_interfaces
       call grow2(ct%ifc(i)%x_built)

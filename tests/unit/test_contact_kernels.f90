@@ -459,10 +459,10 @@ contains
     m(1:3,1:3) = reshape([2.32720916_rk, 1.86466862_rk, -0.82147258_rk, 1.86466862_rk, 1.72237984_rk, -0.89653433_rk, &
                           -0.82147258_rk, -0.89653433_rk, 0.56902804_rk], [3, 3])
     b(1:3) = [-0.05157_rk, -0.63708579_rk, 0.58890262_rk]
-    call solve_normal_lcp(3, ns, m, b(1:3), lam(1:3), ok, work, free)
+    call solve_normal_lcp(3, ns, m, b(1:3), lam(1:3), ok, work, free, safeguarded=.false.)
     call check('normal_lcp_block_flips_cycle_without_the_safeguard', .not. ok, &
                'solved '//merge('yes', 'no ', ok)//' (the block flips must cycle here, or this case shows nothing)')
-    call solve_normal_lcp(3, ns, m, b(1:3), lam(1:3), ok, work, free, safeguarded=.true.)
+    call solve_normal_lcp(3, ns, m, b(1:3), lam(1:3), ok, work, free)   ! the default: safeguarded
     sep = 0
     if (ok) sep(1) = minval(b(1:3) + matmul(m(1:3,1:3), lam(1:3)))
     call check('normal_lcp_block_flips_cycle', ok .and. all(lam(1:3) >= 0.0_rk) .and. sep(1) > -1.0e-9_rk .and. &
@@ -541,10 +541,12 @@ contains
     ! sets of rows joined by shared nodes: rows 1 and 3 share node 7, row 4
     ! joins them through node 14 (row 3's), row 2 is alone
     block
-      integer :: comp(4), n_comp
-      call row_components(4, reshape([1, 7, 8, 9, 2, 10, 11, 12, 3, 7, 13, 14, 4, 15, 16, 14], [4, 4]), comp, n_comp)
-      call check('row_components_by_hand', n_comp == 2 .and. all(comp == [1, 2, 1, 1]), &
-                 'sets '//trim(ints(comp)))
+      integer :: comp(4), n_comp, node_row(16)
+      node_row = 0
+      call row_components(4, reshape([1, 7, 8, 9, 2, 10, 11, 12, 3, 7, 13, 14, 4, 15, 16, 14], [4, 4]), node_row, comp, &
+                          n_comp)
+      call check('row_components_by_hand', n_comp == 2 .and. all(comp == [1, 2, 1, 1]) .and. all(node_row == 0), &
+                 'sets '//trim(ints(comp))//', work array left clear: '//merge('yes', 'no ', all(node_row == 0)))
     end block
     call check('friction_pair_fixed_point', ok .and. change < 1.0e-12_rk .and. all(dnp > 0.0_rk) .and. &
                worst_coulomb < 1.0e-10_rk .and. maxval(abs(matmul(vp, mp) - p_before)) < 1.0e-14_rk, &

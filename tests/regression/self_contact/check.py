@@ -6,7 +6,8 @@ v_low)/2 with the arms' measured approach velocities; no node of one arm
 ever lies inside the other (at the free corners, where a corner can slip
 under a corner, by at most 1e-3 of the element size); the energy balance (with the contact work)
 moves by less than 2 % over the contact (until the lower arm, sent back
-down, strikes the wall again). With `expect_penetration` (the
+down, strikes the wall again); in 3D at most 3 contact passes end
+unconverged (0.9.15: 38). With `expect_penetration` (the
 same deck without the &contact group) the arms must pass into each other:
 the check can fail.
 The deck self_contact_2d (tests/regression/self_contact_2d) is the same
@@ -84,4 +85,10 @@ checks.compare('contact_pressure_far_part_vs_rho_c_dv_over_2', during[:, 2].mean
 window = (t > t[touch[0]] - 0.1e-6) & (t < t[touch[0]] + 2 * T / c - 0.2e-6)
 err = h['energy_error'][window]
 checks.below('energy_error_change_over_contact', err.max() - err.min(), 0.02)
+# the velocity matching converges: the arms' rows are one set joined by
+# shared nodes, up to 340 of them (0.9.15, sweeps only beyond 64 rows: 38
+# of 92 passes ended at iterations = 50 unconverged; 0.9.16 solves such a
+# set together: 1)
+if not plane:
+    checks.below('contact_passes_ended_unconverged', checks.unconverged_passes(sys.argv[1], 'clamp_on_itself'), 3)
 checks.finish()
