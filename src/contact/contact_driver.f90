@@ -1486,11 +1486,13 @@ contains
           if (it%self .or. dist < -depth_limit) cycle
           call closest_on_face(xa(:,1:nf), ct%x(:,ps), c_near, g)
           dist = -norm2(c_near - ct%x(:,ps))
-          ! (the way to the closest point is longer than to the plane: it
-          ! too is no deeper than an approach over a step can reach, or a
-          ! node beyond the edge of a face leaning over it is sent far
-          ! across: theory.md 11)
-          if (dist >= 0.0_rk .or. dist <= seam_dist .or. dist < -depth_limit) cycle
+          if (dist >= 0.0_rk .or. dist <= seam_dist) cycle
+          ! (on a symmetry plane the way to the closest point, longer than
+          ! to the plane, is held to the margin too: only the in-plane part
+          ! of a return stays there, and a node beyond the edge of a face
+          ! leaning out of the plane was sent far across and left inside:
+          ! theory.md 11)
+          if (ct%sym_planes(ps) /= 0 .and. dist < -depth_limit) cycle
           seam = t; seam_dist = dist; seam_n = (ct%x(:,ps) - c_near)/dist; seam_g = g
           cycle
         end if
