@@ -16,8 +16,8 @@ module udar_contact
   use udar_contact_search, only: grid_build, grid_cell, ensure
   use udar_contact_kernels, only: corner_angle, match_velocities, solve_friction_rows, row_components, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
                                   edge_crossing, behind_not, behind_face, behind_seam
-  use udar_contact_faces, only: face_projection, face_shares, closest_on_face, element_coordinates, face_behind_surface, &
-                                face_beside_sharp_edge, points_inside_elements
+  use udar_contact_faces, only: face_projection, face_shares, closest_on_face, seam_contact, element_coordinates, &
+                                face_behind_surface, face_beside_sharp_edge, points_inside_elements
   use udar_fracture, only: el_eroded
   use udar_ordering, only: find_sorted
   use udar_vectors, only: gather_columns, tangent_basis
@@ -1414,7 +1414,7 @@ contains
       integer :: other, sep
       integer :: t, s, first, last
       real(rk) :: xa(3,3), n(3), dist, g(3), c_near(3), seam_dist, seam_n(3), seam_g(3), xb(3,3,3), xs(3,3,3), xc(3,3,3,3)
-      logical :: has(3), shares(3,3), sharp, off_face, own, hasc(3,3)
+      logical :: has(3), shares(3,3), sharp, off_face, own, hasc(3,3), taken
       integer :: verdict, seam, n_beside, a
       best = 0; other = 0; sep = 0; seam = 0
       seam_dist = -huge(1.0_rk)
@@ -1484,16 +1484,11 @@ contains
           ! outline): the contact is with the triangle's closest point,
           ! along the way to it; taken only when no face has the node
           if (it%self .or. dist < -depth_limit) cycle
-          call closest_on_face(xa(:,1:nf), ct%x(:,ps), c_near, g)
-          dist = -norm2(c_near - ct%x(:,ps))
-          if (dist >= 0.0_rk .or. dist <= seam_dist) cycle
           ! (on a symmetry plane the way to the closest point, longer than
-          ! to the plane, is held to the margin too: only the in-plane part
-          ! of a return stays there, and a node beyond the edge of a face
-          ! leaning out of the plane was sent far across and left inside:
-          ! theory.md 11)
-          if (ct%sym_planes(ps) /= 0 .and. dist < -depth_limit) cycle
-          seam = t; seam_dist = dist; seam_n = (ct%x(:,ps) - c_near)/dist; seam_g = g
+          ! to the plane, is held to the margin too)
+          call seam_contact(xa(:,1:nf), ct%x(:,ps), depth_limit, ct%sym_planes(ps) /= 0, c_near, g, n, dist, taken)
+          if (.not. taken .or. dist <= seam_dist) cycle
+          seam = t; seam_dist = dist; seam_n = n; seam_g = g
           cycle
         end if
         if (dist < -depth_limit) then

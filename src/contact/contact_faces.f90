@@ -16,7 +16,7 @@ module udar_contact_faces
   use udar_contact_search, only: bucket_grid_t, grid_build, grid_cell
   implicit none
   private
-  public :: face_projection, face_shares, closest_on_face, element_coordinates, face_behind_surface, &
+  public :: face_projection, face_shares, closest_on_face, seam_contact, element_coordinates, face_behind_surface, &
             face_beside_sharp_edge, points_inside_elements
 
   !> of an edge's length: a fold flatter than this, or a node nearer a plane,
@@ -61,6 +61,28 @@ contains
       call closest_on_segment(xa(:,1:2), p, c, g(1:2))
       g(3) = 0.0_rk
     end if
+  end subroutine
+
+  !> The contact of node xs in the seam of a dented surface beyond face xa's
+  !> outline (face_behind_surface's behind_seam): with the face's closest
+  !> point c (coordinates g), at depth dist < 0 along the unit direction n
+  !> from the node to it (out of the body). taken: xs is not on the face,
+  !> and, for a node on a symmetry plane (on_plane), the way to c is no
+  !> longer than depth_limit: the symmetry condition keeps only the in-plane
+  !> part of a move, so a node beyond the edge of a face leaning out of the
+  !> plane, sent towards a closest point off the plane, was carried across
+  !> the master body and left inside it (theory.md 11).
+  pure subroutine seam_contact(xa, xs, depth_limit, on_plane, c, g, n, dist, taken)
+    real(rk), intent(in) :: xa(:,:), xs(3), depth_limit
+    logical, intent(in) :: on_plane
+    real(rk), intent(out) :: c(3), g(3), n(3), dist
+    logical, intent(out) :: taken
+    call closest_on_face(xa, xs, c, g)
+    dist = -norm2(c - xs)
+    n = 0.0_rk
+    taken = dist < 0.0_rk
+    if (on_plane) taken = taken .and. dist >= -depth_limit
+    if (taken) n = (xs - c)/dist
   end subroutine
 
   !> The coordinates lam of p in the master element made of face xa and its

@@ -11,7 +11,7 @@ program test_contact_kernels
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, edge_crossing, edge_shares, &
                                   tetrahedron_coordinates, closest_on_triangle, behind_not, behind_face, &
                                   behind_seam, solve_normal_lcp, normal_rows_matrix, corner_angle, solve_friction_rows, row_components
-  use udar_contact_faces, only: face_behind_surface, face_beside_sharp_edge
+  use udar_contact_faces, only: face_behind_surface, face_beside_sharp_edge, seam_contact
   use udar_contact_model, only: interface_t, surface_neighbours, neighbour_across
   use unit_checks, only: check, check_summary, logicals
   use udar_vectors, only: tangent_basis
@@ -63,6 +63,7 @@ program test_contact_kernels
   call test_moving_edges()
   call test_edges_and_elements()
   call test_seams()
+  call test_seam_on_plane()
   call test_sharp_edges()
   call test_beyond_face_beside()
   call check_summary()
@@ -175,6 +176,35 @@ contains
                .and. all(nbr(:,6) == [0, 0, 5]) .and. all(nbr(:,7) == [0, 0, 4]), &
                'a strip and two wedges on one edge, 0 0 7 / 0 0 6 / 0 0 5 / 0 0 4 wanted for the wedges: '// &
                ints(nbr(3,4:7)))
+  end subroutine
+
+  !> The seam's contact (seam_contact) of a node on the symmetry plane y = 0,
+  !> by hand. Triangle (0,0,0), (-0.5,0.4,1), (1,0,0): its edge along x on
+  !> the plane, leaning out of it (outward normal (0, 0.928, -0.371)). The
+  !> node (-0.3,0,0.4) is 0.149 behind its plane, beyond both its edge on
+  !> the plane and the edge to (-0.5,0.4,1), whose point at 0.55/1.41 of
+  !> the way is the closest, 0.188 away and off the plane. With a search
+  !> depth of 0.16 the node is taken off the plane (the way to the point, the
+  !> direction out of the body), and not on it: there only the in-plane part
+  !> of the move would stay, and the node would go 0.105 along x, not to the
+  !> face (the Fig. 4 deck's free plate nodes sent 0.34-0.70 mm into the
+  !> rod, theory.md 11).
+  subroutine test_seam_on_plane()
+    real(rk) :: xa(3,3), xs(3), c(3), g(3), n(3), dist, c_hand(3), err, dist_plane, n_plane(3), g_plane(3)
+    logical :: off_taken, on_taken
+    xa = reshape([0.0_rk, 0.0_rk, 0.0_rk, -0.5_rk, 0.4_rk, 1.0_rk, 1.0_rk, 0.0_rk, 0.0_rk], [3, 3])
+    xs = [-0.3_rk, 0.0_rk, 0.4_rk]
+    call triangle_projection(xa, xs, n_plane, dist_plane, g_plane)
+    c_hand = (0.55_rk/1.41_rk)*xa(:,2)
+    call seam_contact(xa, xs, 0.16_rk, .false., c, g, n, dist, off_taken)
+    err = maxval(abs(c - c_hand)) + abs(dist + norm2(c_hand - xs)) + maxval(abs(n - (c_hand - xs)/norm2(c_hand - xs)))
+    call check('seam_contact_by_hand', off_taken .and. err < 1.0e-15_rk .and. abs(dist_plane + 0.4_rk*0.4_rk/sqrt(1.16_rk)) &
+               < 1.0e-15_rk .and. minval(g_plane) < 0.0_rk, 'off the plane: taken '//trim(logicals([off_taken]))// &
+               ', summed error '//s(err)//', plane depth '//s(-dist_plane)//', closest point '//s(-dist)//' away')
+    call seam_contact(xa, xs, 0.16_rk, .true., c, g, n, dist, on_taken)
+    call check('seam_contact_on_a_symmetry_plane_held_to_the_depth', .not. on_taken, &
+               'on the plane, the closest point '//s(-dist)//' away beyond the search depth 0.16: taken '// &
+               trim(logicals([on_taken]))//' (F wanted)')
   end subroutine
 
   !> A node behind triangle T (that of test_seams: z = 0, outward +z, the
