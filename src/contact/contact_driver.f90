@@ -12,7 +12,7 @@ module udar_contact
   use udar_domain, only: domain_t
   use udar_particle_model, only: particles_t
   use udar_contact_model, only: contact_t, interface_t, neighbour_across, contact_grow_nodes, joint_solve_rows, &
-      joint_collect_rows, joint_dense_rows
+      joint_dense_rows
   use udar_contact_search, only: grid_build, grid_cell, ensure
   use udar_contact_kernels, only: corner_angle, match_velocities, solve_friction_rows, row_components, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
                                   edge_crossing, behind_not, behind_face, behind_seam
@@ -45,6 +45,8 @@ module udar_contact
   !> Sweeps of a joint pass with friction after which it is solved
   !> together (match_passes)
   integer, parameter :: friction_solve_after = 8
+  !> a pass of fewer rows is matched by every rank (the sharing would cost more)
+  integer, parameter :: spread_rows = 32
   !> Cycle passes without a change of the surfaces after which the
   !> candidate lists are built with the skin again (full_search).
   integer, parameter :: quiet_passes_for_skin = 4
@@ -362,8 +364,8 @@ contains
         margin(k-i+1) = 2.0_rk*vmax*dt + 0.05_rk*ct%ifc(k)%h_mean
         call detect(ct, ct%ifc(k), margin(k-i+1), .true., dt, stage_search, n_found, depth, worst)
       end do
-      t0 = comms_wtime()
       call match_passes(ct, i, last, dt)
+      t0 = comms_wtime()
       do k = i, last
         call detect(ct, ct%ifc(k), margin(k-i+1), .true., dt, stage_finish, n_found, depth, worst)
       end do
@@ -618,166 +620,341 @@ contains
   end function
 
   !> Velocity matching with friction of the slave nodes interfaces first..last
-  !> found (projected Gauss-Seidel), repeated until a pass changes nothing
-  !> (to round-off) or `iterations`: a correction moves master nodes that
-  !> earlier slave nodes were matched to. Every velocity change dv also moves
-  !> its node by dt dv, as if the corrected velocity had been used for the
-  !> step.
+  !> found (projected Gauss-Seidel), set by set: the rows joined by shared
+  !> nodes (pass_sets) do not act on each other, so each set is matched on
+  !> its own, its sweeps repeated until one changes nothing (to round-off)
+  !> or `iterations` (a correction moves master nodes that earlier slave
+  !> nodes of the set were matched to). A set's answer then depends on its
+  !> rows alone, not on how many others the pass has or on whether they have
+  !> converged. Every velocity change dv also moves its node by dt dv, as
+  !> if the corrected velocity had been used for the step. The pass's
+  !> sweeps are its slowest set's; it is unconverged if any set is.
   subroutine match_passes(ct, first, last, dt)
     type(contact_t), intent(inout) :: ct
     integer, intent(in) :: first, last
     real(rk), intent(in) :: dt
-    real(rk) :: dvs(3), dvm(3,3), dn, dtan(3), mismatch, first_change, vm(3,3), mm(3), limit, resolve_change
-    integer :: i, k, ps, t, a, pa, iter, nf
-    logical :: closing, joint, held, solved
+    integer :: c, n_sets, i, np, me
+    logical :: joint_pass, spread
+    real(rk) :: t0
     if (dt <= 0.0_rk) return
+    t0 = comms_wtime()
+    call pass_sets(ct, first, last, n_sets)
+    ! both directions of a gap in one pass (and self-contact): rows that
+    ! constrain one gap from both sides converge slowly in sweeps
+    ! (validation.md 4t), so their sets are solved together first
+    joint_pass = last > first .or. ct%ifc(first)%self
+    ! every rank has every row's state (share_found): on several ranks each
+    ! matches its run of the sets and the answers are shared; which rank
+    ! matches a set does not change its answer (rank-count independence)
+    np = comms_size()
+    me = comms_rank()
+    spread = .false.
+    if (np > 1 .and. n_sets > 0) spread = ct%set_start(n_sets+1) - 1 >= spread_rows
+    do c = 1, n_sets
+      if (spread) then
+        if (set_rank(ct, c, n_sets, np) /= me) cycle
+      end if
+      call match_set(ct, first, last, ct%set_start(c), ct%set_start(c+1) - 1, joint_pass, dt, ct%set_sweeps(c), &
+                     ct%set_converged(c))
+    end do
+    ct%seconds_matching = ct%seconds_matching + (comms_wtime() - t0)
+    if (spread) then
+      t0 = comms_wtime()
+      call share_sets(ct, n_sets, np, me)
+      ct%seconds_exchange = ct%seconds_exchange + (comms_wtime() - t0)
+    end if
+    do i = first, last
+      if (n_sets == 0) cycle
+      ct%ifc(i)%sweeps = ct%ifc(i)%sweeps + maxval(ct%set_sweeps(1:n_sets))
+      if (.not. all(ct%set_converged(1:n_sets))) ct%ifc(i)%sweep_limit_hits = ct%ifc(i)%sweep_limit_hits + 1
+    end do
+  end subroutine
+
+  !> The rank that matches set c of n_sets on np ranks: the sets in runs of
+  !> about equal numbers of rows, by their first rows (so ascending in c).
+  integer function set_rank(ct, c, n_sets, np)
+    type(contact_t), intent(in) :: ct
+    integer, intent(in) :: c, n_sets, np
+    set_rank = int((int(ct%set_start(c) - 1, i8)*np)/(ct%set_start(n_sets+1) - 1))
+  end function
+
+  !> Every set's answer from the rank that matched it to every rank
+  !> (collective): its sweeps and whether it converged, then for each row
+  !> its accumulated impulses and the velocities and positions of its
+  !> nodes, which are the set's alone (the sets share no node). The ranks'
+  !> runs of sets are in set order, so the gathered records are too.
+  subroutine share_sets(ct, n_sets, np, me)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: n_sets, np, me
+    integer, parameter :: rec_set = 2, rec_row = 4 + 6*4
+    integer :: c, r, p, e, j, n_send, a, b
+    ! (rank r's count in set_counts(r+1))
+    call ensure(ct%set_counts, np)
+    ct%set_counts(1:np) = 0
+    do c = 1, n_sets
+      r = set_rank(ct, c, n_sets, np)
+      ct%set_counts(r+1) = ct%set_counts(r+1) + rec_set + rec_row*(ct%set_start(c+1) - ct%set_start(c))
+    end do
+    call ensure(ct%set_send, ct%set_counts(me+1))
+    call ensure(ct%set_recv, sum(ct%set_counts(1:np)))
+    n_send = 0
+    do c = 1, n_sets
+      if (set_rank(ct, c, n_sets, np) /= me) cycle
+      ct%set_send(n_send+1:n_send+rec_set) = [real(ct%set_sweeps(c), rk), merge(1.0_rk, 0.0_rk, ct%set_converged(c))]
+      n_send = n_send + rec_set
+      do p = ct%set_start(c), ct%set_start(c+1) - 1
+        associate (it => ct%ifc(ct%row_ifc(p)), k => ct%row_k(p))
+          ct%set_send(n_send+1:n_send+4) = [it%dn_sum(k), it%t_sum(:,k)]
+        end associate
+        n_send = n_send + 4
+        do e = 0, 3
+          ct%set_send(n_send+1:n_send+6) = [ct%v(:,ct%row_node(e,p)), ct%x(:,ct%row_node(e,p))]
+          n_send = n_send + 6
+        end do
+      end do
+    end do
+    call comms_allgatherv_real(ct%set_send(1:n_send), ct%set_counts(1:np), ct%set_recv)
+    j = 0
+    do c = 1, n_sets
+      ct%set_sweeps(c) = nint(ct%set_recv(j+1))
+      ct%set_converged(c) = ct%set_recv(j+2) > 0.5_rk
+      j = j + rec_set
+      a = ct%set_start(c)
+      b = ct%set_start(c+1) - 1
+      do p = a, b
+        associate (it => ct%ifc(ct%row_ifc(p)), k => ct%row_k(p))
+          it%dn_sum(k) = ct%set_recv(j+1)
+          it%t_sum(:,k) = ct%set_recv(j+2:j+4)
+        end associate
+        j = j + 4
+        do e = 0, 3
+          ct%v(:,ct%row_node(e,p)) = ct%set_recv(j+1:j+3)
+          ct%x(:,ct%row_node(e,p)) = ct%set_recv(j+4:j+6)
+          j = j + 6
+        end do
+      end do
+    end do
+  end subroutine
+
+  !> The rows of the pass of interfaces first..last (row r: slave node
+  !> active(k) of interface i against its triangle), grouped in the sets
+  !> joined by shared nodes (row_components): set c of n_sets is rows
+  !> ct%set_start(c) to ct%set_start(c+1) - 1, the sets in the order of
+  !> their first rows and each set's rows in the pass's order (interface,
+  !> then k). Each row's nodes, weights, coefficients and normal as
+  !> row_data gives them.
+  subroutine pass_sets(ct, first, last, n_sets)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: first, last
+    integer, intent(out) :: n_sets
+    integer :: n, i, k, r, p, nf, c
+    n = 0
+    do i = first, last
+      n = n + ct%ifc(i)%n_pass
+    end do
+    call ensure_rows(ct, n)
+    n_sets = 0
+    if (n == 0) return
+    r = 0
+    do i = first, last
+      nf = size(ct%ifc(i)%tri, 1)
+      do k = 1, ct%ifc(i)%n_pass
+        r = r + 1
+        ct%found_ifc(r) = i
+        ct%found_k(r) = k
+        ct%found_node(0,r) = ct%ifc(i)%active(k)
+        ct%found_node(1:nf,r) = ct%ifc(i)%tri(:,ct%ifc(i)%on_tri(k))
+        ct%found_node(nf+1:3,r) = ct%found_node(nf,r)
+      end do
+    end do
+    call row_components(n, ct%found_node(:,1:n), ct%node_row, ct%found_set(1:n), n_sets)
+    call ensure_sets(ct, n_sets)
+    ct%set_start(1:n_sets+1) = 0
+    do r = 1, n
+      c = ct%found_set(r)
+      ct%set_start(c+1) = ct%set_start(c+1) + 1
+    end do
+    ct%set_start(1) = 1
+    do c = 1, n_sets
+      ct%set_start(c+1) = ct%set_start(c+1) + ct%set_start(c)
+    end do
+    ! (set_start(c) runs on as set c's next free row, then back)
+    do r = 1, n
+      c = ct%found_set(r)
+      p = ct%set_start(c)
+      ct%set_start(c) = p + 1
+      ct%row_ifc(p) = ct%found_ifc(r)
+      ct%row_k(p) = ct%found_k(r)
+      call row_data(ct, ct%row_ifc(p), ct%row_k(p), ct%row_node(:,p), ct%row_w(:,p), ct%row_coef(:,p), &
+                    ct%row_nrm(:,p))
+    end do
+    do c = n_sets, 2, -1
+      ct%set_start(c) = ct%set_start(c-1)
+    end do
+    ct%set_start(1) = 1
+  end subroutine
+
+  !> Room in ct's row arrays for n rows.
+  subroutine ensure_rows(ct, n)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: n
+    integer :: cap
+    if (allocated(ct%row_ifc)) then
+      if (size(ct%row_ifc) >= n) return
+      deallocate(ct%row_node, ct%row_ifc, ct%row_k, ct%row_w, ct%row_coef, ct%row_nrm, ct%found_node, ct%found_ifc, &
+                 ct%found_k, ct%found_set)
+    end if
+    cap = max(2*n, 64)
+    allocate(ct%row_node(0:3,cap), ct%row_ifc(cap), ct%row_k(cap), ct%row_w(0:3,cap), ct%row_coef(0:3,cap), &
+             ct%row_nrm(3,cap), ct%found_node(0:3,cap), ct%found_ifc(cap), ct%found_k(cap), ct%found_set(cap))
+  end subroutine
+
+  !> Room in ct's set arrays for n sets.
+  subroutine ensure_sets(ct, n)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: n
+    if (allocated(ct%set_start)) then
+      if (size(ct%set_start) >= n + 1) return
+      deallocate(ct%set_start, ct%set_sweeps, ct%set_converged)
+    end if
+    allocate(ct%set_start(max(2*n, 64) + 1), ct%set_sweeps(max(2*n, 64)), ct%set_converged(max(2*n, 64)))
+  end subroutine
+
+  !> Row k of interface i: slave node node(0) against its triangle's
+  !> nodes node(1:3) at weights w(1:3) (contact_point, as match_velocities
+  !> takes them; w(0) = -1) with shares R (a change lam of the slave's
+  !> velocity changes node p's by coef(p) lam: 1 for the slave, -R_a
+  !> m_s/m_a for master node a, momentum exact), along unit normal nrm; a
+  !> 2D segment's third slot is its second node again, of weight and share 0.
+  subroutine row_data(ct, i, k, node, w, coef, nrm)
+    type(contact_t), intent(in) :: ct
+    integer, intent(in) :: i, k
+    integer, intent(out) :: node(0:3)
+    real(rk), intent(out) :: w(0:3), coef(0:3), nrm(3)
+    integer :: a, nf
+    associate (it => ct%ifc(i))
+      nf = size(it%tri, 1)
+      node(0) = it%active(k)
+      node(1:nf) = it%tri(:,it%on_tri(k))
+      node(nf+1:3) = node(nf)
+      w(0) = -1.0_rk
+      w(1:3) = contact_point(it%area(:,k))
+      coef(0) = 1.0_rk
+      do a = 1, 3
+        coef(a) = -it%share(a,k)*ct%m(node(0))/ct%m(node(a))
+      end do
+      nrm = it%normal(:,k)
+    end associate
+  end subroutine
+
+  !> The matching of the pass's rows a..b, one set (match_passes). In a
+  !> joint pass the set's normal rows are solved together first
+  !> (solve_set_normals); as those rows then trade impulse without
+  !> changing a velocity, its sweeps stop on the nodes' net velocity change
+  !> (theory.md 11). With friction a joint set alternates: sweeps of
+  !> friction alone with the normals held at the joint solve's, then the
+  !> normals solved again for the velocities friction left, to a fixed
+  !> point. (Sweeps of both let two rows on one gap trade their normal
+  !> changes along the solve's null space while their friction limits grow
+  !> with them, validation.md 4zl.) Where that is slow (two rows on one gap
+  !> have nearly the same friction too), every friction_solve_after sweeps
+  !> the set is solved together, normals and friction
+  !> (solve_set_friction), from where the alternation got, and ordinary
+  !> sweeps take what rounding left. sweeps: how many it took; converged:
+  !> before `iterations`.
+  subroutine match_set(ct, first, last, a, b, joint_pass, dt, sweeps, converged)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: first, last, a, b
+    logical, intent(in) :: joint_pass
+    real(rk), intent(in) :: dt
+    integer, intent(out) :: sweeps
+    logical, intent(out) :: converged
+    real(rk) :: dvs(3), dvm(3,3), dn, dtan(3), mismatch, first_change, vm(3,3), mm(3), limit, resolve_change
+    integer :: p, k, ps, t, c, pa, iter, nf, iterations
+    logical :: closing, joint, held, solved, frictionless
+    real(rk) :: tolerance
     first_change = 0
-    ! both directions of a gap in one pass: rows that constrain one gap
-    ! from both sides converge slowly in sweeps (validation.md 4t), so such
-    ! a pass of up to joint_solve_rows rows is solved together first; as
-    ! those rows then trade impulse without changing a velocity, its sweeps
-    ! stop on the nodes' net velocity change (theory.md 11)
-    ! With friction a joint pass alternates: sweeps of friction alone with
-    ! the normals held at the joint solve's, then the normals solved again
-    ! for the velocities friction left, to a fixed point. (Sweeps of both
-    ! let two rows on one gap trade their normal changes along the solve's
-    ! null space while their friction limits grow with them, validation.md
-    ! 4zl.) Where that is slow (two rows on one gap have nearly the same
-    ! friction too), every friction_solve_after sweeps the pass is solved
-    ! together, normals and friction (solve_joint_friction), from where
-    ! the alternation got, and ordinary sweeps take what rounding left.
+    iterations = ct%ifc(first)%iterations
+    tolerance = ct%ifc(first)%tolerance
+    frictionless = all(ct%ifc(first:last)%friction == 0.0_rk)
     joint = .false.
-    if (last > first .or. ct%ifc(first)%self) call solve_joint_normals(ct, first, last, dt, first_change, joint)
-    held = joint .and. any(ct%ifc(first:last)%friction > 0.0_rk)
-    do iter = 1, ct%ifc(first)%iterations
+    if (joint_pass) call solve_set_normals(ct, a, b, frictionless, dt, first_change, joint)
+    held = joint .and. .not. frictionless
+    converged = .false.
+    sweeps = 0
+    do iter = 1, iterations
+      sweeps = iter
       mismatch = 0
       if (joint) call keep_row_velocities()
       if (held .and. mod(iter, friction_solve_after) == 1 .and. iter > 1) then
-        call solve_joint_friction(ct, first, last, dt, resolve_change, solved)
+        call solve_set_friction(ct, a, b, dt, resolve_change, solved)
         held = .not. solved
       end if
       ! unsolved: the sweeps take the normals over from the last solve
-      if (held .and. iter > 1) call solve_joint_normals(ct, first, last, dt, resolve_change, held)
-      do i = first, last
-        associate (it => ct%ifc(i))
+      if (held .and. iter > 1) call solve_set_normals(ct, a, b, frictionless, dt, resolve_change, held)
+      do p = a, b
+        associate (it => ct%ifc(ct%row_ifc(p)))
           ! a face's nodes: 3 (a triangle) or 2 (a 2D segment, its third
           ! slot of weight and share 0 padded with a unit mass at rest)
           nf = size(it%tri, 1)
           vm = 0.0_rk
           mm = 1.0_rk
-          do k = 1, it%n_pass
-            ps = it%active(k)
-            t = it%on_tri(k)
-            call gather_columns(vm, ct%v, it%tri(:,t))
-            do a = 1, nf
-              mm(a) = ct%m(it%tri(a,t))
-            end do
-            call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), mm, vm, it%area(:,k), &
-                                  it%share(:,k), it%friction, it%dn_sum(k), it%t_sum(:,k), dvs, dvm, closing, dn, dtan, &
-                                  held)
-            if (.not. closing) cycle
-            it%dn_sum(k) = it%dn_sum(k) + dn
-            it%t_sum(:,k) = it%t_sum(:,k) + dtan
-            ! what this pass still changed, pushes and take-backs alike
-            mismatch = max(mismatch, abs(dn), norm2(dtan))
-            ! contact forces are internal: momentum is exchanged exactly, and
-            ! whatever energy the matching dissipates shows in the energy error
-            ct%v(:,ps) = ct%v(:,ps) + dvs
-            ct%x(:,ps) = ct%x(:,ps) + dt*dvs
-            do a = 1, nf
-              pa = it%tri(a,t)
-              ct%v(:,pa) = ct%v(:,pa) + dvm(:,a)
-              ct%x(:,pa) = ct%x(:,pa) + dt*dvm(:,a)
-            end do
+          k = ct%row_k(p)
+          ps = it%active(k)
+          t = it%on_tri(k)
+          call gather_columns(vm, ct%v, it%tri(:,t))
+          do c = 1, nf
+            mm(c) = ct%m(it%tri(c,t))
           end do
-          it%sweeps = it%sweeps + 1
+          call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), mm, vm, it%area(:,k), &
+                                it%share(:,k), it%friction, it%dn_sum(k), it%t_sum(:,k), dvs, dvm, closing, dn, dtan, &
+                                held)
+          if (.not. closing) cycle
+          it%dn_sum(k) = it%dn_sum(k) + dn
+          it%t_sum(:,k) = it%t_sum(:,k) + dtan
+          ! what this sweep still changed, pushes and take-backs alike
+          mismatch = max(mismatch, abs(dn), norm2(dtan))
+          ! contact forces are internal: momentum is exchanged exactly, and
+          ! whatever energy the matching dissipates shows in the energy error
+          ct%v(:,ps) = ct%v(:,ps) + dvs
+          ct%x(:,ps) = ct%x(:,ps) + dt*dvs
+          do c = 1, nf
+            pa = it%tri(c,t)
+            ct%v(:,pa) = ct%v(:,pa) + dvm(:,c)
+            ct%x(:,pa) = ct%x(:,pa) + dt*dvm(:,c)
+          end do
         end associate
       end do
       if (joint) mismatch = row_velocity_change()
-      ! the scale of the pass: its first sweep, or the joint solve before it
+      ! the scale of the set: its first sweep, or the joint solve before it
       if (iter == 1) first_change = max(first_change, mismatch)
       ! converged: every node matched or released, its changes admissible
-      limit = merge(ct%ifc(first)%tolerance, contact_relative_tolerance*first_change, ct%ifc(first)%tolerance > 0.0_rk)
-      if (mismatch <= limit) exit
-      if (iter == ct%ifc(first)%iterations) then
-        do i = first, last
-          ct%ifc(i)%sweep_limit_hits = ct%ifc(i)%sweep_limit_hits + 1
-        end do
+      limit = merge(tolerance, contact_relative_tolerance*first_change, tolerance > 0.0_rk)
+      if (mismatch <= limit) then
+        converged = .true.
+        exit
       end if
     end do
   contains
-    !> The velocities of the pass's rows' nodes at the start of a sweep.
+    !> The velocities of the set's nodes at the start of a sweep.
     subroutine keep_row_velocities()
-      integer :: j, kk, tt, aa
-      do j = first, last
-        do kk = 1, ct%ifc(j)%n_pass
-          tt = ct%ifc(j)%on_tri(kk)
-          ct%v_sweep(:, ct%ifc(j)%active(kk)) = ct%v(:, ct%ifc(j)%active(kk))
-          do aa = 1, size(ct%ifc(j)%tri, 1)
-            ct%v_sweep(:, ct%ifc(j)%tri(aa,tt)) = ct%v(:, ct%ifc(j)%tri(aa,tt))
-          end do
+      integer :: q, e
+      do q = a, b
+        do e = 0, 3
+          ct%v_sweep(:, ct%row_node(e,q)) = ct%v(:, ct%row_node(e,q))
         end do
       end do
     end subroutine
-    !> The largest change of a row node's velocity over the sweep.
+    !> The largest change of a set node's velocity over the sweep.
     real(rk) function row_velocity_change() result(change)
-      integer :: j, kk, tt, aa, p
+      integer :: q, e
       change = 0
-      do j = first, last
-        do kk = 1, ct%ifc(j)%n_pass
-          tt = ct%ifc(j)%on_tri(kk)
-          do aa = 0, size(ct%ifc(j)%tri, 1)
-            p = ct%ifc(j)%active(kk)
-            if (aa > 0) p = ct%ifc(j)%tri(aa,tt)
-            change = max(change, norm2(ct%v(:,p) - ct%v_sweep(:,p)))
-          end do
+      do q = a, b
+        do e = 0, 3
+          change = max(change, norm2(ct%v(:,ct%row_node(e,q)) - ct%v_sweep(:,ct%row_node(e,q))))
         end do
       end do
     end function
-  end subroutine
-
-  !> The rows of a joint pass (n; 0 when it has none or more than
-  !> cap): row r is slave node node(0,r) against its
-  !> triangle's nodes node(1:3,r) at weights w(1:3,r) (contact_point, as
-  !> match_velocities takes them; w(0,r) = -1) with shares R (a change lam of
-  !> the slave's velocity changes node p's by coef(p,r) lam: 1 for the slave,
-  !> -R_a m_s/m_a for master node a, momentum exact), along unit normal
-  !> nrm(:,r); row r is active(row_k(r)) of interface row_ifc(r).
-  subroutine joint_rows(ct, first, last, cap, n, node, w, coef, nrm, row_ifc, row_k)
-    type(contact_t), intent(in) :: ct
-    integer, intent(in) :: first, last, cap
-    integer, intent(out) :: n, node(0:3,cap), row_ifc(cap), row_k(cap)
-    real(rk), intent(out) :: w(0:3,cap), coef(0:3,cap), nrm(3,cap)
-    integer :: i, k, t, a, nf
-    n = 0
-    do i = first, last
-      n = n + ct%ifc(i)%n_pass
-    end do
-    if (n > cap) n = 0
-    if (n == 0) return
-    n = 0
-    do i = first, last
-      associate (it => ct%ifc(i))
-        nf = size(it%tri, 1)
-        do k = 1, it%n_pass
-          n = n + 1
-          row_ifc(n) = i
-          row_k(n) = k
-          t = it%on_tri(k)
-          node(0,n) = it%active(k)
-          node(1:nf,n) = it%tri(:,t)
-          ! a 2D segment's third slot: its second node again, of weight and share 0
-          node(nf+1:3,n) = node(nf,n)
-          w(0,n) = -1.0_rk
-          w(1:3,n) = contact_point(it%area(:,k))
-          coef(0,n) = 1.0_rk
-          do a = 1, 3
-            coef(a,n) = -it%share(a,k)*ct%m(node(0,n))/ct%m(node(a,n))
-          end do
-          nrm(:,n) = it%normal(:,k)
-        end do
-      end associate
-    end do
   end subroutine
 
   !> Row r's relative velocity d . (v_slave - v_master) along d (w(0) = -1).
@@ -801,202 +978,112 @@ contains
     end do
   end subroutine
 
-  !> The normal rows of a joint pass (joint_rows) solved together
-  !> (solve_normal_lcp, normal_rows_matrix). The accumulated changes so far
-  !> (dn_sum) count: the solve is for the totals (>= 0). The changes are
-  !> applied as the sweeps apply theirs (velocities, and positions by dt
-  !> times them); the sweeps then add friction and what rounding left. A
-  !> pass the solve cannot settle is left to the sweeps. A pass of more
-  !> than joint_solve_rows rows without friction goes set by set
-  !> (solve_large_pass_normals). change: the largest normal velocity
-  !> change the solve made; solved: whether it did (the pass had rows, not
-  !> too many, and a solution).
-  subroutine solve_joint_normals(ct, first, last, dt, change, solved)
+  !> The normal rows a..b of a joint set solved together (solve_normal_lcp,
+  !> normal_rows_matrix). The accumulated changes so far (dn_sum) count:
+  !> the solve is for the totals (>= 0). The changes are applied as the
+  !> sweeps apply theirs (velocities, and positions by dt times them); the
+  !> sweeps then add friction and what rounding left. A set of more than
+  !> joint_solve_rows rows is solved only without friction (its
+  !> alternation needs the joint friction solve, whose sets stop at
+  !> joint_solve_rows), up to joint_dense_rows rows (a self-contact
+  !> clamp's sets have up to 340, where the sweeps alone left 38 of its 92
+  !> passes unconverged) with at most large_set_guesses guesses (each a
+  !> dense solve of O(k^3)). A set the solve cannot settle is left to the
+  !> sweeps. change: the largest normal velocity change the solve made;
+  !> solved: whether it did.
+  subroutine solve_set_normals(ct, a, b, frictionless, dt, change, solved)
     type(contact_t), intent(inout) :: ct
-    integer, intent(in) :: first, last
+    integer, intent(in) :: a, b
+    logical, intent(in) :: frictionless      !< the pass's interfaces
     real(rk), intent(in) :: dt
     real(rk), intent(out) :: change
     logical, intent(out) :: solved
-    integer, parameter :: nr = joint_solve_rows
-    integer :: node(0:3,nr), row_ifc(nr), row_k(nr), n, q
-    real(rk) :: w(0:3,nr), coef(0:3,nr), nrm(3,nr), m(nr,nr), b(nr), lam(nr), lam0(nr), work(nr,nr+1), dl
-    logical :: free(nr)
+    integer, parameter :: nd = joint_dense_rows, large_set_guesses = 20
+    real(rk) :: rhs(nd), lam(nd), lam0(nd), dl
+    integer :: n, j, p
     change = 0
     solved = .false.
-    if (sum(ct%ifc(first:last)%n_pass) > nr) then
-      ! with friction a larger pass is left to the sweeps: its alternation
-      ! needs the joint friction solve, whose sets stop at joint_solve_rows
-      if (all(ct%ifc(first:last)%friction == 0.0_rk)) call solve_large_pass_normals(ct, first, last, dt, change, solved)
-      return
-    end if
-    call joint_rows(ct, first, last, nr, n, node, w, coef, nrm, row_ifc, row_k)
-    if (n == 0) return
-    do q = 1, n
-      lam0(q) = ct%ifc(row_ifc(q))%dn_sum(row_k(q))
-      b(q) = row_rate(ct%v, node(:,q), w(:,q), nrm(:,q))
+    n = b - a + 1
+    if (n > nd) return
+    if (n > joint_solve_rows .and. .not. frictionless) return
+    do j = 1, n
+      p = a + j - 1
+      lam0(j) = ct%ifc(ct%row_ifc(p))%dn_sum(ct%row_k(p))
+      rhs(j) = row_rate(ct%v, ct%row_node(:,p), ct%row_w(:,p), ct%row_nrm(:,p))
     end do
-    call normal_rows_matrix(n, nr, node(:,1:n), w(:,1:n), coef(:,1:n), nrm(:,1:n), m)
+    call normal_rows_matrix(n, nd, ct%row_node(:,a:b), ct%row_w(:,a:b), ct%row_coef(:,a:b), ct%row_nrm(:,a:b), ct%lcp_m)
     ! for the totals: s = (b - M lam0) + M lam
-    b(1:n) = b(1:n) - matmul(m(1:n,1:n), lam0(1:n))
-    call solve_normal_lcp(n, nr, m, b(1:n), lam(1:n), solved, work, free)
-    if (.not. solved) return
-    do q = 1, n
-      dl = lam(q) - lam0(q)
-      change = max(change, abs(dl))
-      call apply_row_change(ct, node(:,q), coef(:,q), nrm(:,q), dl, dt)
-      ct%ifc(row_ifc(q))%dn_sum(row_k(q)) = lam(q)
-    end do
-  end subroutine
-
-  !> The rows of a joint pass (joint_rows, at most cap) and their sets
-  !> joined by shared nodes (row_components): row q is in set comp(q) of
-  !> n_comp.
-  subroutine joint_row_sets(ct, first, last, cap, n, node, w, coef, nrm, row_ifc, row_k, comp, n_comp)
-    type(contact_t), intent(inout) :: ct   !< (its node_row: row_components' work)
-    integer, intent(in) :: first, last, cap
-    integer, intent(out) :: n, node(0:3,cap), row_ifc(cap), row_k(cap), comp(cap), n_comp
-    real(rk), intent(out) :: w(0:3,cap), coef(0:3,cap), nrm(3,cap)
-    n_comp = 0
-    call joint_rows(ct, first, last, cap, n, node, w, coef, nrm, row_ifc, row_k)
-    if (n == 0) return
-    call row_components(n, node(:,1:n), ct%node_row, comp(1:n), n_comp)
-  end subroutine
-
-  !> The rows of set c (comp as joint_row_sets gives it) in ascending order: set(1:k).
-  pure subroutine rows_of_set(comp, c, set, k)
-    integer, intent(in) :: comp(:), c
-    integer, intent(inout) :: set(:)
-    integer, intent(out) :: k
-    integer :: q
-    k = 0
-    do q = 1, size(comp)
-      if (comp(q) /= c) cycle
-      k = k + 1
-      set(k) = q
-    end do
-  end subroutine
-
-  !> A frictionless joint pass of more than joint_solve_rows rows (up to
-  !> joint_collect_rows; a self-contact clamp's passes have up to 340, where
-  !> the sweeps alone left 38 of its 92 passes unconverged), solved as
-  !> solve_joint_normals solves a small one, set by set: each set of rows
-  !> joined by shared nodes (row_components) of up to joint_dense_rows
-  !> rows, in ascending order, with the safeguard and at most
-  !> large_set_guesses guesses (each a dense solve of O(k^3)). A set the
-  !> solve does not settle is left to the sweeps; solved: every set was.
-  subroutine solve_large_pass_normals(ct, first, last, dt, change, solved)
-    type(contact_t), intent(inout) :: ct
-    integer, intent(in) :: first, last
-    real(rk), intent(in) :: dt
-    real(rk), intent(out) :: change
-    logical, intent(out) :: solved
-    integer, parameter :: nr = joint_collect_rows, nd = joint_dense_rows, large_set_guesses = 20
-    integer :: node(0:3,nr), row_ifc(nr), row_k(nr), comp(nr), set(nr), n, n_comp, c, k, j, q, set_node(0:3,nd)
-    real(rk) :: w(0:3,nr), coef(0:3,nr), nrm(3,nr), b(nd), lam(nd), lam0(nd), dl, set_w(0:3,nd), set_coef(0:3,nd), &
-                set_nrm(3,nd)
-    logical :: ok
-    change = 0
-    solved = .false.
-    call joint_row_sets(ct, first, last, nr, n, node, w, coef, nrm, row_ifc, row_k, comp, n_comp)
-    if (n == 0) return
-    solved = .true.
-    do c = 1, n_comp
-      call rows_of_set(comp(1:n), c, set, k)
-      if (k > nd) then
-        solved = .false.
-        cycle
-      end if
-      do j = 1, k
-        q = set(j)
-        set_node(:,j) = node(:,q)
-        set_w(:,j) = w(:,q)
-        set_coef(:,j) = coef(:,q)
-        set_nrm(:,j) = nrm(:,q)
-        lam0(j) = ct%ifc(row_ifc(q))%dn_sum(row_k(q))
-        b(j) = row_rate(ct%v, node(:,q), w(:,q), nrm(:,q))
-      end do
-      call normal_rows_matrix(k, nd, set_node(:,1:k), set_w(:,1:k), set_coef(:,1:k), set_nrm(:,1:k), ct%lcp_m)
-      ! for the totals: s = (b - M lam0) + M lam
-      b(1:k) = b(1:k) - matmul(ct%lcp_m(1:k,1:k), lam0(1:k))
-      call solve_normal_lcp(k, nd, ct%lcp_m, b(1:k), lam(1:k), ok, ct%lcp_work, ct%lcp_free, safeguarded=.true., &
+    rhs(1:n) = rhs(1:n) - matmul(ct%lcp_m(1:n,1:n), lam0(1:n))
+    if (n <= joint_solve_rows) then
+      call solve_normal_lcp(n, nd, ct%lcp_m, rhs(1:n), lam(1:n), solved, ct%lcp_work, ct%lcp_free)
+    else
+      call solve_normal_lcp(n, nd, ct%lcp_m, rhs(1:n), lam(1:n), solved, ct%lcp_work, ct%lcp_free, &
                             max_guesses=large_set_guesses)
-      if (.not. ok) then
-        solved = .false.
-        cycle
-      end if
-      do j = 1, k
-        q = set(j)
-        dl = lam(j) - lam0(j)
-        change = max(change, abs(dl))
-        call apply_row_change(ct, node(:,q), coef(:,q), nrm(:,q), dl, dt)
-        ct%ifc(row_ifc(q))%dn_sum(row_k(q)) = lam(j)
-      end do
+    end if
+    if (.not. solved) return
+    do j = 1, n
+      p = a + j - 1
+      dl = lam(j) - lam0(j)
+      change = max(change, abs(dl))
+      call apply_row_change(ct, ct%row_node(:,p), ct%row_coef(:,p), ct%row_nrm(:,p), dl, dt)
+      ct%ifc(ct%row_ifc(p))%dn_sum(ct%row_k(p)) = lam(j)
     end do
   end subroutine
 
-  !> A joint pass with friction solved together, normals and friction
-  !> (solve_friction_rows), each set of rows joined by shared nodes
-  !> (row_components) on its own: each row (joint_rows) has its normal and
-  !> two tangential velocities, the changes so far (dn_sum, t_sum) count
-  !> (the solve is for the totals), and the changes are applied as the
-  !> sweeps apply theirs. change as solve_joint_normals; solved: every set
-  !> was (a set that is not is left unchanged).
-  subroutine solve_joint_friction(ct, first, last, dt, change, solved)
+  !> The rows a..b of a joint set with friction solved together, normals
+  !> and friction (solve_friction_rows; up to joint_solve_rows rows): each
+  !> row has its normal and two tangential velocities, the changes so far
+  !> (dn_sum, t_sum) count (the solve is for the totals), and the changes
+  !> are applied as the sweeps apply theirs. change as solve_set_normals;
+  !> solved: whether it was (if not, nothing changed).
+  subroutine solve_set_friction(ct, a, b, dt, change, solved)
     type(contact_t), intent(inout) :: ct
-    integer, intent(in) :: first, last
+    integer, intent(in) :: a, b
     real(rk), intent(in) :: dt
     real(rk), intent(out) :: change
     logical, intent(out) :: solved
-    integer, parameter :: nr = joint_solve_rows, ne = 3*joint_solve_rows
-    integer :: node(0:3,nr), row_ifc(nr), row_k(nr), comp(nr), set(nr), n, n_comp, c, k, q, j, ie, le, &
-               e_node(0:3,ne)
-    real(rk) :: w(0:3,nr), coef(0:3,nr), nrm(3,nr), mu(nr), e_w(0:3,ne), e_coef(0:3,ne), e_dir(3,ne), &
-                b(ne), x(ne), x0(ne), t1(3), t2(3), dir(3,ne)
-    logical :: ok
+    integer, parameter :: ne = 3*joint_solve_rows
+    integer :: n, j, p, ie, le, e_node(0:3,ne)
+    real(rk) :: mu(joint_solve_rows), e_w(0:3,ne), e_coef(0:3,ne), b_rate(ne), x(ne), x0(ne), t1(3), t2(3), &
+                dir(3,ne)
     change = 0
     solved = .false.
-    call joint_row_sets(ct, first, last, nr, n, node, w, coef, nrm, row_ifc, row_k, comp, n_comp)
-    if (n == 0) return
-    solved = .true.
-    do c = 1, n_comp
-      ! the set's rows in ascending order, three entries each
-      call rows_of_set(comp(1:n), c, set, k)
-      do j = 1, k
-        q = set(j)
-        associate (it => ct%ifc(row_ifc(q)))
-          mu(j) = it%friction
-          call tangent_basis(nrm(:,q), t1, t2)
-          le = 3*j - 2
-          dir(:,le) = nrm(:,q)
-          dir(:,le+1) = t1
-          dir(:,le+2) = t2
-          x0(le) = it%dn_sum(row_k(q))
-          x0(le+1) = dot_product(t1, it%t_sum(:,row_k(q)))
-          x0(le+2) = dot_product(t2, it%t_sum(:,row_k(q)))
-          do ie = 0, 2
-            e_node(:,le+ie) = node(:,q)
-            e_w(:,le+ie) = w(:,q)
-            e_coef(:,le+ie) = coef(:,q)
-            e_dir(:,le+ie) = dir(:,le+ie)
-            b(le+ie) = row_rate(ct%v, node(:,q), w(:,q), dir(:,le+ie))
-          end do
-        end associate
-      end do
-      call normal_rows_matrix(3*k, ne, e_node(:,1:3*k), e_w(:,1:3*k), e_coef(:,1:3*k), e_dir(:,1:3*k), ct%joint_m)
-      call solve_friction_rows(k, ne, ct%joint_m, b(1:3*k), x0(1:3*k), mu(1:k), x(1:3*k), ok, ct%joint_work)
-      solved = solved .and. ok
-      if (.not. ok) cycle
-      do j = 1, k
-        q = set(j)
-        ie = 3*j - 2
-        x(ie) = max(x(ie), 0.0_rk)
-        do le = ie, ie + 2
-          call apply_row_change(ct, node(:,q), coef(:,q), dir(:,le), x(le) - x0(le), dt)
-          change = max(change, abs(x(le) - x0(le)))
+    n = b - a + 1
+    if (n > joint_solve_rows) return
+    ! three entries a row
+    do j = 1, n
+      p = a + j - 1
+      associate (it => ct%ifc(ct%row_ifc(p)), k => ct%row_k(p))
+        mu(j) = it%friction
+        call tangent_basis(ct%row_nrm(:,p), t1, t2)
+        le = 3*j - 2
+        dir(:,le) = ct%row_nrm(:,p)
+        dir(:,le+1) = t1
+        dir(:,le+2) = t2
+        x0(le) = it%dn_sum(k)
+        x0(le+1) = dot_product(t1, it%t_sum(:,k))
+        x0(le+2) = dot_product(t2, it%t_sum(:,k))
+        do ie = 0, 2
+          e_node(:,le+ie) = ct%row_node(:,p)
+          e_w(:,le+ie) = ct%row_w(:,p)
+          e_coef(:,le+ie) = ct%row_coef(:,p)
+          b_rate(le+ie) = row_rate(ct%v, ct%row_node(:,p), ct%row_w(:,p), dir(:,le+ie))
         end do
-        ct%ifc(row_ifc(q))%dn_sum(row_k(q)) = x(ie)
-        ct%ifc(row_ifc(q))%t_sum(:,row_k(q)) = x(ie+1)*dir(:,ie+1) + x(ie+2)*dir(:,ie+2)
+      end associate
+    end do
+    call normal_rows_matrix(3*n, ne, e_node(:,1:3*n), e_w(:,1:3*n), e_coef(:,1:3*n), dir(:,1:3*n), ct%joint_m)
+    call solve_friction_rows(n, ne, ct%joint_m, b_rate(1:3*n), x0(1:3*n), mu(1:n), x(1:3*n), solved, ct%joint_work)
+    if (.not. solved) return
+    do j = 1, n
+      p = a + j - 1
+      ie = 3*j - 2
+      x(ie) = max(x(ie), 0.0_rk)
+      do le = ie, ie + 2
+        call apply_row_change(ct, ct%row_node(:,p), ct%row_coef(:,p), dir(:,le), x(le) - x0(le), dt)
+        change = max(change, abs(x(le) - x0(le)))
       end do
+      ct%ifc(ct%row_ifc(p))%dn_sum(ct%row_k(p)) = x(ie)
+      ct%ifc(ct%row_ifc(p))%t_sum(:,ct%row_k(p)) = x(ie+1)*dir(:,ie+1) + x(ie+2)*dir(:,ie+2)
     end do
   end subroutine
 

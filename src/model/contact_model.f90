@@ -16,12 +16,11 @@ module udar_contact_model
   public :: contact_grow_nodes, size_interface_work, on_symmetry_plane, any_eroding, self_neighbourhoods, feature_edges, assign_slaves, mark_returns, &
             surface_neighbours, neighbour_across
 
-  !> A joint pass (symmetric pair, self-contact) with at most this many
-  !> rows has its rows solved together before the sweeps
-  integer, parameter, public :: joint_solve_rows = 64
-  !> a joint pass's normal rows: collected up to joint_collect_rows, each set
-  !> joined by shared nodes solved densely up to joint_dense_rows
-  integer, parameter, public :: joint_collect_rows = 2048, joint_dense_rows = 512
+  !> A set of rows joined by shared nodes in a joint pass (symmetric pair,
+  !> self-contact) with at most joint_solve_rows rows has its rows solved
+  !> together before the sweeps, normals and (every few sweeps) friction;
+  !> without friction a set of up to joint_dense_rows
+  integer, parameter, public :: joint_solve_rows = 64, joint_dense_rows = 512
 
   !> One direction of an interface: slave nodes against master triangles.
   type, public :: interface_t
@@ -169,6 +168,21 @@ module udar_contact_model
     real(rk), allocatable :: lcp_m(:,:), lcp_work(:,:)
     logical, allocatable :: lcp_free(:)
     integer, allocatable :: node_row(:)    !< work array of row_components: 0 for every contact node between uses
+    !> the rows of a pass's matching (match_passes) in the order of their
+    !> sets (rows joined by shared nodes): set c is rows set_start(c) to
+    !> set_start(c+1) - 1; row p is slave node active(row_k(p)) of
+    !> interface row_ifc(p), its nodes, weights, coefficients and normal
+    !> row_node(0:3,p), row_w, row_coef, row_nrm (contact_driver's row_data)
+    integer, allocatable :: row_node(:,:), row_ifc(:), row_k(:), set_start(:)
+    real(rk), allocatable :: row_w(:,:), row_coef(:,:), row_nrm(:,:)
+    !> work arrays of the sets: the rows in the pass's order, their nodes and sets
+    integer, allocatable :: found_node(:,:), found_ifc(:), found_k(:), found_set(:)
+    !> each set's sweeps and whether it converged; on several ranks the
+    !> sets' answers gathered (match_passes): counts per rank, buffers
+    integer, allocatable :: set_sweeps(:)
+    logical, allocatable :: set_converged(:)
+    integer, allocatable :: set_counts(:)
+    real(rk), allocatable :: set_send(:), set_recv(:)
     real(rk) :: dt_last = 0                !< s, the step of the last pass
     ! eroding surfaces: every tetrahedron of the parts whose boundary changes
     ! as elements erode (all their nodes are contact nodes)
@@ -205,6 +219,7 @@ module udar_contact_model
     ! between ranks, the search for its share, the work every rank repeats
     ! (matching the velocities, returns, edges)
     real(rk) :: seconds_exchange = 0, seconds_search = 0, seconds_replicated = 0
+    real(rk) :: seconds_matching = 0   !< s, of the velocity matching (each rank its sets)
     integer, allocatable :: x_counts(:), x_rcounts(:), region_counts(:)
     real(rk), allocatable :: v_prev(:,:), v_pre(:,:)   !< (3, owned contact nodes) m/s: v(n-1/2), v(n+1/2) before the pass
   end type

@@ -598,7 +598,8 @@ contains
       ! the slowest rank's: what a rank waits for
       line = '         contact: of which exchanges '//fixed(comms_max(ct%seconds_exchange), 3)// &
         ' s, the search for each rank''s share '//fixed(comms_max(ct%seconds_search), 3)// &
-        ' s, matching and returns (every rank) '//fixed(comms_max(ct%seconds_replicated), 3)// &
+        ' s, the matching of each rank''s sets '//fixed(comms_max(ct%seconds_matching), 3)// &
+        ' s, returns (every rank) '//fixed(comms_max(ct%seconds_replicated), 3)// &
         ' s (the slowest rank''s; with the settling after erosion)'
       call log_info(line)
       do k = 1, ct%n_interfaces
