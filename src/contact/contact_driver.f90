@@ -14,7 +14,8 @@ module udar_contact
   use udar_contact_model, only: contact_t, interface_t, neighbour_across, contact_grow_nodes, joint_solve_rows, &
       joint_dense_rows
   use udar_contact_search, only: grid_build, grid_cell, ensure
-  use udar_contact_kernels, only: corner_angle, match_velocities, solve_friction_rows, row_components, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
+  use udar_contact_kernels, only: corner_angle, match_velocities, match_normal_on_planes, constrained_projection, &
+                                  constrained_direction, return_on_planes, solve_friction_rows, row_components, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
                                   edge_crossing, behind_not, behind_face, behind_seam
   use udar_contact_faces, only: face_projection, face_shares, closest_on_face, seam_contact, element_coordinates, &
                                 face_behind_surface, face_beside_sharp_edge, points_inside_elements
@@ -860,8 +861,10 @@ contains
   !> have nearly the same friction too), every friction_solve_after sweeps
   !> the set is solved together, normals and friction
   !> (solve_set_friction), from where the alternation got, and ordinary
-  !> sweeps take what rounding left. sweeps: how many it took; converged:
-  !> before `iterations`.
+  !> sweeps take what rounding left. A set with a node on a symmetry plane
+  !> then has its normals matched again as the planes let the nodes move
+  !> (match_on_planes). sweeps: how many it took; converged: before
+  !> `iterations`.
   subroutine match_set(ct, first, last, a, b, joint_pass, dt, sweeps, converged)
     type(contact_t), intent(inout) :: ct
     integer, intent(in) :: first, last, a, b
@@ -869,93 +872,194 @@ contains
     real(rk), intent(in) :: dt
     integer, intent(out) :: sweeps
     logical, intent(out) :: converged
-    real(rk) :: dvs(3), dvm(3,3), dn, dtan(3), mismatch, first_change, vm(3,3), mm(3), limit, resolve_change
-    integer :: p, k, ps, t, c, pa, iter, nf, iterations
-    logical :: closing, joint, held, solved, frictionless
+    real(rk) :: mismatch, first_change, resolve_change
+    integer :: iter, iterations
+    logical :: joint, held, solved, frictionless
     real(rk) :: tolerance
     first_change = 0
     iterations = ct%ifc(first)%iterations
     tolerance = ct%ifc(first)%tolerance
     frictionless = all(ct%ifc(first:last)%friction == 0.0_rk)
     joint = .false.
-    if (joint_pass) call solve_set_normals(ct, a, b, frictionless, dt, first_change, joint)
+    if (joint_pass) call solve_set_normals(ct, a, b, frictionless, .false., dt, first_change, joint)
     held = joint .and. .not. frictionless
     converged = .false.
     sweeps = 0
     do iter = 1, iterations
       sweeps = iter
-      mismatch = 0
-      if (joint) call keep_row_velocities()
+      if (joint) call keep_row_velocities(ct, a, b)
       if (held .and. mod(iter, friction_solve_after) == 1 .and. iter > 1) then
         call solve_set_friction(ct, a, b, dt, resolve_change, solved)
         held = .not. solved
       end if
       ! unsolved: the sweeps take the normals over from the last solve
-      if (held .and. iter > 1) call solve_set_normals(ct, a, b, frictionless, dt, resolve_change, held)
-      do p = a, b
-        associate (it => ct%ifc(ct%row_ifc(p)))
-          ! a face's nodes: 3 (a triangle) or 2 (a 2D segment, its third
-          ! slot of weight and share 0 padded with a unit mass at rest)
-          nf = size(it%tri, 1)
-          vm = 0.0_rk
-          mm = 1.0_rk
-          k = ct%row_k(p)
-          ps = it%active(k)
-          t = it%on_tri(k)
-          call gather_columns(vm, ct%v, it%tri(:,t))
-          do c = 1, nf
-            mm(c) = ct%m(it%tri(c,t))
-          end do
-          call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), mm, vm, it%area(:,k), &
-                                it%share(:,k), it%friction, it%dn_sum(k), it%t_sum(:,k), dvs, dvm, closing, dn, dtan, &
-                                held)
-          if (.not. closing) cycle
-          it%dn_sum(k) = it%dn_sum(k) + dn
-          it%t_sum(:,k) = it%t_sum(:,k) + dtan
-          ! what this sweep still changed, pushes and take-backs alike
-          mismatch = max(mismatch, abs(dn), norm2(dtan))
-          ! contact forces are internal: momentum is exchanged exactly, and
-          ! whatever energy the matching dissipates shows in the energy error
-          ct%v(:,ps) = ct%v(:,ps) + dvs
-          ct%x(:,ps) = ct%x(:,ps) + dt*dvs
-          do c = 1, nf
-            pa = it%tri(c,t)
-            ct%v(:,pa) = ct%v(:,pa) + dvm(:,c)
-            ct%x(:,pa) = ct%x(:,pa) + dt*dvm(:,c)
-          end do
-        end associate
-      end do
-      if (joint) mismatch = row_velocity_change()
+      if (held .and. iter > 1) call solve_set_normals(ct, a, b, frictionless, .false., dt, resolve_change, held)
+      call sweep_rows(ct, a, b, held, .false., dt, mismatch)
+      if (joint) mismatch = row_velocity_change(ct, a, b)
       ! the scale of the set: its first sweep, or the joint solve before it
       if (iter == 1) first_change = max(first_change, mismatch)
       ! converged: every node matched or released, its changes admissible
-      limit = merge(tolerance, contact_relative_tolerance*first_change, tolerance > 0.0_rk)
-      if (mismatch <= limit) then
-        converged = .true.
-        exit
-      end if
+      converged = settled(mismatch, first_change, tolerance)
+      if (converged) exit
     end do
-  contains
-    !> The velocities of the set's nodes at the start of a sweep.
-    subroutine keep_row_velocities()
-      integer :: q, e
-      do q = a, b
-        do e = 0, 3
-          ct%v_sweep(:, ct%row_node(e,q)) = ct%v(:, ct%row_node(e,q))
-        end do
-      end do
-    end subroutine
-    !> The largest change of a set node's velocity over the sweep.
-    real(rk) function row_velocity_change() result(change)
-      integer :: q, e
-      change = 0
-      do q = a, b
-        do e = 0, 3
-          change = max(change, norm2(ct%v(:,ct%row_node(e,q)) - ct%v_sweep(:,ct%row_node(e,q))))
-        end do
-      end do
-    end function
+    if (any_on_plane(ct, a, b)) call match_on_planes(ct, first, a, b, joint_pass, dt, first_change, sweeps, converged)
   end subroutine
+
+  !> A set with nodes on symmetry planes, after match_set's matching,
+  !> which moved them along the rows' own directions: each such node keeps
+  !> the part of its change the planes allow (constrained_projection; the
+  !> velocity conditions would take the rest after the pass, leaving a row
+  !> whose face leans out of the plane approaching by n_y^2 of its
+  !> correction), then the set's normals are matched again, frictionless,
+  !> with every node moving as its planes allow (match_normal_on_planes;
+  !> in a joint pass solved together first), to convergence relative to
+  !> the set's first change (set_change: this stage refines the set's
+  !> answer). The friction stays as the matching left it, projected.
+  !> sweeps and converged take in this stage's.
+  subroutine match_on_planes(ct, first, a, b, joint_pass, dt, set_change, sweeps, converged)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: first, a, b
+    logical, intent(in) :: joint_pass
+    real(rk), intent(in) :: dt, set_change
+    integer, intent(inout) :: sweeps
+    logical, intent(inout) :: converged
+    real(rk) :: mismatch, first_change, solve_change, tolerance
+    integer :: iter, q, e, node
+    logical :: joint, done
+    real(rk) :: pv(3)
+    do q = a, b
+      do e = 0, 3
+        node = ct%row_node(e,q)
+        if (ct%sym_planes(node) == 0) cycle
+        pv = constrained_direction(ct%v(:,node), ct%sym_planes(node), ct%plane)
+        ct%x(:,node) = ct%x(:,node) - dt*(ct%v(:,node) - pv)
+        ct%v(:,node) = pv
+      end do
+    end do
+    tolerance = ct%ifc(first)%tolerance
+    joint = .false.
+    solve_change = 0
+    if (joint_pass) call solve_set_normals(ct, a, b, .true., .true., dt, solve_change, joint)
+    first_change = max(solve_change, set_change)
+    done = .false.
+    do iter = 1, ct%ifc(first)%iterations
+      if (joint) call keep_row_velocities(ct, a, b)
+      call sweep_rows(ct, a, b, .false., .true., dt, mismatch)
+      if (joint) mismatch = row_velocity_change(ct, a, b)
+      if (iter == 1) first_change = max(first_change, mismatch)
+      done = settled(mismatch, first_change, tolerance)
+      if (done) exit
+    end do
+    sweeps = sweeps + min(iter, ct%ifc(first)%iterations)
+    converged = converged .and. done
+  end subroutine
+
+  !> One sweep of the matching over rows a..b (match_velocities; held: the
+  !> normals held at a joint solve's); on_planes: the normals alone, a row
+  !> with a node on a symmetry plane matched as the planes let its nodes
+  !> move (match_normal_on_planes). mismatch: the largest change the sweep
+  !> still made, pushes and take-backs alike.
+  subroutine sweep_rows(ct, a, b, held, on_planes, dt, mismatch)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: a, b
+    logical, intent(in) :: held, on_planes
+    real(rk), intent(in) :: dt
+    real(rk), intent(out) :: mismatch
+    real(rk) :: dvs(3), dvm(3,3), dn, dtan(3), vm(3,3), mm(3), proj(3,3,0:3)
+    integer :: p, k, ps, t, c, pa, nf
+    logical :: closing
+    mismatch = 0
+    do p = a, b
+      associate (it => ct%ifc(ct%row_ifc(p)))
+        ! a face's nodes: 3 (a triangle) or 2 (a 2D segment, its third
+        ! slot of weight and share 0 padded with a unit mass at rest)
+        nf = size(it%tri, 1)
+        vm = 0.0_rk
+        mm = 1.0_rk
+        k = ct%row_k(p)
+        ps = it%active(k)
+        t = it%on_tri(k)
+        call gather_columns(vm, ct%v, it%tri(:,t))
+        do c = 1, nf
+          mm(c) = ct%m(it%tri(c,t))
+        end do
+        dtan = 0.0_rk
+        if (.not. on_planes) then
+          call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), mm, vm, it%area(:,k), &
+                                it%share(:,k), it%friction, it%dn_sum(k), it%t_sum(:,k), dvs, dvm, closing, dn, dtan, &
+                                held)
+        else if (any(ct%sym_planes(ct%row_node(:,p)) /= 0)) then
+          proj(:,:,0) = constrained_projection(ct%sym_planes(ps), ct%plane)
+          do c = 1, 3
+            proj(:,:,c) = constrained_projection(0, ct%plane)
+            if (c <= nf) proj(:,:,c) = constrained_projection(ct%sym_planes(it%tri(c,t)), ct%plane)
+          end do
+          call match_normal_on_planes(it%normal(:,k), ct%m(ps), ct%v(:,ps), mm, vm, it%area(:,k), it%share(:,k), &
+                                      it%dn_sum(k), proj, dvs, dvm, closing, dn)
+        else
+          call match_velocities(it%normal(:,k), ct%m(ps), ct%v(:,ps), mm, vm, it%area(:,k), &
+                                it%share(:,k), 0.0_rk, it%dn_sum(k), it%t_sum(:,k), dvs, dvm, closing, dn, dtan)
+        end if
+        if (.not. closing) cycle
+        it%dn_sum(k) = it%dn_sum(k) + dn
+        it%t_sum(:,k) = it%t_sum(:,k) + dtan
+        mismatch = max(mismatch, abs(dn), norm2(dtan))
+        ! contact forces are internal: momentum is exchanged exactly, and
+        ! whatever energy the matching dissipates shows in the energy error
+        ct%v(:,ps) = ct%v(:,ps) + dvs
+        ct%x(:,ps) = ct%x(:,ps) + dt*dvs
+        do c = 1, nf
+          pa = it%tri(c,t)
+          ct%v(:,pa) = ct%v(:,pa) + dvm(:,c)
+          ct%x(:,pa) = ct%x(:,pa) + dt*dvm(:,c)
+        end do
+      end associate
+    end do
+  end subroutine
+
+  !> Whether a sweep that still changed mismatch has converged: within the
+  !> interface's tolerance, or (tolerance 0) contact_relative_tolerance of
+  !> the set's first change.
+  pure logical function settled(mismatch, first_change, tolerance)
+    real(rk), intent(in) :: mismatch, first_change, tolerance
+    settled = mismatch <= merge(tolerance, contact_relative_tolerance*first_change, tolerance > 0.0_rk)
+  end function
+
+  !> Whether a node of rows a..b lies on a symmetry plane.
+  logical function any_on_plane(ct, a, b)
+    type(contact_t), intent(in) :: ct
+    integer, intent(in) :: a, b
+    integer :: q
+    any_on_plane = .false.
+    do q = a, b
+      if (any(ct%sym_planes(ct%row_node(:,q)) /= 0)) any_on_plane = .true.
+    end do
+  end function
+
+  !> The velocities of rows a..b's nodes at the start of a sweep.
+  subroutine keep_row_velocities(ct, a, b)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: a, b
+    integer :: q, e
+    do q = a, b
+      do e = 0, 3
+        ct%v_sweep(:, ct%row_node(e,q)) = ct%v(:, ct%row_node(e,q))
+      end do
+    end do
+  end subroutine
+
+  !> The largest change of a node velocity of rows a..b over the sweep.
+  real(rk) function row_velocity_change(ct, a, b) result(change)
+    type(contact_t), intent(in) :: ct
+    integer, intent(in) :: a, b
+    integer :: q, e
+    change = 0
+    do q = a, b
+      do e = 0, 3
+        change = max(change, norm2(ct%v(:,ct%row_node(e,q)) - ct%v_sweep(:,ct%row_node(e,q))))
+      end do
+    end do
+  end function
 
   !> Row r's relative velocity d . (v_slave - v_master) along d (w(0) = -1).
   pure real(rk) function row_rate(v, node, w, d) result(rate)
@@ -965,16 +1069,21 @@ contains
   end function
 
   !> A change lam along d of row r's slave node, with its masters' share:
-  !> the velocities, and the positions by dt times them.
-  subroutine apply_row_change(ct, node, coef, d, lam, dt)
+  !> the velocities, and the positions by dt times them; on_planes: a node
+  !> on a symmetry plane along d's projection (constrained_direction).
+  subroutine apply_row_change(ct, node, coef, d, lam, dt, on_planes)
     type(contact_t), intent(inout) :: ct
     integer, intent(in) :: node(0:3)
     real(rk), intent(in) :: coef(0:3), d(3), lam, dt
+    logical, intent(in) :: on_planes
     integer :: p
+    real(rk) :: dp(3)
     if (lam == 0.0_rk) return
     do p = 0, 3
-      ct%v(:,node(p)) = ct%v(:,node(p)) + (coef(p)*lam)*d
-      ct%x(:,node(p)) = ct%x(:,node(p)) + dt*(coef(p)*lam)*d
+      dp = d
+      if (on_planes) dp = constrained_direction(d, ct%sym_planes(node(p)), ct%plane)
+      ct%v(:,node(p)) = ct%v(:,node(p)) + (coef(p)*lam)*dp
+      ct%x(:,node(p)) = ct%x(:,node(p)) + dt*(coef(p)*lam)*dp
     end do
   end subroutine
 
@@ -991,16 +1100,17 @@ contains
   !> dense solve of O(k^3)). A set the solve cannot settle is left to the
   !> sweeps. change: the largest normal velocity change the solve made;
   !> solved: whether it did.
-  subroutine solve_set_normals(ct, a, b, frictionless, dt, change, solved)
+  subroutine solve_set_normals(ct, a, b, frictionless, on_planes, dt, change, solved)
     type(contact_t), intent(inout) :: ct
     integer, intent(in) :: a, b
     logical, intent(in) :: frictionless      !< the pass's interfaces
+    logical, intent(in) :: on_planes         !< nodes on symmetry planes move as the planes let them
     real(rk), intent(in) :: dt
     real(rk), intent(out) :: change
     logical, intent(out) :: solved
     integer, parameter :: nd = joint_dense_rows, large_set_guesses = 20
     real(rk) :: rhs(nd), lam(nd), lam0(nd), dl
-    integer :: n, j, p
+    integer :: n, j, p, e
     change = 0
     solved = .false.
     n = b - a + 1
@@ -1011,7 +1121,18 @@ contains
       lam0(j) = ct%ifc(ct%row_ifc(p))%dn_sum(ct%row_k(p))
       rhs(j) = row_rate(ct%v, ct%row_node(:,p), ct%row_w(:,p), ct%row_nrm(:,p))
     end do
-    call normal_rows_matrix(n, nd, ct%row_node(:,a:b), ct%row_w(:,a:b), ct%row_coef(:,a:b), ct%row_nrm(:,a:b), ct%lcp_m)
+    if (on_planes) then
+      do j = 1, n
+        p = a + j - 1
+        do e = 0, 3
+          ct%lcp_dir(:,e,j) = constrained_direction(ct%row_nrm(:,p), ct%sym_planes(ct%row_node(e,p)), ct%plane)
+        end do
+      end do
+      call normal_rows_matrix(n, nd, ct%row_node(:,a:b), ct%row_w(:,a:b), ct%row_coef(:,a:b), ct%row_nrm(:,a:b), &
+                              ct%lcp_m, ct%lcp_dir(:,:,1:n))
+    else
+      call normal_rows_matrix(n, nd, ct%row_node(:,a:b), ct%row_w(:,a:b), ct%row_coef(:,a:b), ct%row_nrm(:,a:b), ct%lcp_m)
+    end if
     ! for the totals: s = (b - M lam0) + M lam
     rhs(1:n) = rhs(1:n) - matmul(ct%lcp_m(1:n,1:n), lam0(1:n))
     if (n <= joint_solve_rows) then
@@ -1025,7 +1146,7 @@ contains
       p = a + j - 1
       dl = lam(j) - lam0(j)
       change = max(change, abs(dl))
-      call apply_row_change(ct, ct%row_node(:,p), ct%row_coef(:,p), ct%row_nrm(:,p), dl, dt)
+      call apply_row_change(ct, ct%row_node(:,p), ct%row_coef(:,p), ct%row_nrm(:,p), dl, dt, on_planes)
       ct%ifc(ct%row_ifc(p))%dn_sum(ct%row_k(p)) = lam(j)
     end do
   end subroutine
@@ -1079,7 +1200,7 @@ contains
       ie = 3*j - 2
       x(ie) = max(x(ie), 0.0_rk)
       do le = ie, ie + 2
-        call apply_row_change(ct, ct%row_node(:,p), ct%row_coef(:,p), dir(:,le), x(le) - x0(le), dt)
+        call apply_row_change(ct, ct%row_node(:,p), ct%row_coef(:,p), dir(:,le), x(le) - x0(le), dt, .false.)
         change = max(change, abs(x(le) - x0(le)))
       end do
       ct%ifc(ct%row_ifc(p))%dn_sum(ct%row_k(p)) = x(ie)
@@ -1380,8 +1501,11 @@ contains
       integer, intent(in) :: ps
       real(rk), intent(in) :: u(3)
       real(rk), intent(inout) :: room
-      ct%x(:,ps) = ct%x(:,ps) + returned(u, room)
-      room = max(room - norm2(u), 0.0_rk)
+      real(rk) :: w(3)
+      w = u
+      if (ct%sym_planes(ps) /= 0) w = return_on_planes(u, ct%sym_planes(ps), ct%plane)
+      ct%x(:,ps) = ct%x(:,ps) + returned(w, room)
+      room = max(room - norm2(w), 0.0_rk)
     end subroutine
 
     !> Whether the candidate lists still hold every triangle a slave node

@@ -9,7 +9,8 @@ module udar_contact_kernels
   private
   public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, solve_friction_rows, row_components, edge_crossing, edge_shares, &
             closest_on_triangle, behind_not, behind_face, behind_seam, &
-            solve_normal_lcp, normal_rows_matrix, contact_point, corner_angle
+            solve_normal_lcp, normal_rows_matrix, contact_point, corner_angle, constrained_direction, &
+            constrained_projection, match_normal_on_planes, return_on_planes
 
   !> udar_contact_faces' face_behind_surface's verdicts: not behind the
   !> surface; behind this face; behind the surface beyond one of its concave
@@ -218,6 +219,113 @@ contains
     acted = dn /= 0.0_rk .or. any(dtv /= 0.0_rk)
   end subroutine
 
+  !> The normal change of a row with a node on a symmetry plane, matched
+  !> as the planes let its nodes move (proj(:,:,0) the slave's projection,
+  !> proj(:,:,a) master node a's, constrained_projection): the impulse per
+  !> slave mass dn n moves the slave by dvs = dn P_s n and master node a by
+  !> dvm(:,a) = -dn (R_a ms/m_a) P_a n, so the normal velocities are equal
+  !> afterwards for dn = n . v_rel / (n . K n), K = P_s + sum_a g_a R_a
+  !> (ms/m_a) P_a (K = denom I off the planes: match_velocities'
+  !> frictionless change). The accumulated change is kept compressive as
+  !> there. A row whose normal no node may move along (n . K n within 1e-12
+  !> of the unconstrained denominator) does nothing: the mirror image holds
+  !> that gap.
+  pure subroutine match_normal_on_planes(n, ms, vs, mm, vm, g, r_share, dn_before, proj, dvs, dvm, acted, dn)
+    real(rk), intent(in) :: n(3), ms, vs(3), mm(3), vm(3,3), g(3), r_share(3), dn_before, proj(3,3,0:3)
+    real(rk), intent(out) :: dvs(3), dvm(3,3), dn
+    logical, intent(out) :: acted
+    real(rk) :: gc(3), v_master(3), kn(3), denom, c
+    integer :: a
+    gc = contact_point(g)
+    v_master = gc(1)*vm(:,1) + gc(2)*vm(:,2) + gc(3)*vm(:,3)
+    dvs = 0.0_rk
+    dvm = 0.0_rk
+    dn = 0.0_rk
+    acted = .false.
+    kn = matmul(proj(:,:,0), n)
+    denom = 1.0_rk
+    do a = 1, 3
+      c = gc(a)*r_share(a)*ms/mm(a)
+      kn = kn + c*matmul(proj(:,:,a), n)
+      denom = denom + c
+    end do
+    if (dot_product(n, kn) <= 1.0e-12_rk*denom) return
+    dn = dot_product(n, v_master - vs)/dot_product(n, kn)
+    if (dn <= 0.0_rk .and. dn_before <= 0.0_rk) then
+      dn = 0.0_rk                          ! separating: released
+      return
+    end if
+    dn = max(dn, -dn_before)
+    dvs = dn*matmul(proj(:,:,0), n)
+    do a = 1, 3
+      dvm(:,a) = -(dn*r_share(a)*ms/mm(a))*matmul(proj(:,:,a), n)
+    end do
+    acted = dn /= 0.0_rk
+  end subroutine
+
+  !> The projection onto the motions a node's symmetry planes allow: the
+  !> identity less the outer products of the planes' normals (those of the
+  !> set bits of bits among planes(1:3,:)), orthonormalised (a node on two
+  !> planes moves along their line); the identity for bits = 0.
+  pure function constrained_projection(bits, planes) result(p)
+    integer, intent(in) :: bits
+    real(rk), intent(in) :: planes(:,:)
+    real(rk) :: p(3,3), e(3,3), d(3)
+    integer :: k, i, j, ne
+    p = 0.0_rk
+    do i = 1, 3
+      p(i,i) = 1.0_rk
+    end do
+    ne = 0
+    do k = 1, size(planes, 2)
+      if (.not. btest(bits, k - 1)) cycle
+      d = planes(1:3,k)
+      do j = 1, ne
+        d = d - dot_product(d, e(:,j))*e(:,j)
+      end do
+      if (norm2(d) <= 1.0e-9_rk .or. ne == 3) cycle
+      ne = ne + 1
+      e(:,ne) = d/norm2(d)
+      do j = 1, 3
+        do i = 1, 3
+          p(i,j) = p(i,j) - e(i,ne)*e(j,ne)
+        end do
+      end do
+    end do
+  end function
+
+  !> A node's return u (to a face's plane or a closest point) for a node on
+  !> symmetry planes (bits, constrained_projection's): along the part P u
+  !> the planes allow, as far as takes it as far along u, (u . u)/(u . P u)
+  !> P u (the velocity conditions would otherwise keep only P u, leaving
+  !> it behind a face that leans out of the plane); 0 where the planes allow
+  !> no motion along u (u . P u within 1e-12 of u . u: the mirror image
+  !> holds that gap); u itself for bits = 0.
+  pure function return_on_planes(u, bits, planes) result(w)
+    real(rk), intent(in) :: u(3), planes(:,:)
+    integer, intent(in) :: bits
+    real(rk) :: w(3), pu(3), c
+    w = u
+    if (bits == 0) return
+    pu = matmul(constrained_projection(bits, planes), u)
+    c = dot_product(u, pu)
+    w = 0.0_rk
+    if (c > 1.0e-12_rk*dot_product(u, u)) w = (dot_product(u, u)/c)*pu
+  end function
+
+  !> d projected onto the motions a node's symmetry planes allow
+  !> (constrained_projection); d itself, bitwise, for bits = 0.
+  pure function constrained_direction(d, bits, planes) result(pd)
+    real(rk), intent(in) :: d(3), planes(:,:)
+    integer, intent(in) :: bits
+    real(rk) :: pd(3)
+    if (bits == 0) then
+      pd = d
+    else
+      pd = matmul(constrained_projection(bits, planes), d)
+    end if
+  end function
+
   !> The matrix of a pass's normal rows for solve_normal_lcp: row r is
   !> slave node node(0,r) against master nodes node(1:3,r) at weights
   !> w(1:3,r) (the contact point; w(0,r) = -1 for the slave), along unit
@@ -226,12 +334,27 @@ contains
   !> m_s/m_a for master node a), so row r's separation rate
   !> -nrm_r . (sum_a w_a v_a - v_s) changes by
   !>   m(r,q) = -(nrm_r . nrm_q) sum over the nodes shared by the rows of w(c,r) coef(p,q).
-  pure subroutine normal_rows_matrix(n, ld, node, w, coef, nrm, m)
+  !> With dirs, row q's change moves node p along dirs(:,p,q) (a node on a
+  !> symmetry plane: nrm_q projected, constrained_direction), and m(r,q) =
+  !> -sum of w(c,r) coef(p,q) (nrm_r . dirs(:,p,q)).
+  pure subroutine normal_rows_matrix(n, ld, node, w, coef, nrm, m, dirs)
     integer, intent(in) :: n, ld, node(0:3,n)
     real(rk), intent(in) :: w(0:3,n), coef(0:3,n), nrm(3,n)
     real(rk), intent(inout) :: m(ld,ld)       !< m(1:n,1:n) set
+    real(rk), intent(in), optional :: dirs(3,0:3,n)
     integer :: r, q, c, p
     do q = 1, n
+      if (present(dirs)) then
+        do r = 1, n
+          m(r,q) = 0.0_rk
+          do c = 0, 3
+            do p = 0, 3
+              if (node(c,r) == node(p,q)) m(r,q) = m(r,q) - w(c,r)*coef(p,q)*dot_product(nrm(:,r), dirs(:,p,q))
+            end do
+          end do
+        end do
+        cycle
+      end if
       do r = 1, n
         m(r,q) = 0.0_rk
         do c = 0, 3

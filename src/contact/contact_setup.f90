@@ -191,6 +191,7 @@ contains
     allocate(ct%x(3, ct%n_nodes), ct%v(3, ct%n_nodes), ct%v_sweep(3, ct%n_nodes))
     allocate(ct%joint_m(3*joint_solve_rows, 3*joint_solve_rows), ct%joint_work(3*joint_solve_rows, 3*joint_solve_rows+1))
     allocate(ct%lcp_m(joint_dense_rows, joint_dense_rows), ct%lcp_work(joint_dense_rows, joint_dense_rows+1), source=0.0_rk)
+    allocate(ct%lcp_dir(3, 0:3, joint_dense_rows), source=0.0_rk)
     allocate(ct%lcp_free(joint_dense_rows), source=.false.)
     allocate(ct%node_row(ct%n_nodes), source=0)
     allocate(ct%h(ct%n_nodes), source=huge(1.0_rk))

@@ -166,6 +166,9 @@ module udar_contact_model
     real(rk), allocatable :: joint_m(:,:), joint_work(:,:)
     !> work arrays of a joint pass's normal solve (joint_dense_rows square, and one column more)
     real(rk), allocatable :: lcp_m(:,:), lcp_work(:,:)
+    !> (3, 0:3, joint_dense_rows) work array of the joint normal solve on
+    !> symmetry planes: the direction each node of a row moves along
+    real(rk), allocatable :: lcp_dir(:,:,:)
     logical, allocatable :: lcp_free(:)
     integer, allocatable :: node_row(:)    !< work array of row_components: 0 for every contact node between uses
     !> the rows of a pass's matching (match_passes) in the order of their

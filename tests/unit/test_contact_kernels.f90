@@ -10,7 +10,8 @@ program test_contact_kernels
   use udar_vectors, only: cross
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, edge_crossing, edge_shares, &
                                   tetrahedron_coordinates, closest_on_triangle, behind_not, behind_face, &
-                                  behind_seam, solve_normal_lcp, normal_rows_matrix, corner_angle, solve_friction_rows, row_components
+                                  behind_seam, solve_normal_lcp, normal_rows_matrix, corner_angle, solve_friction_rows, row_components, &
+                                  constrained_projection, constrained_direction, match_normal_on_planes, return_on_planes
   use udar_contact_faces, only: face_behind_surface, face_beside_sharp_edge, seam_contact
   use udar_contact_model, only: interface_t, surface_neighbours, neighbour_across
   use unit_checks, only: check, check_summary, logicals
@@ -64,10 +65,89 @@ program test_contact_kernels
   call test_edges_and_elements()
   call test_seams()
   call test_seam_on_plane()
+  call test_matching_on_plane()
   call test_sharp_edges()
   call test_beyond_face_beside()
   call check_summary()
 contains
+
+  !> A slave node on the symmetry plane y = 0 strikes a face that leans
+  !> out of the plane (normal (0, 0.6, 1)/|.|; its nodes 1 and 2 on the
+  !> plane too), by hand: matched with the planes' projections
+  !> (match_normal_on_planes), no node on the plane moves out of it, the
+  !> normal velocities are equal afterwards, and momentum in the plane is
+  !> exact. Matched without them and the velocity conditions applied
+  !> afterwards (before 0.9.18), the node still approaches the face at a
+  !> quarter of its speed. Off the planes (identity projections) it is
+  !> match_velocities' frictionless change; two planes leave a line. Its
+  !> return to the face's plane along the plane (return_on_planes) ends on
+  !> it; the part the velocity conditions keep of the return does not.
+  subroutine test_matching_on_plane()
+    real(rk) :: xa(3,3), xs(3), n(3), dist, g(3), gc(3), share(3), vm(3,3), vs(3), dvs(3), dvm(3,3), dn, dtv(3)
+    real(rk) :: proj(3,3,0:3), planes(4,2), rate, mom(3), dvs0(3), dvm0(3,3), dn0, line(3), w(3)
+    real(rk), parameter :: ms = 0.7_rk, mm(3) = [1.3_rk, 0.6_rk, 2.1_rk]
+    logical :: acted
+    integer :: a
+    xa = reshape([0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, 0.0_rk, 0.0_rk, 0.0_rk, 1.0_rk, -0.6_rk], [3, 3])
+    planes(:,1) = [0.0_rk, 1.0_rk, 0.0_rk, 0.0_rk]
+    planes(:,2) = [1.0_rk, 1.0_rk, 0.0_rk, 0.0_rk]/sqrt(2.0_rk)
+    xs = [0.5_rk, 0.0_rk, -0.01_rk]
+    call triangle_projection(xa, xs, n, dist, g)
+    call check('plane_case_leans', abs(n(2)) > 0.5_rk .and. dist < 0.0_rk .and. all(g > 0.0_rk), &
+               'normal y '//s(n(2))//', behind by '//s(-dist)//', inside the face')
+    gc = g
+    call master_shares(contact_weights_area, xa, xs, g, n, xa, xs, share)
+    vm = 0.0_rk
+    vs = [0.0_rk, 0.0_rk, -2.0_rk]
+    proj(:,:,0) = constrained_projection(1, planes(:,1:1))
+    proj(:,:,1) = proj(:,:,0)
+    proj(:,:,2) = proj(:,:,0)
+    proj(:,:,3) = constrained_projection(0, planes(:,1:1))
+    call match_normal_on_planes(n, ms, vs, mm, vm, g, share, 0.0_rk, proj, dvs, dvm, acted, dn)
+    rate = dot_product(n, vs + dvs - (gc(1)*dvm(:,1) + gc(2)*dvm(:,2) + gc(3)*dvm(:,3)))
+    call check('plane_matching_stays_in_plane', acted .and. dvs(2) == 0.0_rk .and. dvm(2,1) == 0.0_rk .and. &
+               dvm(2,2) == 0.0_rk .and. dvm(2,3) /= 0.0_rk, &
+               'y changes of the plane nodes '//s(dvs(2))//' '//s(dvm(2,1))//' '//s(dvm(2,2)))
+    call check('plane_matching_matched', abs(rate) < 1.0e-14_rk, 'normal rate after '//s(rate)//' m/s')
+    mom = ms*dvs + mm(1)*dvm(:,1) + mm(2)*dvm(:,2) + mm(3)*dvm(:,3)
+    call check('plane_matching_momentum_in_plane', abs(mom(1)) < 1.0e-15_rk .and. abs(mom(3)) < 1.0e-15_rk, &
+               'momentum change x '//s(mom(1))//', z '//s(mom(3))//' N s')
+    ! without the projections, the velocity conditions applied afterwards
+    call match_velocities(n, ms, vs, mm, vm, g, share, 0.0_rk, 0.0_rk, [0.0_rk, 0.0_rk, 0.0_rk], &
+                          dvs0, dvm0, acted, dn0, dtv)
+    dvs0(2) = 0.0_rk
+    dvm0(2,1:2) = 0.0_rk
+    rate = dot_product(n, vs + dvs0 - (gc(1)*dvm0(:,1) + gc(2)*dvm0(:,2) + gc(3)*dvm0(:,3)))
+    call check('plane_matching_unprojected_leaves_approach', rate < -0.3_rk, &
+               'matched unprojected, then held to the plane: normal rate '//s(rate)//' m/s')
+    ! off the planes: match_velocities' frictionless change
+    do a = 0, 3
+      proj(:,:,a) = constrained_projection(0, planes)
+    end do
+    call match_velocities(n, ms, vs, mm, vm, g, share, 0.0_rk, 0.0_rk, [0.0_rk, 0.0_rk, 0.0_rk], &
+                          dvs0, dvm0, acted, dn0, dtv)
+    call match_normal_on_planes(n, ms, vs, mm, vm, g, share, 0.0_rk, proj, dvs, dvm, acted, dn)
+    call check('plane_matching_identity', maxval(abs(dvs - dvs0)) < 1.0e-15_rk .and. maxval(abs(dvm - dvm0)) < 1.0e-15_rk &
+               .and. abs(dn - dn0) < 1.0e-15_rk .and. all(constrained_direction(n, 0, planes) == n), &
+               'off the planes as before')
+    ! a separating node is released; one already pushed is taken back only to zero
+    call match_normal_on_planes(n, ms, -vs, mm, vm, g, share, 0.0_rk, proj, dvs, dvm, acted, dn)
+    call check('plane_matching_releases', .not. acted .and. dn == 0.0_rk, 'separating: dn '//s(dn))
+    call match_normal_on_planes(n, ms, -vs, mm, vm, g, share, 0.25_rk, proj, dvs, dvm, acted, dn)
+    call check('plane_matching_takes_back_to_zero', acted .and. dn == -0.25_rk, 'pushed before by 0.25: dn '//s(dn))
+    ! the node's return to the face's plane (-dist n) along the plane y = 0
+    ! puts it on the face's plane; the velocity conditions' part of it alone
+    ! leaves it behind
+    w = return_on_planes(-dist*n, 1, planes(:,1:1))
+    call check('plane_return_onto_the_face', w(2) == 0.0_rk .and. abs(dot_product(n, xs + w - xa(:,1))) < 1.0e-16_rk &
+               .and. dot_product(n, xs + matmul(constrained_projection(1, planes(:,1:1)), -dist*n) - xa(:,1)) < -1.0e-3_rk &
+               .and. all(return_on_planes(-dist*n, 0, planes) == -dist*n), &
+               'returned along the plane: left behind by '//s(-dot_product(n, xs + w - xa(:,1)))//' m')
+    ! two planes (y = 0 and x = -y): a node on both moves along z alone
+    line = matmul(constrained_projection(3, planes), [1.0_rk, 2.0_rk, 3.0_rk])
+    call check('plane_projection_two_planes', maxval(abs(line - [0.0_rk, 0.0_rk, 3.0_rk])) < 1.0e-15_rk, &
+               'projected (1, 2, 3): '//s(line(1))//' '//s(line(2))//' '//s(line(3)))
+  end subroutine
 
   !> corner_angle by hand, and the angle-weighted normal of a cube's corner
   !> (the leave-the-body test of contact_driver's returns): its three faces
