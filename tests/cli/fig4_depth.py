@@ -28,9 +28,11 @@ edge over the six (limit 0.01). The one-way deck of 0.9.12: 14 frames,
 1.6e-4 h and 0.0033 h on the plane, and plate nodes 0.19 h inside the rod
 (0.05 h by 1.5 us: the crater lip entered the rod unseen).
 Since 0.9.18 the nodes on the plane are matched and returned as the plane
-lets them move (theory.md 11): to 2 us they are at most 6.7e-18 h deep
-over the three steps (0.9.17: 1.0e-4 / 4.0e-5 / 9.8e-5 h), and the limit
-is issue 13's 1e-6 h.
+lets them move (theory.md 11): at this test's frames to 2 us they are at
+most 6.7e-18 h deep over the three steps (0.9.17: 1.0e-4 / 4.0e-5 / 9.8e-5
+h), but between its frames (every 0.05 us, steps 0.32-0.38) they still
+reach 3.3e-3 h in single frames (0.9.17: 4.3e-3 h), so the limit stays
+1e-3 h (validation.md 4zm).
 Usage: fig4_depth.py FIELDS.h5 ..."""
 import os
 import sys
@@ -72,7 +74,7 @@ for path in sys.argv[1:]:
     plane_worst, plane_early = max(plane_worst, worst), max(plane_early, early)
     plate_worst = max(plate_worst, plate_in)
 checks.below('frames_with_a_rod_node_deeper_than_1e-4_h_in_all_runs', total, 20)
-checks.below('rod_node_on_the_symmetry_plane_inside_the_plate_to_2_us_over_h', plane_early, 1.0e-6)
+checks.below('rod_node_on_the_symmetry_plane_inside_the_plate_to_2_us_over_h', plane_early, 0.001)
 checks.below('rod_node_on_the_symmetry_plane_inside_the_plate_over_h', plane_worst, 0.025)
 checks.below('plate_node_inside_the_rod_over_its_h', plate_worst, 0.01)
 checks.finish()

@@ -143,6 +143,16 @@ contains
                .and. dot_product(n, xs + matmul(constrained_projection(1, planes(:,1:1)), -dist*n) - xa(:,1)) < -1.0e-3_rk &
                .and. all(return_on_planes(-dist*n, 0, planes) == -dist*n), &
                'returned along the plane: left behind by '//s(-dot_product(n, xs + w - xa(:,1)))//' m')
+    ! a face within 30 degrees of lying in the plane, every node on it: left
+    ! alone (matched, the node would be sent along the plane at 3 times
+    ! its approach)
+    do a = 0, 3
+      proj(:,:,a) = constrained_projection(1, planes(:,1:1))
+    end do
+    call match_normal_on_planes([0.0_rk, 0.95_rk, sqrt(1.0_rk - 0.95_rk**2)], ms, vs, mm, vm, g, share, 0.0_rk, &
+                                proj, dvs, dvm, acted, dn)
+    call check('plane_matching_leaves_a_face_near_the_plane', .not. acted .and. all(dvs == 0.0_rk), &
+               'normal 18 degrees out of the plane: dn '//s(dn))
     ! two planes (y = 0 and x = -y): a node on both moves along z alone
     line = matmul(constrained_projection(3, planes), [1.0_rk, 2.0_rk, 3.0_rk])
     call check('plane_projection_two_planes', maxval(abs(line - [0.0_rk, 0.0_rk, 3.0_rk])) < 1.0e-15_rk, &
