@@ -9,12 +9,12 @@ module udar_contact_kernels
   private
   public :: triangle_projection, master_shares, match_velocities, tetrahedron_coordinates, solve_friction_rows, row_components, edge_crossing, edge_shares, &
             closest_on_triangle, behind_not, behind_face, behind_seam, &
-            solve_normal_lcp, normal_rows_matrix, contact_point, corner_angle, constrained_direction, &
-            constrained_projection, match_normal_on_planes, return_on_planes
+            solve_normal_lcp, normal_rows_matrix, contact_point, corner_angle, &
+            constrained_projection, return_on_planes
 
   !> The least share of a row's normal that the symmetry planes must let
   !> its nodes move along (n . K n over the unconstrained denominator,
-  !> match_normal_on_planes) for the row to be matched again along the
+  !> match_velocities with proj) for the row to be matched again along the
   !> planes: below it (a face within 30 degrees of lying in the plane) the
   !> match would send the node along the plane at more than twice its
   !> approach, which a face nearly in the plane and its mirror image do
@@ -185,13 +185,23 @@ contains
   !> friction sweeps, whose normal changes the joint solve sets) the normal
   !> change is 0 and only a node that has received a normal change gets
   !> friction.
+  !> With proj (a row with a node on a symmetry plane, matched again as the
+  !> planes let its nodes move: proj(:,:,0) the slave's projection,
+  !> proj(:,:,a) master node a's, constrained_projection) the change is
+  !> the normal one alone, friction not taken: the impulse per slave mass
+  !> dn n moves the slave by dvs = dn P_s n and master node a by dvm(:,a) =
+  !> -dn (R_a ms/m_a) P_a n, so the normal velocities are equal afterwards
+  !> for dn = n . v_rel / (n . K n), K = P_s + sum_a g_a R_a (ms/m_a) P_a
+  !> (K = denom I off the planes). A row whose normal the nodes may hardly
+  !> move along (n . K n below plane_lean_limit of denom) does nothing.
   pure subroutine match_velocities(n, ms, vs, mm, vm, g, r_share, friction, dn_before, t_before, dvs, dvm, &
-                                   acted, dn, dtv, normal_held)
+                                   acted, dn, dtv, normal_held, proj)
     real(rk), intent(in) :: n(3), ms, vs(3), mm(3), vm(3,3), g(3), r_share(3), friction, dn_before, t_before(3)
     real(rk), intent(out) :: dvs(3), dvm(3,3), dn, dtv(3)
     logical, intent(out) :: acted
     logical, intent(in), optional :: normal_held
-    real(rk) :: v_master(3), denom, vr(3), t_new(3), t_mag, limit, gc(3)
+    real(rk), intent(in), optional :: proj(3,3,0:3)
+    real(rk) :: v_master(3), denom, vr(3), t_new(3), t_mag, limit, gc(3), kn(3)
     integer :: a
     dvs = 0.0_rk
     dvm = 0.0_rk
@@ -202,7 +212,16 @@ contains
     v_master = gc(1)*vm(:,1) + gc(2)*vm(:,2) + gc(3)*vm(:,3)
     ! eq. 17: the denominator that makes the normal velocities equal afterwards
     denom = 1.0_rk + ms*(gc(1)*r_share(1)/mm(1) + gc(2)*r_share(2)/mm(2) + gc(3)*r_share(3)/mm(3))
-    dn = dot_product(n, v_master - vs)/denom
+    if (present(proj)) then
+      kn = matmul(proj(:,:,0), n)
+      do a = 1, 3
+        kn = kn + (gc(a)*r_share(a)*ms/mm(a))*matmul(proj(:,:,a), n)
+      end do
+      if (dot_product(n, kn) < plane_lean_limit*denom) return
+      dn = dot_product(n, v_master - vs)/dot_product(n, kn)
+    else
+      dn = dot_product(n, v_master - vs)/denom
+    end if
     if (present(normal_held)) then
       if (normal_held) dn = 0.0_rk
     end if
@@ -211,6 +230,14 @@ contains
       return
     end if
     dn = max(dn, -dn_before)
+    if (present(proj)) then
+      dvs = dn*matmul(proj(:,:,0), n)
+      do a = 1, 3
+        dvm(:,a) = -(dn*r_share(a)*ms/mm(a))*matmul(proj(:,:,a), n)
+      end do
+      acted = dn /= 0.0_rk
+      return
+    end if
     ! friction: the change that stops the relative tangential velocity (the
     ! normal change leaves it as it is; the same denominator), the accumulated
     ! tangential change limited to friction times the accumulated normal one
@@ -228,49 +255,6 @@ contains
       dvm(:,a) = -(r_share(a)*ms/mm(a))*dvs
     end do
     acted = dn /= 0.0_rk .or. any(dtv /= 0.0_rk)
-  end subroutine
-
-  !> The normal change of a row with a node on a symmetry plane, matched
-  !> as the planes let its nodes move (proj(:,:,0) the slave's projection,
-  !> proj(:,:,a) master node a's, constrained_projection): the impulse per
-  !> slave mass dn n moves the slave by dvs = dn P_s n and master node a by
-  !> dvm(:,a) = -dn (R_a ms/m_a) P_a n, so the normal velocities are equal
-  !> afterwards for dn = n . v_rel / (n . K n), K = P_s + sum_a g_a R_a
-  !> (ms/m_a) P_a (K = denom I off the planes: match_velocities'
-  !> frictionless change). The accumulated change is kept compressive as
-  !> there. A row whose normal the nodes may hardly move along (n . K n
-  !> below plane_lean_limit of the unconstrained denominator) does nothing.
-  pure subroutine match_normal_on_planes(n, ms, vs, mm, vm, g, r_share, dn_before, proj, dvs, dvm, acted, dn)
-    real(rk), intent(in) :: n(3), ms, vs(3), mm(3), vm(3,3), g(3), r_share(3), dn_before, proj(3,3,0:3)
-    real(rk), intent(out) :: dvs(3), dvm(3,3), dn
-    logical, intent(out) :: acted
-    real(rk) :: gc(3), v_master(3), kn(3), denom, c
-    integer :: a
-    gc = contact_point(g)
-    v_master = gc(1)*vm(:,1) + gc(2)*vm(:,2) + gc(3)*vm(:,3)
-    dvs = 0.0_rk
-    dvm = 0.0_rk
-    dn = 0.0_rk
-    acted = .false.
-    kn = matmul(proj(:,:,0), n)
-    denom = 1.0_rk
-    do a = 1, 3
-      c = gc(a)*r_share(a)*ms/mm(a)
-      kn = kn + c*matmul(proj(:,:,a), n)
-      denom = denom + c
-    end do
-    if (dot_product(n, kn) < plane_lean_limit*denom) return
-    dn = dot_product(n, v_master - vs)/dot_product(n, kn)
-    if (dn <= 0.0_rk .and. dn_before <= 0.0_rk) then
-      dn = 0.0_rk                          ! separating: released
-      return
-    end if
-    dn = max(dn, -dn_before)
-    dvs = dn*matmul(proj(:,:,0), n)
-    do a = 1, 3
-      dvm(:,a) = -(dn*r_share(a)*ms/mm(a))*matmul(proj(:,:,a), n)
-    end do
-    acted = dn /= 0.0_rk
   end subroutine
 
   !> The projection onto the motions a node's symmetry planes allow: the
@@ -305,35 +289,19 @@ contains
   end function
 
   !> A node's return u (to a face's plane or a closest point) for a node on
-  !> symmetry planes (bits, constrained_projection's): along the part P u
+  !> symmetry planes (p its constrained_projection): along the part P u
   !> the planes allow, as far as takes it as far along u, (u . u)/(u . P u)
   !> P u (the velocity conditions would otherwise keep only P u, leaving
   !> it behind a face that leans out of the plane); 0 where the planes allow
   !> no motion along u (u . P u within 1e-12 of u . u: the mirror image
-  !> holds that gap); u itself for bits = 0.
-  pure function return_on_planes(u, bits, planes) result(w)
-    real(rk), intent(in) :: u(3), planes(:,:)
-    integer, intent(in) :: bits
+  !> holds that gap).
+  pure function return_on_planes(u, p) result(w)
+    real(rk), intent(in) :: u(3), p(3,3)
     real(rk) :: w(3), pu(3), c
-    w = u
-    if (bits == 0) return
-    pu = matmul(constrained_projection(bits, planes), u)
+    pu = matmul(p, u)
     c = dot_product(u, pu)
     w = 0.0_rk
     if (c > 1.0e-12_rk*dot_product(u, u)) w = (dot_product(u, u)/c)*pu
-  end function
-
-  !> d projected onto the motions a node's symmetry planes allow
-  !> (constrained_projection); d itself, bitwise, for bits = 0.
-  pure function constrained_direction(d, bits, planes) result(pd)
-    real(rk), intent(in) :: d(3), planes(:,:)
-    integer, intent(in) :: bits
-    real(rk) :: pd(3)
-    if (bits == 0) then
-      pd = d
-    else
-      pd = matmul(constrained_projection(bits, planes), d)
-    end if
   end function
 
   !> The matrix of a pass's normal rows for solve_normal_lcp: row r is
@@ -345,7 +313,7 @@ contains
   !> -nrm_r . (sum_a w_a v_a - v_s) changes by
   !>   m(r,q) = -(nrm_r . nrm_q) sum over the nodes shared by the rows of w(c,r) coef(p,q).
   !> With dirs, row q's change moves node p along dirs(:,p,q) (a node on a
-  !> symmetry plane: nrm_q projected, constrained_direction), and m(r,q) =
+  !> symmetry plane: nrm_q projected, constrained_projection), and m(r,q) =
   !> -sum of w(c,r) coef(p,q) (nrm_r . dirs(:,p,q)).
   pure subroutine normal_rows_matrix(n, ld, node, w, coef, nrm, m, dirs)
     integer, intent(in) :: n, ld, node(0:3,n)

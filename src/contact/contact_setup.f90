@@ -14,6 +14,7 @@ module udar_contact_setup
   use udar_contact_model, only: joint_solve_rows, joint_dense_rows, feature_edges, contact_t, interface_t, size_interface_work, surface_neighbours, self_neighbourhoods, on_symmetry_plane, &
                                 assign_slaves, mark_returns
   use udar_contact_faces, only: points_inside_elements
+  use udar_contact_kernels, only: constrained_projection
   implicit none
   private
   public :: build_contact, tet_face, tri_face, element_face, contact_edges, exterior_faces
@@ -199,6 +200,7 @@ contains
     ct%x0 = ct%x
     ct%v = glob%nd_v(:, ct%gidx)
     ct%sym_planes = sym_planes(ct%gidx)
+    call plane_projectors(ct)
     do i = 1, n_ifc
       ! the face across each edge, by contact-node index (after the renumbering)
       if (ct%ifc(i)%seams .or. ct%ifc(i)%sharp_edges) call surface_neighbours(ct%ifc(i), ct%x0)
@@ -529,6 +531,31 @@ contains
         end if
       end do
       node_g(lo) = g
+    end do
+  end subroutine
+
+  !> Each contact node's projector onto the motions its symmetry planes
+  !> allow, one for every distinct set of planes (plane_proj, plane_set):
+  !> the matching and the returns take it at every row (theory.md 11).
+  subroutine plane_projectors(ct)
+    type(contact_t), intent(inout) :: ct
+    integer, allocatable :: sets(:)
+    integer :: n, s
+    allocate(sets(0))
+    allocate(ct%plane_set(ct%n_nodes), source=0)
+    do n = 1, ct%n_nodes
+      if (ct%sym_planes(n) == 0) cycle
+      s = findloc(sets, ct%sym_planes(n), dim=1)
+      if (s == 0) then
+        sets = [sets, ct%sym_planes(n)]
+        s = size(sets)
+      end if
+      ct%plane_set(n) = s
+    end do
+    allocate(ct%plane_proj(3, 3, 0:size(sets)))
+    ct%plane_proj(:,:,0) = constrained_projection(0, ct%plane)
+    do s = 1, size(sets)
+      ct%plane_proj(:,:,s) = constrained_projection(sets(s), ct%plane)
     end do
   end subroutine
 

@@ -3,5 +3,5 @@ module udar_version
   implicit none
   private
   public :: program_version
-  character(len=*), parameter :: program_version = '0.9.18'
+  character(len=*), parameter :: program_version = '0.9.19'
 end module udar_version

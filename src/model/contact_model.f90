@@ -153,6 +153,10 @@ module udar_contact_model
     real(rk), allocatable :: h(:)     !< m, smallest altitude of each contact node's elements (bounds its returns)
     logical, allocatable :: returns(:)     !< the node can be returned (a slave node or a slave edge's): its h is kept
     integer, allocatable :: sym_planes(:)   !< bit p set: the node lies on symmetry plane p
+    integer, allocatable :: plane_set(:)    !< the node's projector in plane_proj (0: on no plane)
+    !> (3,3,0:sets) the motions each distinct set of symmetry planes allows
+    !> a node (constrained_projection), built once at setup; 0: the identity
+    real(rk), allocatable :: plane_proj(:,:,:)
     !> (4, planes) symmetry plane p (2D: line or axis): unit normal in 1:3,
     !> offset in 4. Across a face's edge (a segment's end) on one the
     !> surface goes on as its mirror image (faces_beside)
@@ -265,7 +269,7 @@ contains
     call grow2(ct%x); call grow2(ct%v); call grow2(ct%x0); call grow2(ct%v_sweep);
     call grow1(ct%m); call grow1(ct%h, huge(1.0_rk)); call grow1(ct%impulse); call grow1(ct%pressure)
     call grow1(ct%work_area)
-    call growi(ct%gidx); call growi(ct%sym_planes); call growi(ct%alive_count); call growi(ct%local)
+    call growi(ct%gidx); call growi(ct%sym_planes); call growi(ct%plane_set); call growi(ct%alive_count); call growi(ct%local)
     call growi(ct%fresh); call growi(ct%node_row)
     call growl(ct%returns)
     do i = 1, ct%n_interfaces

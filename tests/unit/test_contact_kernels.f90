@@ -11,7 +11,7 @@ program test_contact_kernels
   use udar_contact_kernels, only: triangle_projection, master_shares, match_velocities, edge_crossing, edge_shares, &
                                   tetrahedron_coordinates, closest_on_triangle, behind_not, behind_face, &
                                   behind_seam, solve_normal_lcp, normal_rows_matrix, corner_angle, solve_friction_rows, row_components, &
-                                  constrained_projection, constrained_direction, match_normal_on_planes, return_on_planes
+                                  constrained_projection, return_on_planes
   use udar_contact_faces, only: face_behind_surface, face_beside_sharp_edge, seam_contact
   use udar_contact_model, only: interface_t, surface_neighbours, neighbour_across
   use unit_checks, only: check, check_summary, logicals
@@ -74,7 +74,7 @@ contains
   !> A slave node on the symmetry plane y = 0 strikes a face that leans
   !> out of the plane (normal (0, 0.6, 1)/|.|; its nodes 1 and 2 on the
   !> plane too), by hand: matched with the planes' projections
-  !> (match_normal_on_planes), no node on the plane moves out of it, the
+  !> (match_velocities with proj), no node on the plane moves out of it, the
   !> normal velocities are equal afterwards, and momentum in the plane is
   !> exact. Matched without them and the velocity conditions applied
   !> afterwards (before 0.9.18), the node still approaches the face at a
@@ -103,7 +103,7 @@ contains
     proj(:,:,1) = proj(:,:,0)
     proj(:,:,2) = proj(:,:,0)
     proj(:,:,3) = constrained_projection(0, planes(:,1:1))
-    call match_normal_on_planes(n, ms, vs, mm, vm, g, share, 0.0_rk, proj, dvs, dvm, acted, dn)
+    call match_velocities(n, ms, vs, mm, vm, g, share, 0.0_rk, 0.0_rk, [0.0_rk, 0.0_rk, 0.0_rk], dvs, dvm, acted, dn, dtv, proj=proj)
     rate = dot_product(n, vs + dvs - (gc(1)*dvm(:,1) + gc(2)*dvm(:,2) + gc(3)*dvm(:,3)))
     call check('plane_matching_stays_in_plane', acted .and. dvs(2) == 0.0_rk .and. dvm(2,1) == 0.0_rk .and. &
                dvm(2,2) == 0.0_rk .and. dvm(2,3) /= 0.0_rk, &
@@ -126,22 +126,25 @@ contains
     end do
     call match_velocities(n, ms, vs, mm, vm, g, share, 0.0_rk, 0.0_rk, [0.0_rk, 0.0_rk, 0.0_rk], &
                           dvs0, dvm0, acted, dn0, dtv)
-    call match_normal_on_planes(n, ms, vs, mm, vm, g, share, 0.0_rk, proj, dvs, dvm, acted, dn)
+    call match_velocities(n, ms, vs, mm, vm, g, share, 0.0_rk, 0.0_rk, [0.0_rk, 0.0_rk, 0.0_rk], dvs, dvm, acted, dn, dtv, proj=proj)
     call check('plane_matching_identity', maxval(abs(dvs - dvs0)) < 1.0e-15_rk .and. maxval(abs(dvm - dvm0)) < 1.0e-15_rk &
-               .and. abs(dn - dn0) < 1.0e-15_rk .and. all(constrained_direction(n, 0, planes) == n), &
-               'off the planes as before')
+               .and. abs(dn - dn0) < 1.0e-15_rk, 'off the planes as before')
+    ! with proj the change is the normal one alone: friction is not taken
+    call match_velocities(n, ms, vs + [0.5_rk, 0.0_rk, 0.0_rk], mm, vm, g, share, 0.3_rk, 0.0_rk, [0.0_rk, 0.0_rk, 0.0_rk], &
+                          dvs, dvm, acted, dn, dtv, proj=proj)
+    call check('plane_matching_frictionless', acted .and. all(dtv == 0.0_rk) .and. abs(dn - dn0) < 1.0e-15_rk, &
+               'friction 0.3, sliding at 0.5 m/s: tangential change '//s(norm2(dtv)))
     ! a separating node is released; one already pushed is taken back only to zero
-    call match_normal_on_planes(n, ms, -vs, mm, vm, g, share, 0.0_rk, proj, dvs, dvm, acted, dn)
+    call match_velocities(n, ms, -vs, mm, vm, g, share, 0.0_rk, 0.0_rk, [0.0_rk, 0.0_rk, 0.0_rk], dvs, dvm, acted, dn, dtv, proj=proj)
     call check('plane_matching_releases', .not. acted .and. dn == 0.0_rk, 'separating: dn '//s(dn))
-    call match_normal_on_planes(n, ms, -vs, mm, vm, g, share, 0.25_rk, proj, dvs, dvm, acted, dn)
+    call match_velocities(n, ms, -vs, mm, vm, g, share, 0.0_rk, 0.25_rk, [0.0_rk, 0.0_rk, 0.0_rk], dvs, dvm, acted, dn, dtv, proj=proj)
     call check('plane_matching_takes_back_to_zero', acted .and. dn == -0.25_rk, 'pushed before by 0.25: dn '//s(dn))
     ! the node's return to the face's plane (-dist n) along the plane y = 0
     ! puts it on the face's plane; the velocity conditions' part of it alone
     ! leaves it behind
-    w = return_on_planes(-dist*n, 1, planes(:,1:1))
+    w = return_on_planes(-dist*n, constrained_projection(1, planes(:,1:1)))
     call check('plane_return_onto_the_face', w(2) == 0.0_rk .and. abs(dot_product(n, xs + w - xa(:,1))) < 1.0e-16_rk &
-               .and. dot_product(n, xs + matmul(constrained_projection(1, planes(:,1:1)), -dist*n) - xa(:,1)) < -1.0e-3_rk &
-               .and. all(return_on_planes(-dist*n, 0, planes) == -dist*n), &
+               .and. dot_product(n, xs + matmul(constrained_projection(1, planes(:,1:1)), -dist*n) - xa(:,1)) < -1.0e-3_rk, &
                'returned along the plane: left behind by '//s(-dot_product(n, xs + w - xa(:,1)))//' m')
     ! a face within 30 degrees of lying in the plane, every node on it: left
     ! alone (matched, the node would be sent along the plane at 3 times
@@ -149,8 +152,8 @@ contains
     do a = 0, 3
       proj(:,:,a) = constrained_projection(1, planes(:,1:1))
     end do
-    call match_normal_on_planes([0.0_rk, 0.95_rk, sqrt(1.0_rk - 0.95_rk**2)], ms, vs, mm, vm, g, share, 0.0_rk, &
-                                proj, dvs, dvm, acted, dn)
+    call match_velocities([0.0_rk, 0.95_rk, sqrt(1.0_rk - 0.95_rk**2)], ms, vs, mm, vm, g, share, 0.0_rk, 0.0_rk, &
+                          [0.0_rk, 0.0_rk, 0.0_rk], dvs, dvm, acted, dn, dtv, proj=proj)
     call check('plane_matching_leaves_a_face_near_the_plane', .not. acted .and. all(dvs == 0.0_rk), &
                'normal 18 degrees out of the plane: dn '//s(dn))
     ! two planes (y = 0 and x = -y): a node on both moves along z alone
