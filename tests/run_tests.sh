@@ -210,6 +210,7 @@ run_test "regression/penetration_voids_fine_07" regression penetration bin/udar 
 run_test "regression/penetration_voids_off_fails" regression_fails penetration bin/udar penetration_voids_off_fails \
   voids_inside_out_over_reference_volume
 run_test "cli/fig4_depth" tests/cli/fig4_depth.sh bin/udar
+run_test "cli/fig4_first_20us" tests/cli/fig4_first_20us.sh bin/udar
 run_test "regression/long_rod_particles" regression long_rod_particles bin/udar
 run_test "regression/long_rod_energy" regression long_rod_energy bin/udar
 run_test "regression/buried_particles" regression buried_particles bin/udar

@@ -32,7 +32,11 @@ lets them move (theory.md 11): at this test's frames to 2 us they are at
 most 6.7e-18 h deep over the three steps (0.9.17: 1.0e-4 / 4.0e-5 / 9.8e-5
 h), but between its frames (every 0.05 us, steps 0.32-0.38) they still
 reach 3.3e-3 h in single frames (0.9.17: 4.3e-3 h), so the limit stays
-1e-3 h (validation.md 4zm).
+1e-3 h (validation.md 4zm). Since 0.9.19 (the nearest face decides,
+validation.md 4zn): 1 / 0 / 0 frames, the plane nodes 0 h to 2 us and at
+most 5.8e-4 h over 10 us, the plate nodes in the rod at most 2.8e-7 h; the
+limits are kept (a rounding change alone had put 0.9.18's plane nodes at
+1.1e-3 h); cli/fig4_first_20us holds the deck as shipped to 1e-6 h.
 Usage: fig4_depth.py FIELDS.h5 ..."""
 import os
 import sys
