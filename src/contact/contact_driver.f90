@@ -887,7 +887,7 @@ contains
     real(rk), intent(in) :: dt
     integer, intent(out) :: sweeps
     logical, intent(out) :: converged
-    real(rk) :: mismatch, first_change, resolve_change
+    real(rk) :: first_change, resolve_change
     integer :: iter, iterations
     logical :: joint, held, solved, frictionless
     real(rk) :: tolerance
@@ -909,12 +909,7 @@ contains
       end if
       ! unsolved: the sweeps take the normals over from the last solve
       if (held .and. iter > 1) call solve_set_normals(ct, a, b, frictionless, .false., dt, resolve_change, held)
-      call sweep_rows(ct, a, b, held, .false., dt, mismatch)
-      if (joint) mismatch = row_velocity_change(ct, a, b)
-      ! the scale of the set: its first sweep, or the joint solve before it
-      if (iter == 1) first_change = max(first_change, mismatch)
-      ! converged: every node matched or released, its changes admissible
-      converged = settled(mismatch, first_change, tolerance)
+      call sweep_set(ct, a, b, joint, held, .false., dt, iter, tolerance, first_change, converged)
       if (converged) exit
     end do
     if (any_on_plane(ct, a, b)) call match_on_planes(ct, first, a, b, joint_pass, dt, first_change, sweeps, converged)
@@ -939,7 +934,7 @@ contains
     real(rk), intent(in) :: dt, set_change
     integer, intent(inout) :: sweeps
     logical, intent(inout) :: converged
-    real(rk) :: mismatch, first_change, solve_change, tolerance
+    real(rk) :: first_change, solve_change, tolerance
     integer :: iter, q, e, node
     logical :: joint, done
     real(rk) :: pv(3)
@@ -960,14 +955,31 @@ contains
     done = .false.
     do iter = 1, ct%ifc(first)%iterations
       if (joint) call keep_row_velocities(ct, a, b)
-      call sweep_rows(ct, a, b, .false., .true., dt, mismatch)
-      if (joint) mismatch = row_velocity_change(ct, a, b)
-      if (iter == 1) first_change = max(first_change, mismatch)
-      done = settled(mismatch, first_change, tolerance)
+      call sweep_set(ct, a, b, joint, .false., .true., dt, iter, tolerance, first_change, done)
       if (done) exit
     end do
     sweeps = sweeps + min(iter, ct%ifc(first)%iterations)
     converged = converged .and. done
+  end subroutine
+
+  !> Sweep iter of a set's matching (sweep_rows; held, on_planes as there)
+  !> and its convergence test: the change it still made (in a joint set
+  !> the nodes' net velocity change since keep_row_velocities), the set's
+  !> scale first_change raised to its first sweep's, settled against it.
+  subroutine sweep_set(ct, a, b, joint, held, on_planes, dt, iter, tolerance, first_change, converged)
+    type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: a, b, iter
+    logical, intent(in) :: joint, held, on_planes
+    real(rk), intent(in) :: dt, tolerance
+    real(rk), intent(inout) :: first_change
+    logical, intent(out) :: converged
+    real(rk) :: mismatch
+    call sweep_rows(ct, a, b, held, on_planes, dt, mismatch)
+    if (joint) mismatch = row_velocity_change(ct, a, b)
+    ! the scale of the set: its first sweep, or the joint solve before it
+    if (iter == 1) first_change = max(first_change, mismatch)
+    ! converged: every node matched or released, its changes admissible
+    converged = settled(mismatch, first_change, tolerance)
   end subroutine
 
   !> One sweep of the matching over rows a..b (match_velocities; held: the
@@ -1810,7 +1822,6 @@ contains
     logical function inside_element_under(ps, t, xa)
       integer, intent(in) :: ps, t
       real(rk), intent(in) :: xa(3,3)
-      real(rk) :: lam(4)
       inside_element_under = .false.
       if (dt <= 0.0_rk) return
       inside_element_under = in_element_under(ct%x(:,ps), t, xa, edge_tolerance)
