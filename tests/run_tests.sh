@@ -210,7 +210,8 @@ run_test "regression/penetration_voids_fine_07" regression penetration bin/udar 
 run_test "regression/penetration_voids_off_fails" regression_fails penetration bin/udar penetration_voids_off_fails \
   voids_inside_out_over_reference_volume
 run_test "cli/fig4_depth" tests/cli/fig4_depth.sh bin/udar
-run_test "cli/fig4_first_20us" tests/cli/fig4_first_20us.sh bin/udar
+run_test "cli/fig4_first_20us" tests/cli/fig4_shipped.sh bin/udar 20.0e-6 0.25e-6 81 plate
+run_test "cli/fig4_fine_frames" tests/cli/fig4_shipped.sh bin/udar 10.0e-6 0.05e-6 201
 run_test "regression/long_rod_particles" regression long_rod_particles bin/udar
 run_test "regression/long_rod_energy" regression long_rod_energy bin/udar
 run_test "regression/buried_particles" regression buried_particles bin/udar
@@ -233,8 +234,7 @@ run_test "regression/crossed_edges_friction" regression crossed_edges bin/udar-d
 run_test "regression/crossed_edges_off_fails" regression_fails crossed_edges bin/udar crossed_edges_off \
   edges_through_each_other_over_h
 run_test "regression/sharp_edge" regression sharp_edge bin/udar-debug
-run_test "regression/sharp_edge_off_fails" regression_fails sharp_edge bin/udar-debug sharp_edge_off \
-  block_nodes_inside_wedge_over_h
+run_test "regression/sharp_edge_off" regression sharp_edge bin/udar-debug sharp_edge_off
 run_test "regression/self_contact" regression self_contact bin/udar-debug
 run_test "cli/self_contact_off" tests/cli/self_contact_off.sh bin/udar
 run_test "regression/self_contact_2d" regression self_contact_2d bin/udar-debug

@@ -71,7 +71,7 @@ module udar_contact
   real(rk), parameter :: valley_cos = 0.8_rk
   !> the parts of a pass (detect): finding the slave nodes, and after the
   !> velocity matching (match_passes) the impulses and the returns
-  integer, parameter :: stage_search = 1, stage_finish = 2, stage_both = 3
+  integer, parameter :: stage_search = 1, stage_finish = 2, stage_both = 3, stage_returns = 4
 
 contains
 
@@ -152,6 +152,10 @@ contains
     call particles_in(ct, pt, vmax)
     do i = 1, ct%n_interfaces
       call detect(ct, ct%ifc(i), 0.01_rk*ct%ifc(i)%h_mean, .true., 0.0_rk, stage_both, n_found, depth, worst)
+      ! (a symmetric pair: its first direction's returns again, contact_enforce)
+      if (i == 1) cycle
+      if (ct%ifc(i-1)%partner == i) &
+        call detect(ct, ct%ifc(i-1), 0.01_rk*ct%ifc(i-1)%h_mean, .true., 0.0_rk, stage_returns, n_found, depth, worst)
     end do
     call place_new_particles(ct, dom)
     call scatter_state(ct, dom)
@@ -383,6 +387,11 @@ contains
             margin(k-i+1) = 2.0_rk*vmax*dt + 0.05_rk*ct%ifc(k)%h_mean
             call detect(ct, ct%ifc(k), margin(k-i+1), .true., dt, stage_finish, n_found, depth, worst)
           end do
+          ! a symmetric pair: the second direction's returns move the
+          ! first's master faces, which can take its nodes, already out,
+          ! back inside (a rod node at a plate vertex the plate's return
+          ! moved, validation.md 4zo): the first's returns once more
+          if (last > i) call detect(ct, ct%ifc(i), margin(1), .true., dt, stage_returns, n_found, depth, worst)
           ! edge against edge (a symmetric pair's edges once)
           if (ct%ifc(i)%edges) call edge_pass(ct, ct%ifc(i), dt, margin(1))
           ct%seconds_replicated = ct%seconds_replicated + (comms_wtime() - t0)
@@ -1261,7 +1270,7 @@ contains
     type(interface_t), intent(inout) :: it
     real(rk), intent(in) :: depth_limit, dt
     logical, intent(in) :: move
-    integer, intent(in) :: stage             !< stage_search, stage_finish or stage_both
+    integer, intent(in) :: stage             !< stage_search, stage_finish, stage_both or stage_returns (the finish's returns alone)
     logical, intent(in), optional, allocatable :: only(:)   !< (slave nodes) if allocated: only these are looked for
     integer, intent(out) :: n_found, worst
     real(rk), intent(out) :: deepest
@@ -1277,8 +1286,8 @@ contains
     n_found = it%n_pass
     deepest = 0
     worst = 0
-    if (stage == stage_finish) then
-      if (move) call finish()
+    if (stage == stage_finish .or. stage == stage_returns) then
+      if (move) call finish(stage == stage_finish)
       return
     end if
     n_found = 0
@@ -1328,7 +1337,7 @@ contains
       if (separating) then
         ! the paper releases it (no velocity change); it only goes back on the surface
         x_new = ct%x(:,ps)
-        if (move) x_new = x_new + returned(-best_dist*best_n, allowance(ps))
+        if (move) x_new = x_new + returned(along_planes(ps, -best_dist*best_n), allowance(ps))
         call add_record(k, best, kind_separating, best_dist, best_n, best_g, [0.0_rk, 0.0_rk, 0.0_rk], x_new)
         cycle
       end if
@@ -1362,7 +1371,7 @@ contains
       end if
     end if
     it%n_pass = n_found
-    if (stage == stage_both .and. move) call finish()
+    if (stage == stage_both .and. move) call finish(.true.)
 
   contains
 
@@ -1370,8 +1379,9 @@ contains
     !> passes), then what is left behind the surface goes back along the
     !> normal (eq. 5); the largest relative tangential velocity left at a
     !> contact point (slip).
-    subroutine finish()
-      if (dt > 0.0_rk) then
+    subroutine finish(impulses)
+      logical, intent(in) :: impulses   !< the cycle's impulses too (else the returns alone, again)
+      if (dt > 0.0_rk .and. impulses) then
         do k = 1, it%n_pass
           ps = it%active(k)
           it%normal_impulse = it%normal_impulse + ct%m(ps)*it%dn_sum(k)
@@ -1408,7 +1418,7 @@ contains
         it%room(k) = room
         ! slip at the contact points that carry a normal impulse (a node whose
         ! push was all taken back by the later passes is not in contact)
-        if (dt > 0.0_rk .and. it%dn_sum(k) > 0.0_rk) then
+        if (dt > 0.0_rk .and. impulses .and. it%dn_sum(k) > 0.0_rk) then
           g = max(it%area(:,k), 0.0_rk)/sum(max(it%area(:,k), 0.0_rk))
           vm(:,1) = face_velocity(t, g) - ct%v(:,ps)
           vm(:,1) = vm(:,1) - dot_product(vm(:,1), it%normal(:,k))*it%normal(:,k)
@@ -1536,14 +1546,23 @@ contains
     end function
 
     !> Moves slave node ps by u, or as far along u as room allows; room
+    !> Return u of slave node ps as its symmetry planes let it move
+    !> (return_on_planes: to the same plane, along the planes); u itself off them.
+    function along_planes(ps, u) result(w)
+      integer, intent(in) :: ps
+      real(rk), intent(in) :: u(3)
+      real(rk) :: w(3)
+      w = u
+      if (ct%plane_set(ps) /= 0) w = return_on_planes(u, ct%plane_proj(:,:,ct%plane_set(ps)))
+    end function
+
     !> shrinks by the distance moved.
     subroutine put_back(ps, u, room)
       integer, intent(in) :: ps
       real(rk), intent(in) :: u(3)
       real(rk), intent(inout) :: room
       real(rk) :: w(3)
-      w = u
-      if (ct%plane_set(ps) /= 0) w = return_on_planes(u, ct%plane_proj(:,:,ct%plane_set(ps)))
+      w = along_planes(ps, u)
       ct%x(:,ps) = ct%x(:,ps) + returned(w, room)
       room = max(room - norm2(w), 0.0_rk)
     end subroutine
@@ -1796,11 +1815,25 @@ contains
       ! step's approach, and a seam. (Within the step's approach a node on
       ! one face of a corner that the step took behind the other is in
       ! contact with it.)
+      ! Where the node's projection falls inside no face it is in front of
+      ! (beside a knife edge), its nearest surface point is on an edge or a
+      ! vertex, and outside there it bounds the same way (computed only
+      ! when it could decide).
+      if (.not. it%self) then
+        if ((dt <= 0.0_rk .and. best /= 0 .and. -best_dist <= front_dist) .or. &
+            (other /= 0 .and. -other_dist <= front_dist) .or. &
+            (best == 0 .and. seam /= 0 .and. -seam_dist <= front_dist) .or. &
+            (sep /= 0 .and. -sep_dist <= front_dist)) &
+          front_dist = min(front_dist, outside_distance(ps, slot))
+      end if
       if (dt <= 0.0_rk .and. best /= 0) then
         if (-best_dist > front_dist) best = 0
       end if
       if (other /= 0) then
         if (-other_dist > front_dist) other = 0
+      end if
+      if (sep /= 0) then
+        if (-sep_dist > front_dist) sep = 0
       end if
       if (best == 0 .and. other /= 0) then
         best = other; best_dist = other_dist; best_n = other_n; best_g = other_g
@@ -1856,9 +1889,9 @@ contains
     subroutine leave_element_under(ps, slot, room)
       integer, intent(in) :: ps, slot
       real(rk), intent(inout) :: room
-      real(rk) :: xa(3,3), c(3), g(3), c_best(3), g_best(3), d, d_best, n(3), dist, wn(3)
-      integer :: s, t, t_best, a, b, corner, n_feature
-      logical :: inside, at_feature
+      real(rk) :: xa(3,3), c(3), g(3), c_best(3), g_best(3), d, d_best
+      integer :: s, t, t_best, n_feature
+      logical :: inside
       if (room <= 0.0_rk) return
       inside = .false.
       d_best = huge(1.0_rk)
@@ -1886,29 +1919,8 @@ contains
       ! which the nearest point of the faces on one side need not be)
       if (.not. inside .and. d_best <= depth_limit .and. ct%sym_planes(ps) == 0) &
         inside = in_element_at(t_best, g_best, ct%x(:,ps))
-      if (.not. inside .and. n_feature < nf .and. d_best > 0.0_rk .and. d_best <= depth_limit) then
-        ! the normal of the nearest vertex or edge: the faces that have it
-        wn = 0.0_rk
-        do s = it%cand_start(slot), it%cand_start(slot+1) - 1
-          t = it%cand(s)
-          if (.not. near_candidate(ps, t)) cycle
-          corner = 0
-          at_feature = .true.
-          do b = 1, nf
-            if (g_best(b) <= 0.0_rk) cycle
-            at_feature = at_feature .and. any(it%tri(1:nf,t) == it%tri(b,t_best))
-            do a = 1, nf
-              if (it%tri(a,t) == it%tri(b,t_best)) corner = a
-            end do
-          end do
-          if (.not. at_feature) cycle
-          call gather_columns(xa, ct%x, it%tri(:,t))
-          call face_projection(xa(:,1:nf), ct%x(:,ps), n, dist, g)
-          if (n_feature == 1 .and. nf == 3) n = corner_angle(xa, corner)*n
-          wn = wn + n
-        end do
-        inside = dot_product(ct%x(:,ps) - c_best, wn) < 0.0_rk
-      end if
+      if (.not. inside .and. n_feature < nf .and. d_best > 0.0_rk .and. d_best <= depth_limit) &
+        inside = .not. outside_at_feature(ps, slot, t_best, g_best, c_best)
       if (.not. inside) return
       ! where master elements overlap (debris of the target hinged on an
       ! edge and turned into each other), the nearest face point can lie
@@ -1917,6 +1929,73 @@ contains
         call nearest_point(ps, slot, .true., t_best, g_best, c_best, t, g, d)
       call put_back(ps, c_best - ct%x(:,ps), room)
     end subroutine
+
+    !> Whether slave node ps is outside the master body at the vertex or
+    !> edge c of its candidate triangle t nearest to it (g: the feature's
+    !> area coordinates, those > 0): in front of the feature's
+    !> angle-weighted normal (the edge's faces' mean normal; Baerentzen and
+    !> Aanaes 2005). A feature on a symmetry plane also has the faces'
+    !> mirror images, which leave the normal's part in the plane.
+    logical function outside_at_feature(ps, slot, t_near, g_near, c) result(outside)
+      integer, intent(in) :: ps, slot, t_near
+      real(rk), intent(in) :: g_near(3), c(3)
+      real(rk) :: xa(3,3), n(3), dist, g(3), wn(3)
+      integer :: s, t, a, b, corner, planes, on_planes
+      logical :: at_feature
+      wn = 0.0_rk
+      planes = -1
+      on_planes = 0
+      do b = 1, nf
+        if (g_near(b) <= 0.0_rk) cycle
+        planes = iand(planes, ct%sym_planes(it%tri(b,t_near)))
+        if (ct%sym_planes(it%tri(b,t_near)) == planes) on_planes = it%tri(b,t_near)
+      end do
+      do s = it%cand_start(slot), it%cand_start(slot+1) - 1
+        t = it%cand(s)
+        if (.not. near_candidate(ps, t)) cycle
+        corner = 0
+        at_feature = .true.
+        do b = 1, nf
+          if (g_near(b) <= 0.0_rk) cycle
+          at_feature = at_feature .and. any(it%tri(1:nf,t) == it%tri(b,t_near))
+          do a = 1, nf
+            if (it%tri(a,t) == it%tri(b,t_near)) corner = a
+          end do
+        end do
+        if (.not. at_feature) cycle
+        call gather_columns(xa, ct%x, it%tri(:,t))
+        call face_projection(xa(:,1:nf), ct%x(:,ps), n, dist, g)
+        if (count(g_near(1:nf) > 0.0_rk) == 1 .and. nf == 3) n = corner_angle(xa, corner)*n
+        wn = wn + n
+      end do
+      ! (the projector of the feature's node whose planes are the feature's)
+      if (planes /= 0 .and. on_planes /= 0) then
+        if (ct%sym_planes(on_planes) == planes) wn = plane_direction(ct, on_planes, wn)
+      end if
+      outside = dot_product(ct%x(:,ps) - c, wn) >= 0.0_rk
+    end function
+
+    !> The distance from slave node ps to the nearest point of its
+    !> candidate triangles when that point is a vertex or an edge and ps
+    !> is outside the body there (outside_at_feature), within the search
+    !> depth (every face that near is a candidate); huge otherwise.
+    real(rk) function outside_distance(ps, slot) result(d)
+      integer, intent(in) :: ps, slot
+      real(rk), parameter :: no_feature(3) = 0.0_rk
+      real(rk) :: c(3), g(3)
+      integer :: t
+      call nearest_point(ps, slot, .false., 0, no_feature, c, t, g, d)
+      if (t == 0 .or. d > depth_limit) then
+        d = huge(1.0_rk)
+      else if (d > 0.0_rk) then
+        ! (within a face's outline the face loop has seen its side)
+        if (count(g(1:nf) > 0.0_rk) == nf) then
+          d = huge(1.0_rk)
+        else if (.not. outside_at_feature(ps, slot, t, g, c)) then
+          d = huge(1.0_rk)
+        end if
+      end if
+    end function
 
     !> Point p strictly inside (beyond rounding) an element of the eroding
     !> master part at a node of triangle t where g > 0 (the feature nearest
