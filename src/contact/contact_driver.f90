@@ -12,7 +12,7 @@ module udar_contact
   use udar_domain, only: domain_t
   use udar_particle_model, only: particles_t
   use udar_contact_model, only: contact_t, interface_t, neighbour_across, contact_grow_nodes, joint_solve_rows, &
-      joint_dense_rows
+      joint_dense_rows, on_symmetry_plane
   use udar_contact_search, only: grid_build, grid_cell, ensure
   use udar_contact_kernels, only: corner_angle, match_velocities, return_on_planes, solve_friction_rows, row_components, edge_shares, solve_normal_lcp, normal_rows_matrix, contact_point, &
                                   edge_crossing, behind_not, behind_face, behind_seam
@@ -1832,7 +1832,9 @@ contains
       if (other /= 0) then
         if (-other_dist > front_dist) other = 0
       end if
-      if (sep /= 0) then
+      ! (not in self-contact: a node there is behind faces of its own body
+      ! by nature, and only one in contact in the last pass separates)
+      if (sep /= 0 .and. .not. it%self) then
         if (-sep_dist > front_dist) sep = 0
       end if
       if (best == 0 .and. other /= 0) then
@@ -1871,6 +1873,7 @@ contains
       in_element_under = .false.
       if (it%apex(t) == 0) return
       call element_coordinates(xa(:,1:nf), ct%x(:,it%apex(t)), p, lam)
+      call mirrored_coordinates([it%tri(1:nf,t), it%apex(t)], lam)
       in_element_under = all(lam(1:nf+1) > tolerance)
     end function
 
@@ -2021,11 +2024,30 @@ contains
           call gather_columns(xa(:,1:nf), ct%x, ct%tet(1:nf,e))
           xd = ct%x(:,ct%tet(nf+1,e))
           call element_coordinates(xa(:,1:nf), xd, p, lam)
+          call mirrored_coordinates(ct%tet(1:nf+1,e), lam)
           in_element_at = all(lam(1:nf+1) > overlap_tolerance)
           if (in_element_at) return
         end do
       end do
     end function
+
+    !> An element's coordinates lam of a point (corners: nodes) as the
+    !> mirrored body has them: where the face opposite a corner lies in a
+    !> symmetry plane and the point is on it (to rounding), the element's
+    !> mirror image continues there, and that coordinate bounds nothing (a
+    !> node in the plane inside the in-plane face of an element is inside
+    !> the body; validation.md 4zo).
+    subroutine mirrored_coordinates(nodes, lam)
+      integer, intent(in) :: nodes(:)
+      real(rk), intent(inout) :: lam(:)
+      integer :: c, k
+      integer :: others(3)
+      do c = 1, nf + 1
+        if (abs(lam(c)) > overlap_tolerance) cycle
+        others(1:nf) = pack(nodes(1:nf+1), [(k /= c, k = 1, nf + 1)])
+        if (on_symmetry_plane(ct%sym_planes, others(1:nf))) lam(c) = huge(1.0_rk)
+      end do
+    end subroutine
 
     !> Point p strictly inside (beyond rounding of the area coordinates) an
     !> element under one of slot's candidate triangles.
