@@ -10,7 +10,7 @@ deck as shipped: rod nodes 9.3e-3 h (6.76 us), plate nodes 2.9e-4;
 not yet at 1e-6, validation.md 4zn).
 With frames every 0.05 us to 10 us (cli/fig4_fine_frames, the rod nodes
 alone): 0.9.19 4 frames deeper than 1e-6 h, the deepest 1.05e-3 h at 2.95
-us; 0.9.20 2.6e-16 h (validation.md 4zo).
+us; 0.9.20 2.5e-16 h (validation.md 4zo).
 Usage: fig4_shipped.py FIELDS.h5 FRAMES [plate]"""
 import os
 import sys

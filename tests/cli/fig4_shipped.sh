@@ -10,7 +10,7 @@
 # (rod nodes 9.3e-3 h at 6.76 us); 0.9.19: 3.3e-16 h (validation.md 4zn).
 # cli/fig4_fine_frames: 10 us, a frame every 0.05 us (201), the rod nodes
 # alone (the plate's check costs minutes at that many frames). 0.9.19
-# fails it (4 frames, 1.05e-3 h at 2.95 us); 0.9.20: 2.6e-16 h
+# fails it (4 frames, 1.05e-3 h at 2.95 us); 0.9.20: 2.5e-16 h
 # (validation.md 4zo).
 #   fig4_shipped.sh EXE T_END DT_FIELD FRAMES [plate]
 source "$(dirname "$0")/common.sh" "$1"
