@@ -54,6 +54,45 @@ def depths_inside(points, x, tets, in_plane=None):
     depths = np.zeros(len(points))
     if len(tets) == 0:
         return depths
+    points = points[:, :d]
+    # the (point, element) pairs whose element box holds the point, through
+    # a grid of cells as large as the largest box (a box meets at most two
+    # cells an axis): each element is listed in the cells its box meets
+    cell = np.maximum((hi - lo).max(axis=0), 1e-300)
+    origin = lo.min(axis=0)
+    c_lo = np.floor((lo - origin) / cell).astype(np.int64)
+    c_hi = np.floor((hi - origin) / cell).astype(np.int64)
+    span = c_hi.max(axis=0) + 2
+    keys, elems = [], []
+    for off in np.ndindex(*([2] * d)):
+        c = c_lo + np.array(off)
+        ok = np.all(c <= c_hi, axis=1)
+        keys.append(np.ravel_multi_index(c[ok].T, span))
+        elems.append(np.nonzero(ok)[0])
+    keys, elems = np.concatenate(keys), np.concatenate(elems)
+    order = np.argsort(keys, kind='stable')
+    keys, elems = keys[order], elems[order]
+    cp = np.floor((points - origin) / cell).astype(np.int64)
+    inside_grid = np.all((cp >= 0) & (cp < span), axis=1)
+    pts = np.nonzero(inside_grid)[0]
+    pk = np.ravel_multi_index(cp[pts].T, span)
+    first, last = np.searchsorted(keys, pk, 'left'), np.searchsorted(keys, pk, 'right')
+    count = last - first
+    pi = np.repeat(pts, count)
+    # (each pair's element: its point's run of the sorted lists)
+    ei = elems[np.repeat(first, count) + np.arange(len(pi)) - np.repeat(np.cumsum(count) - count, count)]
+    near = np.all((points[pi] >= lo[ei]) & (points[pi] <= hi[ei]), axis=1)
+    pi, ei = pi[near], ei[near]
+    if len(pi) == 0:
+        return depths
+    lam = np.einsum('nij,nj->ni', inv[ei], points[pi] - a[ei])
+    bary = np.column_stack([1.0 - lam.sum(axis=1), lam])
+    if in_plane is not None:
+        # on a face in a symmetry plane (to rounding): inside the mirrored body
+        bary = np.where(in_plane[ei] & (bary >= -1e-12), np.inf, bary)
+        bary[np.all(np.isinf(bary), axis=1)] = 0.0
+    np.maximum.at(depths, pi, bary.min(axis=1) * h_min[ei])
+    return depths
     # only the points within the elements' overall box can be inside one
     points = points[:, :d]
     boxed = np.nonzero(np.all((points >= lo.min(axis=0)) & (points <= hi.max(axis=0)), axis=1))[0]
