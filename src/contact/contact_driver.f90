@@ -1545,7 +1545,6 @@ contains
       allowance = return_room(ct%h(ps))
     end function
 
-    !> Moves slave node ps by u, or as far along u as room allows; room
     !> Return u of slave node ps as its symmetry planes let it move
     !> (return_on_planes: to the same plane, along the planes); u itself off them.
     function along_planes(ps, u) result(w)
@@ -1556,7 +1555,8 @@ contains
       if (ct%plane_set(ps) /= 0) w = return_on_planes(u, ct%plane_proj(:,:,ct%plane_set(ps)))
     end function
 
-    !> shrinks by the distance moved.
+    !> Moves slave node ps by u (along its planes), or as far along it as
+    !> room allows; room shrinks by the distance moved.
     subroutine put_back(ps, u, room)
       integer, intent(in) :: ps
       real(rk), intent(in) :: u(3)
